@@ -1,0 +1,8 @@
+"""Python package of wall_follower, installed by catkin_python_setup()."""
+from setuptools import setup
+from catkin_pkg.python_setup import generate_distutils_setup
+
+setup(**generate_distutils_setup(
+    packages=['wall_follower', 'wall_follower.sim', 'wall_follower.nodes'],
+    package_dir={'': 'src'},
+))

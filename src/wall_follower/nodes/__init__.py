@@ -1,0 +1,1 @@
+"""ROS wiring of the package's nodes; each module has a main() for scripts/."""

@@ -1,0 +1,81 @@
+"""ROS plumbing shared by every node that reads the laser or drives the robot."""
+import rospy
+from geometry_msgs.msg import Twist
+from sensor_msgs.msg import LaserScan
+
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
+from wall_follower.scan import ScanView
+
+
+def private_params(defaults):
+    """Read each ~name from the parameter server, falling back to defaults[name].
+
+    A value of the wrong type is a configuration error: it is reported once,
+    by name, and the default is used instead of crashing the node.
+    """
+    values = {}
+    for name, default in defaults.items():
+        value = rospy.get_param('~' + name, default)
+        if isinstance(default, (int, float)) and not isinstance(default, bool):
+            try:
+                value = type(default)(value)
+            except (TypeError, ValueError):
+                rospy.logerr('parameter ~%s=%r is not a number; using %r', name, value, default)
+                value = default
+        values[name] = value
+    return values
+
+
+def to_twist(command):
+    twist = Twist()
+    twist.linear.x = command.linear
+    twist.angular.z = command.angular
+    return twist
+
+
+class VelocityCommander(object):
+    """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
+
+    The limits are the private parameters ~max_linear and ~max_angular,
+    defaulting to the real robot's 0.19 m/s and 0.49 rad/s.
+    """
+
+    def __init__(self, topic='cmd_vel'):
+        self.max_linear = abs(float(rospy.get_param('~max_linear', MAX_LINEAR)))
+        self.max_angular = abs(float(rospy.get_param('~max_angular', MAX_ANGULAR)))
+        self._pub = rospy.Publisher(topic, Twist, queue_size=1)
+        self.last = STOP
+        rospy.on_shutdown(self.stop)
+
+    def send(self, command):
+        """Clamp and publish a Command; returns what was actually sent."""
+        self.last = clamp(Command(*command), self.max_linear, self.max_angular)
+        self._pub.publish(to_twist(self.last))
+        return self.last
+
+    def stop(self):
+        self.send(STOP)
+
+
+class LatestScan(object):
+    """Keeps the newest scan as a ScanView and knows when it has gone stale.
+
+    Age is measured in ROS time, so it follows simulated time in simulation.
+    """
+
+    def __init__(self, topic='scan'):
+        self.view = None
+        self.stamp = None
+        self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
+
+    def _on_scan(self, msg):
+        self.view = ScanView.from_msg(msg)
+        self.stamp = rospy.Time.now()
+
+    def fresh(self, timeout):
+        """The latest scan if it is younger than timeout seconds, else None."""
+        if self.view is None or self.stamp is None:
+            return None
+        if (rospy.Time.now() - self.stamp).to_sec() > timeout:
+            return None
+        return self.view
