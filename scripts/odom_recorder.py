@@ -1,0 +1,6 @@
+#!/usr/bin/env python3
+"""The record_odom action server node."""
+from wall_follower.nodes.odom_recorder import main
+
+if __name__ == '__main__':
+    main()
