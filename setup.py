@@ -3,6 +3,7 @@ from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
 setup(**generate_distutils_setup(
-    packages=['wall_follower', 'wall_follower.sim', 'wall_follower.nodes'],
+    packages=['wall_follower', 'wall_follower.sim', 'wall_follower.nodes',
+              'wall_follower.benchmarks'],
     package_dir={'': 'src'},
 ))

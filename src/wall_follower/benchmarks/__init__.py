@@ -1,0 +1,1 @@
+"""Benchmarks behind scripts/benchmark: each module measures one part and prints a table."""
