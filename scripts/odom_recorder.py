@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """The record_odom action server node."""
+import sys
+
 from wall_follower.nodes.odom_recorder import main
 
 if __name__ == '__main__':
-    main()
+    sys.exit(main())

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """The wall following node: find_wall, then record_odom, then follow the right wall."""
+import sys
+
 from wall_follower.nodes.wall_following import main
 
 if __name__ == '__main__':
-    main()
+    sys.exit(main())
