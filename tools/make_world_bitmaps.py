@@ -1,0 +1,121 @@
+#!/usr/bin/env python3
+"""Regenerates the floorplan bitmaps of worlds/ from their geometry.
+
+The geometry below is the single source of truth for each map: a free-space
+outline in world metres (counter-clockwise), drawn at 0.02 m per pixel with
+everything outside it black. The image is the free-space bounding box plus a
+0.10 m wall on every side, so its black pixels reach all four edges; Stage
+then scales the whole image to the floorplan `size` (image pixels x 0.02)
+and centres it on the floorplan `pose` (the bounding-box centre), which puts
+every wall exactly where the outline says. The .world headers quote these
+numbers; change both together.
+
+Pixels are decided in integer centimetres (pixel centres are odd, vertices
+even), so the output is exact and byte-for-byte reproducible:
+
+    /usr/bin/python3 tools/make_world_bitmaps.py          # rewrite worlds/*.png
+    /usr/bin/python3 tools/make_world_bitmaps.py --check  # exit 1 if any differs
+"""
+import argparse
+import io
+import os
+import sys
+
+import numpy as np
+from PIL import Image
+
+METRES_PER_PIXEL = 0.02
+WALL = 0.10
+
+# name -> free-space outline, (x, y) in metres, counter-clockwise.
+OUTLINES = {
+    # 3.0 x 2.4 m rectangle centred on the origin.
+    'room': [(-1.5, -1.2), (1.5, -1.2), (1.5, 1.2), (-1.5, 1.2)],
+    # 3.5 x 3.0 m bounding box: an L (top-right 1.0 x 1.0 m block removed,
+    # convex corner at (0.75, 0.5)), a 45-degree chamfer at the bottom left
+    # and a 1.0 m wide, 0.6 m deep nook in the left wall.
+    'arena': [(-0.55, -1.5), (1.75, -1.5), (1.75, 0.5), (0.75, 0.5),
+              (0.75, 1.5), (-1.15, 1.5), (-1.15, 0.8), (-1.75, 0.8),
+              (-1.75, -0.2), (-1.15, -0.2), (-1.15, -0.9)],
+    # 4.0 x 3.0 m room with a 0.4 x 0.6 m pillar down from the top wall and a
+    # 0.6 x 0.4 m pillar in from the right wall (the box is a separate model).
+    'obstacles': [(-2.0, -1.5), (2.0, -1.5), (2.0, -0.2), (1.4, -0.2),
+                  (1.4, 0.2), (2.0, 0.2), (2.0, 1.5), (0.2, 1.5), (0.2, 0.9),
+                  (-0.2, 0.9), (-0.2, 1.5), (-2.0, 1.5)],
+}
+
+
+def to_centimetres(value):
+    return int(round(value * 100))
+
+
+def inside(points_x, points_y, outline):
+    """Even-odd point-in-polygon test, exact on integer coordinates."""
+    result = np.zeros(points_x.shape, dtype=bool)
+    for (x0, y0), (x1, y1) in zip(outline, outline[1:] + outline[:1]):
+        if y0 == y1:
+            continue
+        spans = (y0 > points_y) != (y1 > points_y)
+        # x of the edge at points_y, compared without division:
+        # points_x < x0 + (points_y - y0) * (x1 - x0) / (y1 - y0)
+        lhs = (points_x - x0) * (y1 - y0)
+        rhs = (points_y - y0) * (x1 - x0)
+        left = np.where(y1 > y0, lhs < rhs, lhs > rhs)
+        result ^= spans & left
+    return result
+
+
+def render(outline_m):
+    """The floorplan image of one outline, and its size [m] and centre [m]."""
+    outline = [(to_centimetres(x), to_centimetres(y)) for x, y in outline_m]
+    wall = to_centimetres(WALL)
+    pixel = to_centimetres(METRES_PER_PIXEL)
+    xs, ys = zip(*outline)
+    left, right = min(xs) - wall, max(xs) + wall
+    bottom, top = min(ys) - wall, max(ys) + wall
+    width, height = (right - left) // pixel, (top - bottom) // pixel
+    columns, rows = np.meshgrid(np.arange(width), np.arange(height))
+    # Pixel centres in centimetres; row 0 is the top (+y) edge, as in Stage.
+    centre_x = left + pixel * columns + pixel // 2
+    centre_y = top - pixel * rows - pixel // 2
+    free = inside(centre_x, centre_y, outline)
+    image = Image.fromarray(np.where(free, 255, 0).astype(np.uint8), mode='L')
+    size = (width * METRES_PER_PIXEL, height * METRES_PER_PIXEL)
+    centre = ((left + right) / 200.0, (bottom + top) / 200.0)
+    return image, size, centre
+
+
+def png_bytes(image):
+    buffer = io.BytesIO()
+    image.save(buffer, format='PNG', optimize=False)
+    return buffer.getvalue()
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    parser.add_argument('--check', action='store_true',
+                        help='compare with the committed PNGs instead of writing them')
+    parser.add_argument('--worlds', default=os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), os.pardir, 'worlds'))
+    args = parser.parse_args(argv)
+    stale = []
+    for name, outline in sorted(OUTLINES.items()):
+        image, size, centre = render(outline)
+        data = png_bytes(image)
+        path = os.path.join(args.worlds, name + '.png')
+        print('%s.png: %dx%d px, floorplan size [%.3f %.3f], pose [%.3f %.3f]'
+              % (name, image.width, image.height, size[0], size[1], centre[0], centre[1]))
+        if args.check:
+            with open(path, 'rb') as existing:
+                if existing.read() != data:
+                    stale.append(path)
+        else:
+            with open(path, 'wb') as out:
+                out.write(data)
+    for path in stale:
+        print('differs from its geometry: %s' % path, file=sys.stderr)
+    return 1 if stale else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
