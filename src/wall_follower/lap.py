@@ -1,0 +1,147 @@
+"""Odometry recording for the record_odom action: path length, samples, lap end.
+
+Plain classes fed one odometry pose at a time (time in seconds, x, y, yaw),
+so the recording can be tested on synthetic trajectories without ROS.
+
+Why the lap rule is not the course's "within 5 cm of the first pose": that
+test is already true at the first sample, so the lap "ends" before the robot
+moves, and a lap that comes back 6 cm to the side is never seen to end.
+Here a lap can end only after the robot has both travelled a minimum
+distance and been well away from the start, and it ends when the robot
+crosses the line through the start point, perpendicular to the start
+heading, heading roughly the way it started, close enough to the start.
+"""
+import math
+
+from wall_follower.scan import wrap_angle
+
+
+class PathLength(object):
+    """Distance travelled, summed over every pose given (the odometry rate)."""
+
+    def __init__(self):
+        self.total = 0.0
+        self._last = None
+
+    def add(self, x, y):
+        if self._last is not None:
+            self.total += math.hypot(x - self._last[0], y - self._last[1])
+        self._last = (x, y)
+        return self.total
+
+
+class PeriodicSampler(object):
+    """Says when a sample is due: at the first call, then every `period` seconds.
+
+    Due times stay on the grid start + k * period, so sampling does not
+    drift late by a fraction of the input period each time; after a gap in
+    the input, the next sample is simply the next one due.
+    """
+
+    def __init__(self, period=1.0):
+        if period <= 0.0:
+            raise ValueError('sample period must be positive, got %r' % period)
+        self.period = float(period)
+        self._next = None
+
+    def due(self, stamp):
+        if self._next is None:
+            self._next = stamp + self.period
+            return True
+        if stamp + 1e-9 < self._next:
+            return False
+        missed = max(0, math.floor((stamp - self._next) / self.period))
+        self._next += (missed + 1) * self.period
+        return True
+
+
+class LapDetector(object):
+    """Decides when a lap around the start pose (x, y, yaw) is complete.
+
+    min_travel: path length (m) the robot must have covered first.
+    leave_radius: the robot must also have been at least this far (m) from
+        the start point, so wiggling on the spot never counts as a lap.
+    close_tolerance: the lap ends when the robot crosses the start line
+        (through the start point, perpendicular to the start heading, in the
+        start direction) at most this far (m) to the side of the start point.
+    max_heading_error: and only if its heading then is within this angle
+        (rad) of the start heading, so that a path crossing the start line
+        obliquely (the middle of a figure of eight) does not end the lap.
+    """
+
+    def __init__(self, start, min_travel=2.0, leave_radius=0.5, close_tolerance=0.3,
+                 max_heading_error=math.radians(60.0)):
+        self.x0, self.y0, self.yaw0 = start
+        self.min_travel = min_travel
+        self.leave_radius = leave_radius
+        self.close_tolerance = close_tolerance
+        self.max_heading_error = max_heading_error
+        self.left_start = False
+        self.closed = False
+        self._previous = self._frame(self.x0, self.y0)
+
+    def _frame(self, x, y):
+        """(along, across) position relative to the start pose's heading."""
+        dx, dy = x - self.x0, y - self.y0
+        c, s = math.cos(self.yaw0), math.sin(self.yaw0)
+        return dx * c + dy * s, -dx * s + dy * c
+
+    def update(self, x, y, yaw, travelled):
+        """Feed the next pose and the distance travelled so far; True once the lap is closed."""
+        if self.closed:
+            return True
+        along, across = self._frame(x, y)
+        previous_along, previous_across = self._previous
+        self._previous = (along, across)
+        if math.hypot(along, across) >= self.leave_radius:
+            self.left_start = True
+        if not (self.left_start and travelled >= self.min_travel):
+            return False
+        if not (previous_along < 0.0 <= along):
+            return False
+        # Where, to the side of the start point, the start line was crossed.
+        share = -previous_along / (along - previous_along)
+        crossing = previous_across + share * (across - previous_across)
+        heading_error = abs(float(wrap_angle(yaw - self.yaw0)))
+        if abs(crossing) <= self.close_tolerance and heading_error <= self.max_heading_error:
+            self.closed = True
+        return self.closed
+
+
+class LapRecorder(object):
+    """One recording: path length, a pose every sample_period, and the lap's end.
+
+    Feed it every odometry pose with add(); it keeps the first pose as the
+    first point, appends the latest pose whenever a sample is due, and
+    appends the closing pose when the lap ends. Points are (x, y, yaw).
+    The lap parameters are those of LapDetector.
+    """
+
+    def __init__(self, sample_period=1.0, **lap_params):
+        self.sampler = PeriodicSampler(sample_period)
+        self.length = PathLength()
+        self.lap_params = lap_params
+        self.lap = None
+        self.points = []
+
+    @property
+    def total_distance(self):
+        return self.length.total
+
+    @property
+    def closed(self):
+        return self.lap is not None and self.lap.closed
+
+    def add(self, stamp, x, y, yaw):
+        """Feed one pose at time stamp (s); True when a point was appended."""
+        if self.closed:
+            return False
+        pose = (x, y, yaw)
+        travelled = self.length.add(x, y)
+        if self.lap is None:
+            self.lap = LapDetector(pose, **self.lap_params)
+        sampled = self.sampler.due(stamp)
+        if self.lap.update(x, y, yaw, travelled) or sampled:
+            self.points.append(pose)
+            return True
+        return False

@@ -1,0 +1,149 @@
+"""Odometry recording on synthetic trajectories: path length, sampling, lap end."""
+import math
+
+import pytest
+
+from wall_follower.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
+
+RATE = 10.0  # odometry messages per second
+SPEED = 0.19
+
+
+def walk(waypoints, speed=SPEED, rate=RATE, start_time=0.0):
+    """(t, x, y, yaw) poses at `rate` along a polyline driven at constant speed."""
+    poses = []
+    t = start_time
+    step = speed / rate
+    x, y = waypoints[0]
+    yaw = math.atan2(waypoints[1][1] - y, waypoints[1][0] - x)
+    poses.append((t, x, y, yaw))
+    for (ax, ay), (bx, by) in zip(waypoints, waypoints[1:]):
+        yaw = math.atan2(by - ay, bx - ax)
+        length = math.hypot(bx - ax, by - ay)
+        count = int(round(length / step))
+        for i in range(1, count + 1):
+            t += 1.0 / rate
+            share = i / float(count)
+            poses.append((t, ax + share * (bx - ax), ay + share * (by - ay), yaw))
+    return poses
+
+
+def feed(recorder, poses):
+    """Feed poses until the lap closes; returns the pose that closed it (or None)."""
+    for pose in poses:
+        recorder.add(*pose)
+        if recorder.closed:
+            return pose
+    return None
+
+
+def lemniscate(size=1.5, count=1200):
+    """Figure of eight through the origin: leaves at +45 deg, crosses back at 135 deg."""
+    poses = []
+    for i in range(count + 1):
+        u = 2.0 * math.pi * i / count
+        x, y = size * math.sin(u), size * math.sin(u) * math.cos(u)
+        dx, dy = math.cos(u), math.cos(2.0 * u)
+        poses.append((i * 0.1, x, y, math.atan2(dy, dx)))
+    return poses
+
+
+def test_lap_passing_the_start_10_cm_to_the_side_still_closes():
+    path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.5), (-1.0, 1.5), (-1.0, 0.1), (1.0, 0.1)]
+    recorder = LapRecorder()
+    closing = feed(recorder, walk(path))
+    assert closing is not None
+    _, x, y, _ = closing
+    assert x == pytest.approx(0.0, abs=SPEED / RATE)
+    assert y == pytest.approx(0.1)
+    # The course's rule (within 5 cm of the first pose) never fires on this lap.
+    assert min(math.hypot(px, py) for _, px, py, _ in walk(path)[50:]) > 0.05
+
+
+def test_lap_passing_beyond_the_tolerance_does_not_close():
+    path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.5), (-1.0, 1.5), (-1.0, 0.4), (1.0, 0.4)]
+    assert feed(LapRecorder(close_tolerance=0.3), walk(path)) is None
+
+
+def test_nothing_closes_at_the_start():
+    recorder = LapRecorder()
+    standing = [(t * 0.1, 0.0, 0.0, 0.0) for t in range(100)]
+    # Rocking back and forth across the start line, as a robot settling might.
+    rocking = [(10.0 + t * 0.1, 0.02 * math.sin(t), 0.0, 0.0) for t in range(300)]
+    assert feed(recorder, standing + rocking) is None
+    assert not recorder.lap.left_start
+
+
+def test_short_loop_near_the_start_does_not_close():
+    """Crossing the start line again after a small circle is not a lap."""
+    loop = [(0.0, 0.0), (0.3, 0.0), (0.3, 0.3), (-0.2, 0.3), (-0.2, 0.0), (0.5, 0.0)]
+    assert feed(LapRecorder(), walk(loop)) is None
+
+
+def test_figure_of_eight_does_not_close_at_its_middle_crossing():
+    poses = lemniscate()
+    total = sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(poses, poses[1:]))
+    recorder = LapRecorder()
+    # The eight passes through the start after half its length, obliquely.
+    assert feed(recorder, poses[:len(poses) // 2 + 50]) is None
+    # Going on, it closes when it comes back through the start the first way.
+    extra = [(poses[-1][0] + 0.1 * (i + 1),) + p[1:] for i, p in enumerate(poses[1:50])]
+    closing = feed(recorder, poses[len(poses) // 2 + 50:] + extra)
+    assert closing is not None
+    assert recorder.total_distance >= 0.99 * total
+
+
+def test_path_length_of_a_known_polygon():
+    rectangle = [(0.0, 0.0), (2.0, 0.0), (2.0, 3.0), (0.0, 3.0), (0.0, 0.0)]
+    length = PathLength()
+    for _, x, y, _ in walk(rectangle, speed=0.13):
+        length.add(x, y)
+    assert length.total == pytest.approx(10.0, rel=1e-9)
+
+
+def test_samples_once_per_second_of_the_given_clock():
+    recorder = LapRecorder(sample_period=1.0)
+    # 12.5 s of odometry at 30 Hz, standing still: 13 samples at t = 0, 1, ... 12.
+    for i in range(376):
+        recorder.add(i / 30.0, 0.0, 0.0, 0.5)
+    assert len(recorder.points) == 13
+    assert recorder.points[0] == (0.0, 0.0, 0.5)
+
+
+def test_sampler_keeps_to_its_grid_and_skips_gaps():
+    sampler = PeriodicSampler(1.0)
+    stamps = [0.0, 0.5, 0.98, 1.0, 1.5, 2.04, 5.3, 5.9, 6.02]
+    # Due at 0, 1, 2, then (after the gap) at 5.3 and at 6, not at 6.3.
+    assert [s for s in stamps if sampler.due(s)] == [0.0, 1.0, 2.04, 5.3, 6.02]
+
+
+def test_points_hold_x_y_and_yaw_and_end_with_the_closing_pose():
+    path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (-1.0, 1.0), (-1.0, 0.0), (0.5, 0.0)]
+    recorder = LapRecorder()
+    closing = feed(recorder, walk(path))
+    assert recorder.points[0] == (0.0, 0.0, 0.0)
+    assert recorder.points[-1] == closing[1:]
+    count = len(recorder.points)
+    # Once closed, the recording takes nothing more.
+    assert not recorder.add(closing[0] + 1.0, 0.3, 0.0, 0.0)
+    assert len(recorder.points) == count
+    duration = closing[0]
+    assert count in (int(duration) + 1, int(duration) + 2)
+
+
+def test_lap_must_be_armed_by_distance_and_by_leaving():
+    detector = LapDetector((0.0, 0.0, 0.0), min_travel=2.0, leave_radius=0.5)
+    assert not detector.update(-0.1, 0.0, 0.0, travelled=5.0)
+    assert not detector.update(0.1, 0.0, 0.0, travelled=5.0)  # never left
+    detector.update(1.0, 0.0, 0.0, travelled=5.0)
+    detector.update(-0.1, 0.0, 0.0, travelled=1.0)
+    assert not detector.update(0.1, 0.0, 0.0, travelled=1.9)  # too short a path
+    detector.update(-0.1, 0.0, 0.0, travelled=3.0)
+    assert detector.update(0.1, 0.0, 0.0, travelled=3.2)
+
+
+def test_crossing_backwards_does_not_close():
+    detector = LapDetector((0.0, 0.0, 0.0))
+    detector.update(1.0, 0.0, 0.0, travelled=3.0)
+    assert not detector.update(-0.1, 0.0, math.pi, travelled=4.0)
+    assert not detector.update(0.1, 0.0, math.pi, travelled=4.2)
