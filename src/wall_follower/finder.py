@@ -1,0 +1,244 @@
+"""The find-wall behaviour: turn to the nearest wall, approach it, put it on the right.
+
+A plain state machine fed one ScanView at a time, free of ROS so that it can
+be driven by unit tests, by the simulator in a closed loop, or by the
+find_wall service node alike:
+
+    CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
+         |               (wall lost: back to CHOOSE_WALL)
+         +-> FAILED (no wall in range, or the wall kept getting lost)
+
+Every state re-measures the chosen wall on every scan (closed loop): the
+turns end when the wall's normal is where it should be, not after a time.
+The robot is steered by the wall's fitted line, not by single rays, which
+makes both distance and heading far steadier than the shortest ray would.
+"""
+import math
+
+from wall_follower.motion import STOP, Command
+from wall_follower.scan import RIGHT, wrap_angle
+from wall_follower.walls import closest_match, extract_walls, path_is_clear
+
+CHOOSE_WALL = 'CHOOSE_WALL'
+ROTATE_TO_WALL = 'ROTATE_TO_WALL'
+APPROACH = 'APPROACH'
+ALIGN = 'ALIGN'
+DONE = 'DONE'
+FAILED = 'FAILED'
+IDLE = 'IDLE'
+
+DEFAULTS = {
+    'wall_distance': 0.30,
+    'laser_x': 0.0,
+    'min_wall_length': 0.5,
+    'corridor_half_width': 0.15,
+    'max_linear': 0.19,
+    'max_angular': 0.49,
+    'min_linear': 0.02,
+    'min_angular': 0.06,
+    'linear_decel': 0.25,
+    'angular_decel': 1.2,
+    'latency': 0.15,
+    'distance_tolerance': 0.005,
+    'heading_tolerance': math.radians(1.0),
+    'approach_heading': math.radians(20.0),
+    'settle_updates': 2,
+    'track_angle': math.radians(25.0),
+    'track_distance': 0.2,
+    'lost_updates': 5,
+    'max_reacquire': 3,
+}
+"""Parameters of WallFinder, with their defaults.
+
+wall_distance: final distance from the laser to the wall on the right (m).
+laser_x: position of the laser ahead of the robot's rotation centre (m;
+    the TurtleBot3 Burger's LDS sits 0.032 m behind it, i.e. -0.032). The
+    robot stops wall_distance - laser_x from the wall, so that the quarter
+    turn that follows leaves the laser at wall_distance.
+min_wall_length: a straight run of hits this long (m) counts as a wall;
+    shorter ones (boxes, legs, spurious beams) are never chosen.
+corridor_half_width: a wall is chosen only if nothing lies within this
+    distance (m) of the straight path to it.
+max_linear, max_angular: the behaviour's own speed limits (m/s, rad/s).
+min_linear, min_angular: slowest useful speeds; below these a real robot
+    stalls, so the last millimetres are covered at these speeds.
+linear_decel, angular_decel: braking used for the speed profile (m/s^2,
+    rad/s^2): speed = sqrt(2 * decel * remaining), so the robot slows as it
+    nears the target instead of overshooting it.
+latency: time (s) from a scan to its command taking effect; the remaining
+    error is predicted that far ahead so the robot stops on target.
+distance_tolerance, heading_tolerance: how close (m, rad) counts as there.
+approach_heading: the approach starts once the wall is this close (rad) to
+    straight ahead; the heading is corrected further while driving.
+settle_updates: scans in a row that must show the robot stopped and
+    aligned before it reports success.
+track_angle, track_distance: how far (rad, m) the chosen wall may appear to
+    move between two scans and still be taken for the same wall.
+lost_updates: scans in a row without the chosen wall before choosing again.
+max_reacquire: how many times a lost wall may be chosen again before the
+    behaviour gives up.
+"""
+
+
+class WallFinder(object):
+    """Find-wall state machine: call start(), then update(scan) until done."""
+
+    def __init__(self, **params):
+        unknown = set(params) - set(DEFAULTS)
+        if unknown:
+            raise ValueError('unknown WallFinder parameters: %s' % ', '.join(sorted(unknown)))
+        self.params = dict(DEFAULTS)
+        self.params.update(params)
+        self.state = IDLE
+        self.failure_reason = None
+        self.wall = None
+        self._last = STOP
+        self._lost = 0
+        self._reacquired = 0
+        self._settled = 0
+
+    @property
+    def done(self):
+        return self.state in (DONE, FAILED)
+
+    @property
+    def success(self):
+        return self.state == DONE
+
+    def start(self):
+        """Forget any previous run and begin by choosing a wall."""
+        self.state = CHOOSE_WALL
+        self.failure_reason = None
+        self.wall = None
+        self._last = STOP
+        self._lost = 0
+        self._reacquired = 0
+        self._settled = 0
+
+    def update(self, view):
+        """Advance on one scan (a ScanView) and return the Command to drive."""
+        handler = {
+            CHOOSE_WALL: self._choose_wall,
+            ROTATE_TO_WALL: self._rotate_to_wall,
+            APPROACH: self._approach,
+            ALIGN: self._align,
+        }.get(self.state)
+        command = handler(view) if handler is not None else STOP
+        self._last = command
+        return command
+
+    # States
+
+    def _choose_wall(self, view):
+        p = self.params
+        walls = [wall for wall in self._walls(view)
+                 if wall.foot_visible and path_is_clear(view, wall, p['corridor_half_width'])]
+        if not walls:
+            return self._fail('no wall in range: no clear, straight run of hits at least '
+                              '%.2f m long in the scan' % p['min_wall_length'])
+        self.wall = walls[0]
+        self._lost = 0
+        if (abs(self._heading_error(RIGHT)) <= p['approach_heading']
+                and abs(self.wall.distance - p['wall_distance']) <= p['distance_tolerance']):
+            # Already beside the wall at the right distance: only straighten up.
+            self.state = ALIGN
+            return self._align(view, tracked=True)
+        self.state = ROTATE_TO_WALL
+        return self._rotate_to_wall(view)
+
+    def _rotate_to_wall(self, view):
+        if not self._track(view):
+            return self._on_lost()
+        heading_error = self._heading_error(0.0)
+        if abs(heading_error) <= self.params['approach_heading']:
+            self.state = APPROACH
+            return self._approach(view, tracked=True)
+        return Command(0.0, self._turn(heading_error))
+
+    def _approach(self, view, tracked=False):
+        p = self.params
+        if not tracked and not self._track(view):
+            return self._on_lost()
+        heading_error = self._heading_error(0.0)
+        remaining = self.wall.distance - (p['wall_distance'] - p['laser_x'])
+        predicted = remaining - self._last.linear * p['latency']
+        if abs(remaining) <= p['distance_tolerance'] and abs(predicted) <= p['distance_tolerance']:
+            self.state = ALIGN
+            return self._align(view, tracked=True)
+        linear = _profile(predicted, p['max_linear'], p['linear_decel'],
+                          p['min_linear'], p['distance_tolerance'])
+        # Driving while still turned away would reach the wall at an angle.
+        linear *= max(0.0, 1.0 - abs(heading_error) / p['approach_heading'])
+        return Command(linear, self._turn(heading_error))
+
+    def _align(self, view, tracked=False):
+        p = self.params
+        if not tracked and not self._track(view):
+            return self._on_lost()
+        heading_error = self._heading_error(RIGHT)
+        stopped = self._last == STOP
+        if abs(heading_error) <= p['heading_tolerance'] and stopped:
+            self._settled += 1
+            if self._settled >= p['settle_updates']:
+                self.state = DONE
+            return STOP
+        self._settled = 0
+        return Command(0.0, self._turn(heading_error))
+
+    # Helpers
+
+    def _walls(self, view):
+        return extract_walls(view, min_length=self.params['min_wall_length'])
+
+    def _track(self, view):
+        """Re-measure the chosen wall on this scan; False if it cannot be found."""
+        p = self.params
+        match = closest_match(self._walls(view), self.wall, p['track_angle'], p['track_distance'])
+        if match is None:
+            return False
+        self.wall = match
+        self._lost = 0
+        return True
+
+    def _on_lost(self):
+        """Stand still while the wall is out of sight; choose again if it stays away."""
+        self._lost += 1
+        if self._lost >= self.params['lost_updates']:
+            if self._reacquired >= self.params['max_reacquire']:
+                return self._fail('lost sight of the chosen wall %d times' % (self._reacquired + 1))
+            self._reacquired += 1
+            self.state = CHOOSE_WALL
+        return STOP
+
+    def _fail(self, reason):
+        self.state = FAILED
+        self.failure_reason = reason
+        return STOP
+
+    def _heading_error(self, target):
+        """Angle (rad) by which the wall's normal lies left of where it should be.
+
+        Turning left by that much puts it there, so it is also the signed
+        turn still to make.
+        """
+        return float(wrap_angle(self.wall.angle - target))
+
+    def _turn(self, heading_error):
+        p = self.params
+        predicted = heading_error - self._last.angular * p['latency']
+        return _profile(predicted, p['max_angular'], p['angular_decel'],
+                        p['min_angular'], p['heading_tolerance'])
+
+
+def _profile(remaining, max_speed, decel, min_speed, tolerance):
+    """Signed speed that covers `remaining` and can still brake in time.
+
+    sqrt(2 * decel * remaining) is the speed from which braking at decel
+    stops exactly on target; it is capped at max_speed, kept above
+    min_speed, and zero once within tolerance.
+    """
+    distance = abs(remaining)
+    if distance <= tolerance:
+        return 0.0
+    speed = min(max_speed, max(min_speed, math.sqrt(2.0 * decel * distance)))
+    return math.copysign(speed, remaining)

@@ -1,0 +1,213 @@
+"""Straight walls extracted from a laser scan.
+
+"The shortest ray" points as readily at a chair leg, a box or a single
+spurious beam as at a wall. A wall is better told by its shape: a long run
+of neighbouring hits that lie on one straight line. This module cuts the
+scan's hits into such runs, splits each run at its corners and fits a line
+to every piece, so that a caller can ask for walls by length and straightness
+and then keep track of one of them from scan to scan.
+"""
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from wall_follower.scan import wrap_angle
+
+
+class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
+                               'start', 'end', 'foot'])):
+    """A straight piece of wall in the laser frame.
+
+    distance: perpendicular distance from the laser to the wall's line (m).
+    angle: direction of that perpendicular, i.e. of the wall's normal seen
+        from the laser (rad, 0 = ahead, -pi/2 = right).
+    length: extent of the hits along the line (m); rms: their residual (m).
+    count: number of hits. start, end, foot: positions along the line (m,
+        from the hits' mean) of the two outermost hits and of the foot of
+        the perpendicular from the laser.
+    """
+
+    @property
+    def foot_visible(self):
+        """True when the point of the wall straight across from the laser was seen.
+
+        Driving along the normal then ends on wall that is known to be there,
+        not on wall merely extrapolated behind an obstacle.
+        """
+        return self.start <= self.foot <= self.end
+
+    @property
+    def normal(self):
+        return np.array([math.cos(self.angle), math.sin(self.angle)])
+
+
+def extract_walls(view, min_points=6, split_tolerance=0.04, max_gap=0.1,
+                  gap_beams=3.0, max_rms=0.025, min_length=0.0):
+    """Straight pieces of wall in a ScanView, nearest first.
+
+    min_points: hits a piece needs to count at all.
+    split_tolerance: a run is split where a hit lies farther than this (m)
+        from the chord of the run, which cuts it at corners and steps.
+    max_gap, gap_beams: two hits adjacent in angle belong to one run when
+        they are closer than max_gap + gap_beams * range * angle between them;
+        the second term lets far or grazing walls, whose hits spread out, stay
+        in one piece.
+    max_rms: pieces whose hits stray further from their line are not walls.
+    min_length: pieces shorter than this (m) are left out.
+
+    Isolated hits (no neighbour within the gap on either side) are dropped
+    first, so a lone spurious beam can neither be a wall nor cut one in two.
+    """
+    angles = view.angles[view.valid]
+    ranges = view.ranges[view.valid]
+    order = np.argsort(angles, kind='mergesort')
+    angles, ranges = angles[order], ranges[order]
+    beam_step = max(2.0 * view.half_step, 1e-6)
+    if angles.size < min_points:
+        return []
+    breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
+    isolated = breaks & np.roll(breaks, 1)
+    if isolated.any():
+        angles, ranges = angles[~isolated], ranges[~isolated]
+        if angles.size < min_points:
+            return []
+        breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
+    points = np.column_stack((ranges * np.cos(angles), ranges * np.sin(angles)))
+    walls = []
+    for run in _runs(breaks, ranges):
+        run_points = points[run]
+        for piece in _merge_collinear(_split(run_points, split_tolerance), run_points, max_rms):
+            wall = _fit(run_points[piece[0]:piece[1]])
+            if (wall is not None and wall.count >= min_points and wall.rms <= max_rms
+                    and wall.length >= min_length):
+                walls.append(wall)
+    walls.sort(key=lambda wall: wall.distance)
+    return walls
+
+
+def _breaks(angles, ranges, beam_step, max_gap, gap_beams):
+    """breaks[i] is True when hit i and the next one (circularly) are in different runs."""
+    next_angles = np.roll(angles, -1)
+    next_ranges = np.roll(ranges, -1)
+    step = np.abs(wrap_angle(next_angles - angles))
+    # A stretch of missing beams must not bridge arbitrarily wide gaps.
+    step = np.clip(step, beam_step, 5.0 * beam_step)
+    x0, y0 = ranges * np.cos(angles), ranges * np.sin(angles)
+    x1, y1 = next_ranges * np.cos(next_angles), next_ranges * np.sin(next_angles)
+    gap = np.hypot(x1 - x0, y1 - y0)
+    limit = max_gap + gap_beams * np.maximum(ranges, next_ranges) * step
+    return gap > limit
+
+
+def _runs(breaks, ranges):
+    """Index arrays of the runs between breaks, taken around the circle.
+
+    With no break at all (a closed room seen whole) the circle is opened
+    at the farthest hit, which is nearly always in a corner rather than in
+    the middle of a wall.
+    """
+    count = breaks.size
+    if breaks.any():
+        first = int(np.flatnonzero(breaks)[0]) + 1
+    else:
+        first = int(np.argmax(ranges))
+    ring = (np.arange(count) + first) % count
+    cuts = np.flatnonzero(breaks[ring]) + 1
+    return [run for run in np.split(ring, cuts) if run.size]
+
+
+def _split(points, tolerance):
+    """(start, stop) slices of points, split recursively at the hit farthest from the chord."""
+    pieces = []
+    stack = [(0, len(points))]
+    while stack:
+        start, stop = stack.pop()
+        piece = points[start:stop]
+        if stop - start < 3:
+            pieces.append((start, stop))
+            continue
+        chord = piece[-1] - piece[0]
+        length = math.hypot(chord[0], chord[1])
+        offsets = piece - piece[0]
+        if length < 1e-6:
+            deviation = np.hypot(offsets[:, 0], offsets[:, 1])
+        else:
+            deviation = np.abs(chord[0] * offsets[:, 1] - chord[1] * offsets[:, 0]) / length
+        worst = int(np.argmax(deviation))
+        if deviation[worst] > tolerance and 0 < worst < stop - start - 1:
+            stack.append((start + worst, stop))
+            stack.append((start, start + worst))
+        else:
+            pieces.append((start, stop))
+    pieces.sort()
+    return pieces
+
+
+def _merge_collinear(pieces, points, max_rms):
+    """Join neighbouring pieces that one straight line fits (undoing splits at outliers)."""
+    merged = []
+    for piece in pieces:
+        if merged:
+            joined = (merged[-1][0], piece[1])
+            wall = _fit(points[joined[0]:joined[1]])
+            if wall is not None and wall.rms <= max_rms / 2.0:
+                merged[-1] = joined
+                continue
+        merged.append(piece)
+    return merged
+
+
+def _fit(points):
+    """Total-least-squares line through points, as a Wall (None for fewer than 2)."""
+    if len(points) < 2:
+        return None
+    mean = points.mean(axis=0)
+    _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
+    direction, normal = vt[0], vt[1]
+    distance = float(np.dot(mean, normal))
+    if distance < 0.0:
+        normal, distance = -normal, -distance
+    along = (points - mean).dot(direction)
+    across = (points - mean).dot(normal)
+    return Wall(distance=distance,
+                angle=float(math.atan2(normal[1], normal[0])),
+                length=float(along.max() - along.min()),
+                rms=float(np.sqrt(np.mean(across ** 2))),
+                count=len(points),
+                start=float(along.min()),
+                end=float(along.max()),
+                foot=float(-np.dot(mean, direction)))
+
+
+def path_is_clear(view, wall, half_width, margin=0.08):
+    """True when no hit lies in the corridor from the laser straight to the wall.
+
+    The corridor runs along the wall's normal, half_width to each side, and
+    stops margin short of the wall so that the wall's own hits do not count.
+    """
+    points = view.points()
+    normal = wall.normal
+    along = points.dot(normal)
+    across = np.abs(points[:, 0] * normal[1] - points[:, 1] * normal[0])
+    blocking = (along > 0.0) & (along < wall.distance - margin) & (across < half_width)
+    return not blocking.any()
+
+
+def closest_match(walls, reference, max_angle, max_distance):
+    """The wall most like reference (same angle and distance within the limits), or None.
+
+    Used to keep hold of one wall while the robot turns and drives: from one
+    scan to the next a tracked wall moves a little, a different wall (the
+    other side of a corner, say) differs by far more.
+    """
+    best, best_score = None, None
+    for wall in walls:
+        angle_error = abs(float(wrap_angle(wall.angle - reference.angle)))
+        distance_error = abs(wall.distance - reference.distance)
+        if angle_error > max_angle or distance_error > max_distance:
+            continue
+        score = angle_error / max_angle + distance_error / max_distance
+        if best_score is None or score < best_score:
+            best, best_score = wall, score
+    return best

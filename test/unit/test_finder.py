@@ -1,0 +1,230 @@
+"""The find-wall state machine on synthetic scans, in every laser convention."""
+import math
+
+import numpy as np
+import pytest
+
+from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
+from wall_follower import finder
+from wall_follower.finder import WallFinder
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
+from wall_follower.scan import ScanView
+
+LASER_X = -0.032  # TurtleBot3 Burger: the laser 32 mm behind the axle
+ROOM = box(-2.0, -1.5, 2.0, 1.5)
+DT = 0.1
+
+
+def laser_pose(pose):
+    x, y, yaw = pose
+    return x + LASER_X * math.cos(yaw), y + LASER_X * math.sin(yaw), yaw
+
+
+def drive(world, pose, convention, limit=60.0):
+    """Run a finder in a kinematic loop (commands act one step late, as in Stage).
+
+    Returns the finder, the states in the order visited, every command, the
+    final robot pose and the time taken.
+    """
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    x, y, yaw = pose
+    command = STOP
+    states, commands = [walker.state], []
+    t = 0.0
+    while not walker.done and t < limit:
+        view = scan_view(world, laser_pose((x, y, yaw)), convention)
+        x += command.linear * DT * math.cos(yaw)
+        y += command.linear * DT * math.sin(yaw)
+        yaw += command.angular * DT
+        command = walker.update(view)
+        commands.append(command)
+        if walker.state != states[-1]:
+            states.append(walker.state)
+        t += DT
+    return walker, states, commands, (x, y, yaw), t
+
+
+def right_wall_error(world_box, pose):
+    """(distance from the laser to the nearest side wall, heading error) for a box room."""
+    x0, y0, x1, y1 = world_box
+    lx, ly, yaw = laser_pose(pose)
+    distances = [lx - x0, x1 - lx, ly - y0, y1 - ly]
+    nearest = int(np.argmin(distances))
+    # Heading that puts that wall on the right (wall normal at -90 deg).
+    normal_directions = [math.pi, 0.0, -math.pi / 2, math.pi / 2]
+    wanted = normal_directions[nearest] + math.pi / 2
+    error = (yaw - wanted + math.pi) % (2 * math.pi) - math.pi
+    return distances[nearest], error
+
+
+def ids(conventions):
+    return [c.name for c in conventions]
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+@pytest.mark.parametrize('pose', [
+    (0.4, 0.3, 0.3),            # open floor, nearest wall behind-left
+    (1.2, 0.2, math.pi),        # facing away from the nearest wall
+    (-1.5, -1.1, 0.8),          # near a corner
+], ids=['open', 'facing-away', 'corner'])
+def test_finds_aligns_and_stops_in_every_convention(convention, pose):
+    walker, states, commands, final, _ = drive(ROOM, pose, convention)
+    assert walker.success, walker.failure_reason
+    assert states == [finder.CHOOSE_WALL, finder.ROTATE_TO_WALL, finder.APPROACH,
+                      finder.ALIGN, finder.DONE]
+    distance, heading_error = right_wall_error((-2.0, -1.5, 2.0, 1.5), final)
+    assert distance == pytest.approx(0.30, abs=0.01)
+    assert abs(math.degrees(heading_error)) < 2.0
+    assert commands[-1] == STOP
+    assert all(clamp(c) == c for c in commands)
+
+
+def test_commands_stay_within_the_real_robot_limits():
+    _, _, commands, _, _ = drive(ROOM, (0.0, 0.0, 2.0), STAGE)
+    assert max(abs(c.linear) for c in commands) <= MAX_LINEAR
+    assert max(abs(c.angular) for c in commands) <= MAX_ANGULAR
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+def test_turns_the_short_way_towards_the_nearest_wall(convention):
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    # Nearest wall (x = 2) is 0.8 m away on the robot's right (robot faces +y).
+    command = walker.update(scan_view(ROOM, (1.2, 0.0, math.pi / 2), convention))
+    assert walker.state == finder.ROTATE_TO_WALL
+    assert walker.wall.distance == pytest.approx(0.8, abs=0.01)
+    assert math.degrees(walker.wall.angle) == pytest.approx(-90.0, abs=1.0)
+    assert command.linear == 0.0 and command.angular < 0.0
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+def test_no_wall_in_range_fails_with_a_reason(convention):
+    walker = WallFinder()
+    walker.start()
+    far = box(-50.0, -50.0, 50.0, 50.0)
+    command = walker.update(scan_view(far, (0.0, 0.0, 0.0), convention))
+    assert walker.state == finder.FAILED and not walker.success
+    assert 'no wall in range' in walker.failure_reason
+    assert command == STOP
+    assert walker.update(scan_view(ROOM, (0.0, 0.0, 0.0), convention)) == STOP
+
+
+def test_a_small_box_alone_is_not_a_wall():
+    walker = WallFinder()
+    walker.start()
+    walker.update(scan_view(box(0.5, -0.15, 0.8, 0.15), (0.0, 0.0, 0.0), STAGE))
+    assert walker.state == finder.FAILED
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+def test_a_spurious_short_beam_does_not_win(convention):
+    pose = (1.0, 0.0, 0.0)  # the x = 2 wall 1.0 m ahead, others 1.5 m or more away
+    ranges = cast(ROOM, pose, convention)
+    angles = convention.angle_min + convention.increment * np.arange(convention.count)
+    beam = int(np.argmin(np.abs(np.angle(np.exp(1j * (angles - 2.5))))))
+    ranges[beam] = 0.2
+    view = ScanView(ranges, convention.angle_min, convention.increment,
+                    convention.range_min, convention.range_max)
+    walker = WallFinder()
+    walker.start()
+    walker.update(view)
+    assert walker.wall.distance == pytest.approx(1.0, abs=0.01)
+    assert walker.wall.angle == pytest.approx(0.0, abs=0.02)
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+def test_a_small_box_nearer_than_a_wall_does_not_win(convention):
+    # A 0.3 m box 0.4 m to the left, the x = 2 wall 1.2 m ahead.
+    world = ROOM + box(0.7, 0.4, 1.0, 0.7)
+    walker = WallFinder()
+    walker.start()
+    walker.update(scan_view(world, (0.8, 0.0, 0.0), convention))
+    assert walker.state == finder.ROTATE_TO_WALL or walker.state == finder.APPROACH
+    assert walker.wall.distance == pytest.approx(1.2, abs=0.01)
+
+
+def test_a_wall_behind_an_obstacle_is_passed_over_for_a_clear_one():
+    # The nearest wall (y = -1.5, 0.6 m away) has a box in the way;
+    # the x = 2 wall, 0.9 m away, is clear.
+    world = ROOM + box(0.9, -1.2, 1.3, -0.95)
+    walker = WallFinder()
+    walker.start()
+    walker.update(scan_view(world, (1.1, -0.6, 0.0), STAGE))
+    assert walker.wall.distance == pytest.approx(0.9, abs=0.01)
+
+
+def test_approach_slows_near_the_target_and_backs_off_when_too_close():
+    speeds = {}
+    for distance in (1.0, 0.6, 0.4, 0.2):
+        walker = WallFinder(laser_x=LASER_X)
+        walker.start()
+        command = walker.update(scan_view(ROOM, (2.0 - distance, 0.0, 0.0), STAGE))
+        assert walker.state == finder.APPROACH
+        speeds[distance] = command.linear
+    assert speeds[1.0] == pytest.approx(0.19, abs=0.002)
+    assert 0.0 < speeds[0.4] < speeds[0.6] < speeds[1.0]
+    assert speeds[0.2] < 0.0
+
+
+def test_at_the_approach_distance_it_turns_left_to_put_the_wall_on_the_right():
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    # Laser 0.332 m from the wall ahead: the approach is already over.
+    command = walker.update(scan_view(ROOM, (2.0 - 0.332, 0.0, 0.0), STAGE))
+    assert walker.state == finder.ALIGN
+    assert command.linear == 0.0 and command.angular > 0.0
+
+
+def test_already_in_place_it_only_checks_the_alignment_and_settles():
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    # The wall 0.30 m on the right and 0.5 deg off parallel: nothing to do
+    # but confirm, over settle_updates scans, that the robot stands still.
+    aligned = scan_view(ROOM, laser_pose((0.0, -1.2, 0.009)), STAGE)
+    assert walker.update(aligned) == STOP
+    assert walker.state == finder.ALIGN
+    assert walker.update(aligned) == STOP
+    assert walker.state == finder.DONE and walker.success
+    assert walker.failure_reason is None
+
+
+def test_nearly_in_place_it_straightens_up_without_the_full_dance():
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    command = walker.update(scan_view(ROOM, laser_pose((0.0, -1.2, 0.1)), STAGE))
+    assert walker.state == finder.ALIGN
+    assert command.linear == 0.0 and command.angular < 0.0
+
+
+def test_losing_the_wall_stops_then_chooses_again_then_fails():
+    walker = WallFinder(lost_updates=2, max_reacquire=1)
+    walker.start()
+    walker.update(scan_view(ROOM, (1.2, 0.0, math.pi / 2), STAGE))
+    empty = scan_view([], (0.0, 0.0, 0.0), STAGE)
+    assert walker.update(empty) == STOP
+    assert walker.state == finder.ROTATE_TO_WALL
+    walker.update(empty)
+    assert walker.state == finder.CHOOSE_WALL
+    walker.update(scan_view(ROOM, (1.2, 0.0, math.pi / 2), STAGE))
+    walker.update(empty)
+    walker.update(empty)
+    assert walker.state == finder.FAILED
+    assert 'lost sight' in walker.failure_reason
+
+
+def test_start_forgets_the_previous_run():
+    walker = WallFinder()
+    assert walker.update(scan_view(ROOM, (0.0, 0.0, 0.0), STAGE)) == STOP  # not started
+    walker.start()
+    walker.update(scan_view([], (0.0, 0.0, 0.0), STAGE))
+    assert walker.state == finder.FAILED
+    walker.start()
+    assert walker.state == finder.CHOOSE_WALL and walker.failure_reason is None
+    walker.update(scan_view(ROOM, (0.0, 0.0, 0.0), STAGE))
+    assert walker.state == finder.ROTATE_TO_WALL
+
+
+def test_unknown_parameters_are_refused():
+    with pytest.raises(ValueError):
+        WallFinder(wall_distanse=0.3)
