@@ -1,4 +1,5 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
+import rospkg
 import rospy
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
@@ -79,3 +80,15 @@ class LatestScan(object):
         if (rospy.Time.now() - self.stamp).to_sec() > timeout:
             return None
         return self.view
+
+
+def world_path(world):
+    """The .world file meant by a launch file's `world` argument.
+
+    A bare name (`arena`) is a world shipped in this package's worlds/; an
+    absolute path is taken as it is, as simulation.launch does.
+    """
+    if world.startswith('/'):
+        return world
+    name = world if world.endswith('.world') else world + '.world'
+    return '%s/worlds/%s' % (rospkg.RosPack().get_path('wall_follower'), name)
