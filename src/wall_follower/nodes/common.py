@@ -1,4 +1,6 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
+import math
+
 import rospkg
 import rospy
 from geometry_msgs.msg import Twist
@@ -92,3 +94,15 @@ def world_path(world):
         return world
     name = world if world.endswith('.world') else world + '.world'
     return '%s/worlds/%s' % (rospkg.RosPack().get_path('wall_follower'), name)
+
+
+def yaw_of(orientation):
+    """Yaw (rad) of a geometry_msgs/Quaternion."""
+    q = orientation
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def pose_of(odometry):
+    """(x, y, yaw) of a nav_msgs/Odometry message."""
+    p = odometry.pose.pose
+    return p.position.x, p.position.y, yaw_of(p.orientation)

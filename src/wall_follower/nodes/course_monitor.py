@@ -1,0 +1,109 @@
+"""Watches a simulated run from outside the robot, for reports, tests and benchmarks.
+
+It listens to what the simulator knows and the robot does not (ground
+truth, stalls) and to what the nodes say (cmd_vel, the record_odom action's
+goal, feedback and result), and scores the run with wall_follower.scoring.
+"""
+import threading
+
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
+
+from wall_follower.lap import PathLength
+from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
+from wall_follower.nodes.common import pose_of
+from wall_follower.scoring import RunScore
+
+
+class CourseMonitor(object):
+    """Scores a run from ground truth while the nodes under test drive.
+
+    With start_on_goal, scoring starts when a record_odom goal is sent (the
+    course: the lap begins after find_wall); otherwise at the first pose.
+    """
+
+    def __init__(self, course_map, start_on_goal=True, **lap_params):
+        self.score = RunScore(course_map, **lap_params)
+        self.start_on_goal = start_on_goal
+        self.lock = threading.Lock()
+        self.done = threading.Event()
+        self.pose = None
+        self.goal_pose = None
+        self.goal_time = None
+        self.feedback = []
+        self.result = None
+        self.result_time = None
+        self.truth_length = PathLength()
+        self.truth_at_result = None
+        self.trail = []
+        self._subs = [
+            rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=50),
+            rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=50),
+            rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=50),
+            rospy.Subscriber('record_odom/goal', OdomRecordActionGoal, self._on_goal, queue_size=5),
+            rospy.Subscriber('record_odom/feedback', OdomRecordActionFeedback,
+                             self._on_feedback, queue_size=50),
+            rospy.Subscriber('record_odom/result', OdomRecordActionResult, self._on_result,
+                             queue_size=5),
+        ]
+
+    @property
+    def scoring(self):
+        return not self.start_on_goal or self.goal_time is not None
+
+    def _on_truth(self, msg):
+        pose = pose_of(msg)
+        stamp = msg.header.stamp.to_sec()
+        with self.lock:
+            self.pose = pose
+            if not self.scoring:
+                return
+            self.trail.append(pose[:2])
+            if self.result is None:
+                self.truth_length.add(pose[0], pose[1])
+            self.score.add_pose(stamp, pose)
+            if not self.start_on_goal and self.score.lap.closed:
+                self.done.set()
+
+    def _on_command(self, msg):
+        with self.lock:
+            self.score.add_command(msg.linear.x, msg.angular.z)
+
+    def _on_stalled(self, msg):
+        with self.lock:
+            self.score.add_stall(msg.data)
+
+    def _on_goal(self, msg):
+        with self.lock:
+            if self.goal_time is None:
+                self.goal_time = rospy.Time.now().to_sec()
+                self.goal_pose = self.pose
+
+    def _on_feedback(self, msg):
+        with self.lock:
+            self.feedback.append(msg.feedback.current_total)
+
+    def _on_result(self, msg):
+        with self.lock:
+            self.result = [(p.x, p.y, p.z) for p in msg.result.list_of_odoms]
+            self.result_time = rospy.Time.now().to_sec()
+            self.truth_at_result = self.truth_length.total
+        if self.start_on_goal:
+            self.done.set()
+
+    def wait(self):
+        """Block until the run ends (result, or lap on ground truth); False on shutdown.
+
+        There is no time-out here: rostest's time-limit and the launch's
+        own end bound every run.
+        """
+        while not rospy.is_shutdown():
+            if self.done.wait(0.1):
+                return True
+        return False
+
+    def close(self):
+        for sub in self._subs:
+            sub.unregister()

@@ -1,0 +1,34 @@
+"""A picture of a run: the recorded points and the true path over the world's map."""
+import matplotlib
+
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+
+
+def plot_course(course_map, trail, points, filename, title=''):
+    """Save a PNG of the map's obstacles, the true path and the recorded points.
+
+    trail: (x, y) ground-truth positions; points: (x, y, yaw) as recorded
+    by record_odom, drawn with a short heading tick each.
+    """
+    grid = course_map.grid
+    rows, cols = grid.occupied.shape
+    x0, y0 = grid.origin
+    extent = (x0, x0 + cols * grid.resolution, y0, y0 + rows * grid.resolution)
+    fig, ax = plt.subplots(figsize=(7, 6))
+    ax.imshow(grid.occupied, origin='lower', extent=extent, cmap='Greys', interpolation='nearest')
+    if trail:
+        xs, ys = zip(*trail)
+        ax.plot(xs, ys, '-', color='tab:blue', lw=1, label='true path')
+    if points:
+        xs, ys, yaws = zip(*points)
+        ax.plot(xs, ys, 'o', color='tab:red', ms=3, label='record_odom points (1/s)')
+        ax.plot(xs[:1], ys[:1], 's', color='tab:green', ms=8, label='first point')
+    ax.set_aspect('equal')
+    ax.set_xlabel('x [m]')
+    ax.set_ylabel('y [m]')
+    ax.set_title(title)
+    ax.legend(loc='best', fontsize='small')
+    fig.tight_layout()
+    fig.savefig(filename, dpi=120)
+    plt.close(fig)

@@ -1,0 +1,157 @@
+"""How well a run went, judged from the simulator's ground truth and the map.
+
+Scores never come from the controller's own laser, which may be noisy or
+wrong in exactly the cases a score should catch. The right-wall distance is
+cast noise-free from the laser's true position in the world; clearance is
+measured between the robot's footprint and the map's occupied cells.
+"""
+import math
+
+import numpy as np
+
+from wall_follower.lap import LapRecorder
+from wall_follower.motion import MAX_LINEAR
+from wall_follower.scan import RIGHT, fit_line, wrap_angle
+from wall_follower.sim.grid import OccupancyGrid, footprint_clearance
+from wall_follower.sim.raytrace import exact_ranges
+from wall_follower.sim.worldfile import load_world
+
+BAND = (0.20, 0.30)
+TARGET = 0.25
+# The course scores the wall "on the right" as the nearest wall within
+# +-30 deg of the robot's right.
+RIGHT_SECTOR = math.radians(30.0)
+_SECTOR_BEAMS = 61
+
+
+class CourseMap(object):
+    """A world's obstacles and one of its robots, for measurements at true poses."""
+
+    def __init__(self, world_path, robot=0):
+        self.world = load_world(world_path)
+        self.grid = OccupancyGrid.from_world(self.world)
+        self.robot = self.world.robots[robot]
+        ranger = self.robot.ranger
+        self.laser_offset = (ranger.pose[0], ranger.pose[1], ranger.pose[3])
+        self.range_max = ranger.range_max
+        self._sector = np.linspace(-RIGHT_SECTOR, RIGHT_SECTOR, _SECTOR_BEAMS)
+
+    def laser_pose(self, pose):
+        """World pose (x, y, yaw) of the laser when the robot is at pose."""
+        x, y, yaw = pose
+        lx, ly, lyaw = self.laser_offset
+        c, s = math.cos(yaw), math.sin(yaw)
+        return x + c * lx - s * ly, y + s * lx + c * ly, yaw + lyaw
+
+    def _right_sector(self, pose):
+        lx, ly, lyaw = self.laser_pose(pose)
+        local = RIGHT + self._sector
+        ranges = exact_ranges(self.grid, lx, ly, lyaw + local, self.range_max)
+        return local, np.asarray(ranges, dtype=float)
+
+    def right_wall_distance(self, pose):
+        """Nearest noise-free range within +-30 deg of the right (inf if none)."""
+        _, ranges = self._right_sector(pose)
+        hits = ranges[ranges < self.range_max]
+        return float(hits.min()) if hits.size else math.inf
+
+    def right_wall_alignment(self, pose):
+        """(distance, heading error) of the wall on the right, or None.
+
+        The wall is a line fitted to the noise-free hits within +-30 deg of
+        the right; the heading error is how far the robot's heading is from
+        parallel to it (rad, positive = turned toward the wall's left).
+        """
+        local, ranges = self._right_sector(pose)
+        hit = ranges < self.range_max
+        points = np.column_stack((ranges[hit] * np.cos(local[hit]),
+                                  ranges[hit] * np.sin(local[hit])))
+        fit = fit_line(points)
+        if fit is None:
+            return None
+        distance, normal = fit
+        return distance, float(wrap_angle(RIGHT - normal))
+
+    def clearance(self, pose):
+        """Smallest distance from the robot's footprint to an obstacle (0 = contact)."""
+        return footprint_clearance(self.grid, self.robot, pose)
+
+
+class RunScore(object):
+    """Accumulates a run, sample by sample, into the figures of the benchmark.
+
+    Ground-truth poses give the right-wall distance, clearance and path
+    length; commands give the highest speeds sent; the lap ends by the same
+    rule the recorder uses, applied to ground truth.
+    """
+
+    def __init__(self, course_map, band=BAND, target=TARGET, **lap_params):
+        self.map = course_map
+        self.band = band
+        self.target = target
+        self.lap = LapRecorder(**lap_params)
+        self.start_time = None
+        self.end_time = None
+        self.lap_time = None
+        self.weights = []
+        self.distances = []
+        self.min_clearance = math.inf
+        self.max_linear = 0.0
+        self.max_angular = 0.0
+        self.stalled = False
+        self._last = None
+
+    def add_pose(self, stamp, pose):
+        """Feed the ground-truth pose (x, y, yaw) at time stamp (s); ignored once the lap is over."""
+        if self.lap.closed or (self._last is not None and stamp <= self._last):
+            return
+        if self.start_time is None:
+            self.start_time = stamp
+        weight = 0.0 if self._last is None else stamp - self._last
+        self._last = self.end_time = stamp
+        self.weights.append(weight)
+        self.distances.append(self.map.right_wall_distance(pose))
+        self.min_clearance = min(self.min_clearance, self.map.clearance(pose))
+        self.lap.add(stamp, *pose)
+        if self.lap.closed:
+            self.lap_time = stamp - self.start_time
+
+    def add_command(self, linear, angular):
+        self.max_linear = max(self.max_linear, abs(linear))
+        self.max_angular = max(self.max_angular, abs(angular))
+
+    def add_stall(self, stalled):
+        self.stalled = self.stalled or bool(stalled)
+
+    @property
+    def path_length(self):
+        return self.lap.total_distance
+
+    def summary(self):
+        """The run's figures as a dict (NaN where there is nothing to measure)."""
+        weights = np.asarray(self.weights[1:], dtype=float)
+        distances = np.asarray(self.distances[1:], dtype=float)
+        total = weights.sum()
+        if total > 0.0:
+            low, high = self.band
+            in_band = float(weights[(distances >= low) & (distances <= high)].sum() / total)
+            finite = np.isfinite(distances)
+            errors = np.where(finite, distances - self.target, self.band[1])
+            rms = float(math.sqrt((weights * errors ** 2).sum() / total))
+        else:
+            in_band = rms = float('nan')
+        lap_time = self.lap_time if self.lap_time is not None else float('nan')
+        bound = self.path_length / MAX_LINEAR if self.path_length > 0.0 else float('nan')
+        return {
+            'duration': (self.end_time - self.start_time) if self.start_time is not None else 0.0,
+            'lap_closed': self.lap.closed,
+            'lap_time': lap_time,
+            'path_length': self.path_length,
+            'lap_time_ratio': lap_time / bound if bound == bound and bound > 0 else float('nan'),
+            'time_in_band': in_band,
+            'rms_error': rms,
+            'min_clearance': self.min_clearance,
+            'contact': self.stalled or self.min_clearance <= 0.0,
+            'max_linear': self.max_linear,
+            'max_angular': self.max_angular,
+        }
