@@ -1,0 +1,88 @@
+"""When the simulator may take its next world step.
+
+Real `stageros -g` steps as fast as the CPU allows, so Python controllers,
+which answer each scan a little later, fall behind and see the world jump.
+The built-in simulator instead holds a chosen multiple of real time, and can
+go further and wait for the controllers (lockstep), which makes a run give the
+same result however busy the machine is.
+"""
+import threading
+import time
+
+
+class StepPacer(object):
+    """Paces world steps for the simulator's main loop.
+
+    period: wall seconds between steps (interval_sim / speedup); 0 steps as
+        fast as possible.
+    lockstep: before each step, wait for a new command from every robot that
+        is being driven, at most `timeout` wall seconds (so a controller that
+        died cannot freeze the world); when nobody drives, wait at most
+        `grace` for someone to start.
+
+    Command callbacks call command_arrived() from their own threads; the main
+    loop calls wait_turn() before each step.
+    """
+
+    def __init__(self, period, robot_count=1, lockstep=False, grace=0.05, timeout=1.0,
+                 clock=time.monotonic):
+        self.period = max(0.0, period)
+        self.lockstep = lockstep
+        self.grace = grace
+        self.timeout = timeout
+        self._clock = clock
+        self._due = None
+        self._fresh = [False] * robot_count
+        self._stopped = False
+        self._condition = threading.Condition()
+
+    def command_arrived(self, index):
+        with self._condition:
+            self._fresh[index] = True
+            self._condition.notify_all()
+
+    def stop(self):
+        """Releases a waiting wait_turn(), which then returns False."""
+        with self._condition:
+            self._stopped = True
+            self._condition.notify_all()
+
+    def wait_turn(self, driving):
+        """Blocks until the next step may start; False once stop() was called.
+
+        driving[i] says whether robot i is being driven (its watchdog has not
+        stopped it), i.e. whether its next command is worth waiting for.
+        """
+        with self._condition:
+            if self._due is not None:
+                self._wait_until(self._due, lambda: False)
+            if self.lockstep:
+                self._wait_for_commands(driving)
+            self._fresh = [False] * len(self._fresh)
+            self._schedule_next(self._clock())
+            return not self._stopped
+
+    def _wait_for_commands(self, driving):
+        awaited = [index for index, active in enumerate(driving) if active]
+        if awaited:
+            self._wait_until(self._clock() + self.timeout,
+                             lambda: all(self._fresh[index] for index in awaited))
+        else:
+            self._wait_until(self._clock() + self.grace, lambda: any(self._fresh))
+
+    def _wait_until(self, deadline, ready):
+        while not self._stopped and not ready():
+            remaining = deadline - self._clock()
+            if remaining <= 0.0:
+                return
+            self._condition.wait(remaining)
+
+    def _schedule_next(self, start):
+        """Keeps a steady schedule through small delays, but restarts it after
+        falling a whole period behind: catching up in a burst of steps is
+        exactly what starves the controllers.
+        """
+        if self.period <= 0.0:
+            return
+        on_time = self._due is not None and start - self._due < self.period
+        self._due = (self._due if on_time else start) + self.period

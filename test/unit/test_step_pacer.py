@@ -1,0 +1,78 @@
+"""The simulator's step pacing: a held rate that never bursts, and lockstep.
+
+Only lower bounds of wall time are asserted (a loaded machine can only make
+things slower), and waits that should end early are given generous limits.
+"""
+import threading
+import time
+
+from wall_follower.step_pacer import StepPacer
+
+
+def run_steps(pacer, count, driving=(False,)):
+    start = time.monotonic()
+    for _ in range(count):
+        assert pacer.wait_turn(list(driving))
+    return time.monotonic() - start
+
+
+def test_a_held_rate_is_never_exceeded():
+    pacer = StepPacer(period=0.01)
+    assert run_steps(pacer, 21) >= 0.2
+
+
+def test_no_burst_after_falling_behind():
+    pacer = StepPacer(period=0.02)
+    pacer.wait_turn([False])
+    time.sleep(0.1)                 # five periods late
+    pacer.wait_turn([False])        # starts at once
+    assert run_steps(pacer, 3) >= 0.06
+
+
+def test_unpaced_steps_do_not_wait():
+    pacer = StepPacer(period=0.0, lockstep=False)
+    assert run_steps(pacer, 1000) < 5.0
+
+
+def test_lockstep_waits_for_the_driven_robot_and_no_longer():
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=30.0)
+    sender = threading.Timer(0.05, pacer.command_arrived, args=(0,))
+    sender.start()
+    elapsed = run_steps(pacer, 1, driving=[True])
+    sender.join()
+    assert 0.05 <= elapsed < 20.0
+
+
+def test_lockstep_steps_at_once_when_the_command_is_already_there():
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=30.0)
+    pacer.command_arrived(0)
+    assert run_steps(pacer, 1, driving=[True]) < 20.0
+
+
+def test_lockstep_gives_up_on_a_silent_controller_after_the_timeout():
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=0.05)
+    assert run_steps(pacer, 2, driving=[True]) >= 0.1
+
+
+def test_lockstep_waits_only_the_grace_when_nobody_drives():
+    pacer = StepPacer(period=0.0, lockstep=True, grace=0.02, timeout=30.0)
+    elapsed = run_steps(pacer, 3, driving=[False])
+    assert 0.06 <= elapsed < 20.0
+
+
+def test_lockstep_waits_for_every_driven_robot():
+    pacer = StepPacer(period=0.0, robot_count=2, lockstep=True, timeout=30.0)
+    pacer.command_arrived(0)
+    sender = threading.Timer(0.05, pacer.command_arrived, args=(1,))
+    sender.start()
+    elapsed = run_steps(pacer, 1, driving=[True, True])
+    sender.join()
+    assert elapsed >= 0.05
+
+
+def test_stop_releases_a_waiting_step():
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=30.0)
+    stopper = threading.Timer(0.05, pacer.stop)
+    stopper.start()
+    assert pacer.wait_turn([True]) is False
+    stopper.join()
