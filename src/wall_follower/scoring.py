@@ -155,3 +155,26 @@ class RunScore(object):
             'max_linear': self.max_linear,
             'max_angular': self.max_angular,
         }
+
+
+def true_lap_length(trail, start, leave_radius=0.5, near=0.3):
+    """Path length at which a ground-truth trail first comes back to its start.
+
+    The return is the first local minimum of the distance to start, within
+    `near` metres, after the trail has been `leave_radius` away. This is a
+    different rule from the recorder's start-line crossing, so it can judge
+    whether the recorder declared its lap too early. None if it never
+    came back.
+    """
+    xy = np.asarray(trail, dtype=float)
+    if len(xy) < 3:
+        return None
+    lengths = np.concatenate(([0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))))
+    gaps = np.hypot(xy[:, 0] - start[0], xy[:, 1] - start[1])
+    away = np.nonzero(gaps >= leave_radius)[0]
+    if away.size == 0:
+        return None
+    for i in range(int(away[0]) + 1, len(xy) - 1):
+        if gaps[i] <= near and gaps[i] <= gaps[i - 1] and gaps[i] <= gaps[i + 1]:
+            return float(lengths[i])
+    return None

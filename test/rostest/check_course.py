@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""rostest: main.launch end to end: find_wall, then a recorded lap.
+
+Judged from ground truth: where find_wall left the robot, whether the
+feedback rose steadily and matched the true distance, and whether the lap
+was declared where the robot really came back to its start. The follower
+keeps following after the lap (stop_after_lap false) so that the true
+return to the start is seen even if the recorder declared early.
+"""
+import math
+import sys
+import unittest
+
+import rospy
+import rostest
+
+from wall_follower.nodes.common import world_path
+from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.scoring import CourseMap, true_lap_length
+
+# Ground truth is kept this long after the result, to see the true return.
+AFTER_RESULT = 10.0
+
+
+class Course(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.world = rospy.get_param('~world')
+        cls.tolerance = rospy.get_param('/odom_recorder/close_tolerance', 0.3)
+        cls.monitor = CourseMonitor(CourseMap(world_path(cls.world)), start_on_goal=True)
+        assert cls.monitor.wait(), 'shut down before the lap was recorded'
+        rospy.sleep(AFTER_RESULT)
+
+    def test_wall_found_before_recording(self):
+        self.assertIsNotNone(self.monitor.goal_pose, 'no record_odom goal: find_wall failed?')
+        distance, heading = self.monitor.score.map.right_wall_alignment(self.monitor.goal_pose)
+        self.assertAlmostEqual(distance, 0.30, delta=0.03)
+        self.assertLess(abs(math.degrees(heading)), 5.0)
+
+    def test_feedback_rises_and_matches_true_distance(self):
+        feedback = self.monitor.feedback
+        self.assertGreater(len(feedback), 10)
+        self.assertTrue(all(b >= a for a, b in zip(feedback, feedback[1:])),
+                        'feedback went down')
+        truth = self.monitor.truth_at_result
+        self.assertAlmostEqual(feedback[-1], truth, delta=0.02 * truth)
+
+    def test_one_point_a_second_and_closed(self):
+        points = self.monitor.result
+        duration = self.monitor.result_time - self.monitor.goal_time
+        self.assertAlmostEqual(len(points), duration + 1, delta=2)
+        gap = math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1])
+        self.assertLessEqual(gap, self.tolerance)
+
+    def test_lap_declared_where_the_robot_came_back(self):
+        start = self.monitor.goal_pose
+        lap = true_lap_length(self.monitor.trail, start)
+        self.assertIsNotNone(lap, 'ground truth never came back to the start')
+        declared = self.monitor.truth_at_result
+        self.assertGreaterEqual(declared, 0.9 * lap)
+        self.assertLessEqual(declared, 1.1 * lap)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_course')
+    rostest.rosrun('wall_follower', 'check_course', Course, sys.argv)

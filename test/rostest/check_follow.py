@@ -1,0 +1,42 @@
+#!/usr/bin/env python3
+"""rostest: the follower alone laps a world, scored from ground truth.
+
+The robot starts beside a wall (the world file's pose); the lap ends when
+ground truth crosses the start line again. Parameters: ~world (name),
+~min_in_band (share of the lap), ~time_limit (simulated s).
+"""
+import sys
+import unittest
+
+import rospy
+import rostest
+
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.nodes.common import world_path
+from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.scoring import CourseMap
+
+# Commands are floats on the wire; allow their rounding, nothing more.
+LIMIT_SLACK = 1e-6
+
+
+class FollowLap(unittest.TestCase):
+
+    def test_full_lap_in_band_without_contact(self):
+        world = rospy.get_param('~world')
+        min_in_band = rospy.get_param('~min_in_band', 0.95)
+        monitor = CourseMonitor(CourseMap(world_path(world)), start_on_goal=False)
+        self.assertTrue(monitor.wait(), 'shut down before the lap ended')
+        score = monitor.score.summary()
+        rospy.loginfo('follow %s: %s', world, score)
+        self.assertTrue(score['lap_closed'])
+        self.assertFalse(score['contact'], 'touched an obstacle (clearance %.3f m)'
+                         % score['min_clearance'])
+        self.assertGreaterEqual(score['time_in_band'], min_in_band)
+        self.assertLessEqual(score['max_linear'], MAX_LINEAR + LIMIT_SLACK)
+        self.assertLessEqual(score['max_angular'], MAX_ANGULAR + LIMIT_SLACK)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_follow')
+    rostest.rosrun('wall_follower', 'check_follow', FollowLap, sys.argv)

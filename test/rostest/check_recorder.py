@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""rostest: record_odom's goal life cycle against a robot that follows the wall.
+
+A cancel mid-lap returns the points so far; a second goal starts from zero
+at the robot's current pose, carrying nothing over from the first.
+"""
+import math
+import sys
+import unittest
+
+import actionlib
+import rospy
+import rostest
+from actionlib_msgs.msg import GoalStatus
+from nav_msgs.msg import Odometry
+
+from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.common import pose_of
+
+POLL = 0.1
+
+
+class RecordOdomGoals(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
+        assert cls.client.wait_for_server(rospy.Duration(30.0)), 'no record_odom server'
+        cls.truth = None
+        rospy.Subscriber('base_pose_ground_truth', Odometry, cls._on_truth, queue_size=1)
+
+    @classmethod
+    def _on_truth(cls, msg):
+        cls.truth = pose_of(msg)
+
+    def record(self, until_distance):
+        """Send a goal, cancel it once the feedback reaches until_distance."""
+        feedback = []
+        while self.truth is None:
+            rospy.sleep(POLL)
+        start_pose = self.truth
+        started = rospy.get_time()
+        self.client.send_goal(OdomRecordGoal(),
+                              feedback_cb=lambda fb: feedback.append(fb.current_total))
+        while not feedback or feedback[-1] < until_distance:
+            rospy.sleep(POLL)
+        self.client.cancel_goal()
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
+        elapsed = rospy.get_time() - started
+        return start_pose, elapsed, feedback, self.client.get_state(), self.client.get_result()
+
+    def test_cancel_returns_points_and_next_goal_starts_clean(self):
+        _, elapsed, _, state, result = self.record(until_distance=2.0)
+        self.assertEqual(state, GoalStatus.PREEMPTED)
+        self.assertAlmostEqual(len(result.list_of_odoms), elapsed + 1, delta=2)
+        first_run_start = result.list_of_odoms[0]
+
+        start_pose, _, feedback, state, result = self.record(until_distance=0.5)
+        self.assertEqual(state, GoalStatus.PREEMPTED)
+        self.assertLess(feedback[0], 0.2, 'the second goal did not start from zero')
+        first = result.list_of_odoms[0]
+        self.assertLess(math.hypot(first.x - start_pose[0], first.y - start_pose[1]), 0.05)
+        self.assertGreater(math.hypot(first.x - first_run_start.x, first.y - first_run_start.y),
+                           1.0, 'the second goal kept the first goal\'s start')
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_recorder')
+    rostest.rosrun('wall_follower', 'check_recorder', RecordOdomGoals, sys.argv)
