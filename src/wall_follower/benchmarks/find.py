@@ -1,0 +1,34 @@
+"""find_wall from the start poses of config/find_trials.yaml in every world.
+
+Runs launch/find_trials.launch in lockstep simulated time and reads the
+ground-truth figures of each trial.
+"""
+import argparse
+
+from wall_follower.benchmarks.launching import WORLDS, fmt, print_table, run_launch
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog='benchmark find', description=__doc__)
+    parser.add_argument('--worlds', nargs='+', default=list(WORLDS))
+    parser.add_argument('--laser-profile', default='stage')
+    args = parser.parse_args(argv)
+    rows = []
+    for world in args.worlds:
+        f = run_launch('find_trials.launch', {
+            'world': world, 'laser_profile': args.laser_profile,
+            'lockstep': 'true', 'speedup': '0'})
+        for trial in (f or {}).get('trials', []):
+            x, y, yaw = trial['start']
+            rows.append([world, '%.2f %.2f %.0f' % (x, y, yaw),
+                         'yes' if trial['found'] else 'NO',
+                         fmt(trial['time'], '.1f'),
+                         fmt(100.0 * abs(trial['distance'] - 0.30), '.2f'),
+                         fmt(abs(trial['heading_error_deg']), '.2f'),
+                         'yes' if trial['contact'] else 'no'])
+        if not f:
+            rows.append([world, '(run failed)', '-', '-', '-', '-', '-'])
+    print_table(['world', 'start x y yaw', 'found', 'time s', '|dist - 0.30| cm',
+                 '|heading| deg', 'contact'], rows)
+    print('\ngoals: time <= 20 s, distance error <= 1.5 cm, heading error <= 3 deg, no contact')
+    return 0

@@ -1,0 +1,64 @@
+"""Runs one launch file on a private master and collects the figures it writes.
+
+Each run gets its own master on a free port, so runs never share state and
+a roscore already running on the machine is left alone.
+"""
+import json
+import os
+import signal
+import socket
+import subprocess
+import tempfile
+
+WORLDS = ('room', 'arena', 'obstacles')
+
+
+def free_port():
+    sock = socket.socket()
+    sock.bind(('', 0))
+    port = sock.getsockname()[1]
+    sock.close()
+    return port
+
+
+def run_launch(launch_file, args, timeout=600.0):
+    """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
+
+    None means the run wrote nothing: it failed or ran out of time.
+    """
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+    fd, output = tempfile.mkstemp(suffix='.json')
+    os.close(fd)
+    os.unlink(output)
+    command = ['roslaunch', '-p', str(port), 'wall_follower', launch_file]
+    command += ['%s:=%s' % item for item in sorted(args.items())] + ['json:=' + output]
+    process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGINT)
+        process.wait()
+    if not os.path.exists(output):
+        return None
+    with open(output) as stream:
+        figures = json.load(stream)
+    os.unlink(output)
+    return figures
+
+
+def fmt(value, spec):
+    """A table cell; '-' where a figure is missing."""
+    if value is None or value != value:
+        return '-'
+    return format(value, spec)
+
+
+def print_table(header, rows):
+    widths = [max(len(str(cell)) for cell in column) for column in zip(header, *rows)]
+    line = lambda cells: '| ' + ' | '.join(str(c).ljust(w) for c, w in zip(cells, widths)) + ' |'
+    print(line(header))
+    print('|' + '|'.join('-' * (w + 2) for w in widths) + '|')
+    for row in rows:
+        print(line(row))

@@ -1,0 +1,89 @@
+"""find_wall from a list of start poses, scored from ground truth and the map.
+
+Shared by launch/find_trials.launch (a demo to watch in rviz, and the
+benchmark's source of figures) and by the finder rostest. The robot is
+teleported through the simulator's cmd_pose topic, so this needs the
+builtin simulator (or a stageros built with cmd_pose).
+"""
+import json
+import math
+
+import rospy
+from geometry_msgs.msg import Pose
+
+from wall_follower.nodes.common import world_path
+from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.scoring import CourseMap
+from wall_follower.srv import FindWall
+
+# Simulated time for the scan and ground truth to show a new pose.
+SETTLE = 0.5
+
+
+def pose_message(x, y, yaw_deg):
+    pose = Pose()
+    pose.position.x, pose.position.y = x, y
+    yaw = math.radians(yaw_deg)
+    pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+    return pose
+
+
+class FindTrials(object):
+    """Teleports the robot, calls find_wall and scores where it ended."""
+
+    def __init__(self, world, service_wait=30.0):
+        self.world = world
+        self.map = CourseMap(world_path(world))
+        self.teleport = rospy.Publisher('cmd_pose', Pose, queue_size=1, latch=True)
+        rospy.wait_for_service('find_wall', timeout=service_wait)
+        self.find_wall = rospy.ServiceProxy('find_wall', FindWall)
+
+    def run(self, start):
+        """One trial from start = (x, y, yaw_deg); returns its figures as a dict."""
+        self.teleport.publish(pose_message(*start))
+        rospy.sleep(SETTLE)
+        monitor = CourseMonitor(self.map, start_on_goal=False)
+        started = rospy.get_time()
+        found = self.find_wall().wallfound
+        took = rospy.get_time() - started
+        rospy.sleep(SETTLE)
+        monitor.close()
+        score = monitor.score.summary()
+        aligned = self.map.right_wall_alignment(monitor.pose) if monitor.pose else None
+        return {
+            'start': list(start),
+            'found': found,
+            'time': took,
+            'distance': aligned[0] if aligned else float('nan'),
+            'heading_error_deg': math.degrees(aligned[1]) if aligned else float('nan'),
+            'contact': score['contact'],
+            'max_linear': score['max_linear'],
+            'max_angular': score['max_angular'],
+        }
+
+
+def main():
+    rospy.init_node('find_trials')
+    world = rospy.get_param('~world', 'arena')
+    starts = rospy.get_param('~poses', {}).get(world)
+    output = rospy.get_param('~json', '')
+    if not starts:
+        rospy.logerr('find_trials: no start poses for world %r in ~poses', world)
+        return 1
+    try:
+        trials = FindTrials(world)
+    except rospy.ROSException as err:
+        rospy.logerr('find_trials: %s', err)
+        return 1
+    results = []
+    for start in starts:
+        result = trials.run(start)
+        results.append(result)
+        rospy.loginfo('find_trials: from (%.2f, %.2f, %.0f deg): found=%s in %.1f s, '
+                      'wall %.3f m on the right, heading off by %.1f deg, contact=%s',
+                      start[0], start[1], start[2], result['found'], result['time'],
+                      result['distance'], result['heading_error_deg'], result['contact'])
+    if output:
+        with open(output, 'w') as stream:
+            json.dump({'world': world, 'trials': results}, stream, indent=1)
+    return 0
