@@ -3,6 +3,7 @@ import matplotlib
 
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+from matplotlib.collections import LineCollection  # noqa: E402
 
 
 def plot_course(course_map, trail, points, filename, title=''):
@@ -11,12 +12,8 @@ def plot_course(course_map, trail, points, filename, title=''):
     trail: (x, y) ground-truth positions; points: (x, y, yaw) as recorded
     by record_odom, drawn with a short heading tick each.
     """
-    grid = course_map.grid
-    rows, cols = grid.occupied.shape
-    x0, y0 = grid.origin
-    extent = (x0, x0 + cols * grid.resolution, y0, y0 + rows * grid.resolution)
     fig, ax = plt.subplots(figsize=(7, 6))
-    ax.imshow(grid.occupied, origin='lower', extent=extent, cmap='Greys', interpolation='nearest')
+    ax.add_collection(LineCollection(course_map.edges, colors='black', linewidths=1.5))
     if trail:
         xs, ys = zip(*trail)
         ax.plot(xs, ys, '-', color='tab:blue', lw=1, label='true path')
@@ -24,6 +21,7 @@ def plot_course(course_map, trail, points, filename, title=''):
         xs, ys, yaws = zip(*points)
         ax.plot(xs, ys, 'o', color='tab:red', ms=3, label='record_odom points (1/s)')
         ax.plot(xs[:1], ys[:1], 's', color='tab:green', ms=8, label='first point')
+    ax.autoscale()
     ax.set_aspect('equal')
     ax.set_xlabel('x [m]')
     ax.set_ylabel('y [m]')

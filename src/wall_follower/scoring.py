@@ -3,17 +3,19 @@
 Scores never come from the controller's own laser, which may be noisy or
 wrong in exactly the cases a score should catch. The right-wall distance is
 cast noise-free from the laser's true position in the world; clearance is
-measured between the robot's footprint and the map's occupied cells.
+measured between the robot's footprint and the obstacles. Both use the
+world's exact edges, not the simulator's grid, whose cells make obstacles
+look up to a cell fatter.
 """
 import math
 
 import numpy as np
 
+from wall_follower.geometry import cast_rays, polygon_clearance, solid_edges
 from wall_follower.lap import LapRecorder
 from wall_follower.motion import MAX_LINEAR
 from wall_follower.scan import RIGHT, fit_line, wrap_angle
-from wall_follower.sim.grid import OccupancyGrid, footprint_clearance
-from wall_follower.sim.raytrace import exact_ranges
+from wall_follower.sim.grid import footprint_corners
 from wall_follower.sim.worldfile import load_world
 
 BAND = (0.20, 0.30)
@@ -29,7 +31,7 @@ class CourseMap(object):
 
     def __init__(self, world_path, robot=0):
         self.world = load_world(world_path)
-        self.grid = OccupancyGrid.from_world(self.world)
+        self.edges = solid_edges(self.world)
         self.robot = self.world.robots[robot]
         ranger = self.robot.ranger
         self.laser_offset = (ranger.pose[0], ranger.pose[1], ranger.pose[3])
@@ -46,8 +48,8 @@ class CourseMap(object):
     def _right_sector(self, pose):
         lx, ly, lyaw = self.laser_pose(pose)
         local = RIGHT + self._sector
-        ranges = exact_ranges(self.grid, lx, ly, lyaw + local, self.range_max)
-        return local, np.asarray(ranges, dtype=float)
+        ranges = cast_rays(self.edges, lx, ly, lyaw + local)
+        return local, np.minimum(ranges, self.range_max)
 
     def right_wall_distance(self, pose):
         """Nearest noise-free range within +-30 deg of the right (inf if none)."""
@@ -60,7 +62,7 @@ class CourseMap(object):
 
         The wall is a line fitted to the noise-free hits within +-30 deg of
         the right; the heading error is how far the robot's heading is from
-        parallel to it (rad, positive = turned toward the wall's left).
+        parallel to it (rad, positive = turned left, away from the wall).
         """
         local, ranges = self._right_sector(pose)
         hit = ranges < self.range_max
@@ -74,7 +76,7 @@ class CourseMap(object):
 
     def clearance(self, pose):
         """Smallest distance from the robot's footprint to an obstacle (0 = contact)."""
-        return footprint_clearance(self.grid, self.robot, pose)
+        return polygon_clearance(footprint_corners(self.robot, pose), self.edges)
 
 
 class RunScore(object):

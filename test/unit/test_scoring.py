@@ -1,0 +1,108 @@
+"""Scoring from ground truth: distances, alignment, clearance and lap figures."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+from wall_follower.geometry import polygon_clearance
+from wall_follower.scoring import CourseMap, RunScore, true_lap_length
+
+WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
+# room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2]; laser 32 mm behind the axle.
+LASER_BACK = 0.032
+HALF_WIDTH = 0.089
+
+
+@pytest.fixture(scope='module')
+def room():
+    return CourseMap(os.path.join(WORLDS, 'room.world'))
+
+
+def test_right_wall_distance_is_the_perpendicular_distance(room):
+    assert room.right_wall_distance((-0.8, -0.95, 0.0)) == pytest.approx(0.25, abs=1e-6)
+
+
+def test_right_wall_distance_takes_the_nearest_within_30_degrees(room):
+    # Heading +x beside the bottom wall but turned 20 deg toward it: the
+    # nearest point within +-30 deg of the right is still the perpendicular foot.
+    yaw = math.radians(-20.0)
+    laser_y = -0.95 + LASER_BACK * math.sin(-yaw)
+    assert room.right_wall_distance((-0.8, -0.95, yaw)) == pytest.approx(laser_y + 1.2, abs=1e-6)
+
+
+def test_alignment_reports_distance_and_heading_error(room):
+    distance, error = room.right_wall_alignment((-0.8, -0.95, 0.0))
+    assert distance == pytest.approx(0.25, abs=1e-6)
+    assert error == pytest.approx(0.0, abs=1e-9)
+    _, error = room.right_wall_alignment((-0.8, -0.95, math.radians(5.0)))
+    assert math.degrees(error) == pytest.approx(5.0, abs=0.01)
+
+
+def test_right_wall_distance_from_the_middle_of_the_room(room):
+    # Facing -x, the right is +y: the top wall, 1.2 m away.
+    assert room.right_wall_distance((0.0, 0.0, math.pi)) == pytest.approx(1.2, abs=1e-6)
+
+
+def test_clearance_of_the_footprint(room):
+    assert room.clearance((-0.8, -0.95, 0.0)) == pytest.approx(1.2 - 0.95 - HALF_WIDTH, abs=1e-6)
+    assert room.clearance((-0.8, -1.2 + HALF_WIDTH, 0.0)) == pytest.approx(0.0, abs=1e-6)
+
+
+def drive_square(score, side, speed=0.19, dt=0.1, start=(-0.8, -0.95)):
+    """Feed a square lap, counter-clockwise, starting along +x."""
+    x, y = start
+    t = 0.0
+    for heading in (0.0, math.pi / 2, math.pi, -math.pi / 2):
+        steps = int(round(side / (speed * dt)))
+        for _ in range(steps):
+            score.add_pose(t, (x, y, heading))
+            score.add_command(speed, 0.0)
+            x += speed * dt * math.cos(heading)
+            y += speed * dt * math.sin(heading)
+            t += dt
+    for _ in range(5):
+        score.add_pose(t, (x, y, 0.0))
+        x += speed * dt
+        t += dt
+    return score
+
+
+def test_run_score_of_a_lap_along_the_bottom_wall(room):
+    score = drive_square(RunScore(room), side=1.9)
+    figures = score.summary()
+    assert figures['lap_closed']
+    assert figures['path_length'] == pytest.approx(4 * 1.9, abs=0.05)
+    assert figures['lap_time_ratio'] == pytest.approx(1.0, abs=0.03)
+    assert figures['max_linear'] == pytest.approx(0.19)
+    assert not figures['contact']
+    # The bottom and top sides run 0.25 m from a wall, the other two 0.4 m
+    # and 0.7 m: about half the lap in band.
+    assert 0.45 < figures['time_in_band'] < 0.55
+
+
+def test_true_lap_length_of_a_square_trail():
+    side, step = 1.0, 0.01
+    trail = []
+    for k in range(int(4 * side / step) + 30):
+        s = (k * step) % (4 * side)
+        if s < side:
+            trail.append((s, 0.0))
+        elif s < 2 * side:
+            trail.append((side, s - side))
+        elif s < 3 * side:
+            trail.append((3 * side - s, side))
+        else:
+            trail.append((0.0, 4 * side - s))
+    assert true_lap_length(trail, (0.0, 0.0)) == pytest.approx(4.0, abs=0.02)
+    assert true_lap_length(trail[:300], (0.0, 0.0)) is None
+
+
+def test_clearance_is_zero_when_the_footprint_overlaps_or_encloses():
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    inside = np.array([[[0.4, 0.4], [0.6, 0.6]]])
+    crossing = np.array([[[0.5, 0.5], [2.0, 0.5]]])
+    apart = np.array([[[1.5, -1.0], [1.5, 2.0]]])
+    assert polygon_clearance(square, inside) == 0.0
+    assert polygon_clearance(square, crossing) == 0.0
+    assert polygon_clearance(square, apart) == pytest.approx(0.5)
