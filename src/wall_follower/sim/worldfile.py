@@ -1,0 +1,673 @@
+"""Reader for Stage 4.x world files.
+
+Only what a 2D wall-following simulation needs is interpreted: the world's
+timing and raytrace resolution, static obstacles (bitmaps, boxes, block
+polygons) and differential-drive `position` robots carrying one ranger.
+Everything else is skipped and listed in `World.unknown_keywords`, so that a
+world written for real Stage still loads. Geometry follows what real Stage
+does (see Stage's blockgroup.cc / model.cc): the bounding box of a model's
+blocks, or of a bitmap's black pixels, is scaled to the model's `size` and
+centred on the model's pose.
+
+A malformed file raises WorldFileError("<file>:<line>: <problem>") and never
+a traceback from deep inside the parser.
+"""
+import math
+import os
+import re
+from collections import OrderedDict, namedtuple
+
+import numpy as np
+
+__all__ = ['WorldFileError', 'World', 'Obstacle', 'RobotSpec', 'RangerSpec', 'load_world',
+           'STAGE_VELOCITY_BOUNDS']
+
+# Stage's ModelPosition default bounds: +-1 m/s on x, y, z and +-90 deg/s on yaw.
+STAGE_VELOCITY_BOUNDS = (-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -math.pi / 2.0, math.pi / 2.0)
+
+# Entity types real Stage knows but this simulator does not model; they are skipped.
+_SKIPPED_MODEL_TYPES = frozenset((
+    'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'camera', 'fiducial', 'gripper',
+    'laser', 'lightindicator', 'powerpack'))
+_TOP_LEVEL_IGNORED = frozenset(('window', 'gui'))
+
+# Black pixels: Stage treats a pixel as free when its first channel is above 127.
+_BITMAP_THRESHOLD = 127
+
+
+class WorldFileError(Exception):
+    """A world file that cannot be read; str() is '<file>:<line>: <problem>'."""
+
+    def __init__(self, path, line, problem):
+        super(WorldFileError, self).__init__('%s:%d: %s' % (path, line, problem))
+        self.path = path
+        self.line = line
+        self.problem = problem
+
+
+RangerSpec = namedtuple('RangerSpec', [
+    'pose',        # (x, y, z, yaw) of the ranger model in base_link (stageros' laser tf)
+    'sensor_pose',  # (x, y, z, yaw) of the sensor inside the ranger model (usually zeros)
+    'sensor_height',  # z of the beams above the robot's base, for Stage's obstacle height test
+    'range_min', 'range_max',
+    'fov',         # rad
+    'samples',
+    'noise',       # (constant sigma [m], proportional factor, angle [rad]) as Stage's `noise`
+])
+
+RobotSpec = namedtuple('RobotSpec', [
+    'name',
+    'pose',        # (x, y, yaw) start pose in the world
+    'size',        # (length, width, height)
+    'origin',      # (x, y, yaw) of the body box centre in base_link
+    'drive',
+    'localization',
+    'velocity_bounds',  # (xmin, xmax, ymin, ymax, zmin, zmax, amin [rad/s], amax [rad/s])
+    'ranger',      # RangerSpec or None
+    'odom_error',  # (x, y, yaw) odometry scale errors for localization "odom", or None
+])
+
+Obstacle = namedtuple('Obstacle', [
+    'name',
+    'pose',        # (x, y, z, yaw) global pose of the model
+    'origin',      # (x, y, z, yaw) geometry offset (Stage's `origin`)
+    'edges',       # (M, 2, 2) directed outline edges [start, end] in the model's geometry
+                   # frame, already scaled to `size` (Stage rasterises edge by edge)
+    'z_range',     # (zmin, zmax) global heights of the model's blocks
+    'ranger_return',
+    'obstacle_return',
+])
+
+World = namedtuple('World', [
+    'path', 'resolution', 'interval_sim', 'speedup', 'quit_time', 'paused',
+    'obstacles', 'robots', 'unknown_keywords'])
+
+_Token = namedtuple('_Token', ['kind', 'text', 'path', 'line'])
+_Prop = namedtuple('_Prop', ['values', 'path', 'line'])
+
+_WORD_RE = re.compile(r'[A-Za-z][A-Za-z0-9.\-_\[\]]*')
+_NUM_RE = re.compile(r'[+\-.0-9]+')
+_PUNCT = '()[]'
+
+
+def _tokenize(path, include_stack=()):
+    """Tokens of `path`, with `include "file"` expanded in place."""
+    try:
+        with open(path) as stream:
+            text = stream.read()
+    except (IOError, OSError, UnicodeDecodeError) as err:
+        raise WorldFileError(path, 0, 'cannot read world file (%s)' % err)
+    tokens = []
+    line = 1
+    pos = 0
+    end = len(text)
+    while pos < end:
+        ch = text[pos]
+        if ch == '\n':
+            line += 1
+            pos += 1
+        elif ch.isspace():
+            pos += 1
+        elif ch == '#':
+            newline = text.find('\n', pos)
+            pos = end if newline < 0 else newline
+        elif ch == '"':
+            close = text.find('"', pos + 1)
+            newline = text.find('\n', pos + 1)
+            if close < 0 or (0 <= newline < close):
+                raise WorldFileError(path, line, 'unterminated string')
+            tokens.append(_Token('string', text[pos + 1:close], path, line))
+            pos = close + 1
+        elif ch in _PUNCT:
+            tokens.append(_Token(ch, ch, path, line))
+            pos += 1
+        elif ch.isalpha():
+            word = _WORD_RE.match(text, pos).group(0)
+            tokens.append(_Token('word', word, path, line))
+            pos += len(word)
+        elif ch in '+-.' or ch.isdigit():
+            number = _NUM_RE.match(text, pos).group(0)
+            tokens.append(_Token('number', number, path, line))
+            pos += len(number)
+        else:
+            raise WorldFileError(path, line, 'unexpected character %r' % ch)
+    return _expand_includes(tokens, include_stack + (os.path.abspath(path),))
+
+
+def _expand_includes(tokens, include_stack):
+    out = []
+    index = 0
+    while index < len(tokens):
+        token = tokens[index]
+        if token.kind == 'word' and token.text == 'include':
+            if index + 1 >= len(tokens) or tokens[index + 1].kind != 'string':
+                raise WorldFileError(token.path, token.line, 'include needs a quoted file name')
+            name = tokens[index + 1].text
+            target = os.path.join(os.path.dirname(token.path), name)
+            if not os.path.isfile(target):
+                raise WorldFileError(token.path, token.line, 'include not found: "%s"' % name)
+            if os.path.abspath(target) in include_stack:
+                raise WorldFileError(token.path, token.line, 'recursive include of "%s"' % name)
+            out.extend(_tokenize(target, include_stack))
+            index += 2
+        else:
+            out.append(token)
+            index += 1
+    return out
+
+
+class _Entity(object):
+    """One `type ( ... )` block as written: properties and child entities."""
+
+    def __init__(self, kind, path, line):
+        self.kind = kind
+        self.path = path
+        self.line = line
+        self.props = OrderedDict()
+        self.children = []
+
+
+class _Parser(object):
+    def __init__(self, tokens, path):
+        self.tokens = tokens
+        self.path = path
+        self.index = 0
+        self.defines = OrderedDict()   # name -> (parent, _Entity)
+
+    def _peek(self, offset=0):
+        i = self.index + offset
+        return self.tokens[i] if i < len(self.tokens) else None
+
+    def _last_position(self):
+        if self.tokens:
+            last = self.tokens[-1]
+            return last.path, last.line
+        return self.path, 1
+
+    def _next(self, what):
+        token = self._peek()
+        if token is None:
+            path, line = self._last_position()
+            raise WorldFileError(path, line, 'unexpected end of file, expected %s' % what)
+        self.index += 1
+        return token
+
+    def parse(self):
+        root = _Entity('', self.path, 1)
+        self._parse_body(root, top_level=True)
+        return root
+
+    def _parse_body(self, entity, top_level):
+        while True:
+            token = self._peek()
+            if token is None:
+                if not top_level:
+                    raise WorldFileError(entity.path, entity.line,
+                                         'unbalanced parenthesis: "%s (" is never closed'
+                                         % entity.kind)
+                return
+            if token.kind == ')':
+                if top_level:
+                    raise WorldFileError(token.path, token.line, 'unbalanced parenthesis: '
+                                         'unexpected ")"')
+                self.index += 1
+                return
+            if token.kind != 'word':
+                raise WorldFileError(token.path, token.line,
+                                     'syntax error: unexpected %r' % token.text)
+            if token.text == 'define':
+                if not top_level:
+                    raise WorldFileError(token.path, token.line,
+                                         'define is only allowed at the top level')
+                self._parse_define()
+                continue
+            following = self._peek(1)
+            if following is not None and following.kind == '(':
+                self.index += 2
+                child = _Entity(token.text, token.path, token.line)
+                self._parse_body(child, top_level=False)
+                entity.children.append(child)
+            else:
+                self.index += 1
+                entity.props[token.text] = _Prop(self._parse_value(token), token.path, token.line)
+
+    def _parse_define(self):
+        define = self._next('define')
+        name = self._next('a name after define')
+        parent = self._next('a parent type after define %s' % name.text)
+        opening = self._next('"(" after define %s %s' % (name.text, parent.text))
+        if name.kind != 'word' or parent.kind != 'word' or opening.kind != '(':
+            raise WorldFileError(define.path, define.line,
+                                 'define needs the form: define NAME PARENT ( ... )')
+        body = _Entity(parent.text, define.path, define.line)
+        self._parse_body(body, top_level=False)
+        self.defines[name.text] = (parent.text, body)
+
+    def _parse_value(self, name):
+        token = self._next('a value for "%s"' % name.text)
+        if token.kind == '[':
+            values = []
+            while True:
+                item = self._next('"]" closing the tuple of "%s"' % name.text)
+                if item.kind == ']':
+                    return values
+                if item.kind == '[':
+                    raise WorldFileError(item.path, item.line,
+                                         'nested "[" in the tuple of "%s"' % name.text)
+                if item.kind in '()':
+                    raise WorldFileError(item.path, item.line,
+                                         'unbalanced bracket: tuple of "%s" is not closed'
+                                         % name.text)
+                values.append(_scalar(item))
+        if token.kind in ('string', 'number', 'word'):
+            return [_scalar(token)]
+        raise WorldFileError(token.path, token.line,
+                             'syntax error: "%s" needs a value, found %r' % (name.text, token.text))
+
+
+def _scalar(token):
+    if token.kind == 'number':
+        try:
+            return float(token.text)
+        except ValueError:
+            raise WorldFileError(token.path, token.line, 'bad number %r' % token.text)
+    return token.text
+
+
+class _Resolved(object):
+    """An entity with its define chain applied: base type, merged properties, children."""
+
+    def __init__(self, base, name, props, children, path, line):
+        self.base = base
+        self.name = name
+        self.props = props
+        self.children = children
+        self.path = path
+        self.line = line
+
+
+class _Interpreter(object):
+    def __init__(self, path, parser, root):
+        self.path = path
+        self.defines = parser.defines
+        self.root = root
+        self.unknown = []
+        self.unit_length = 1.0
+        self.unit_angle = math.pi / 180.0
+        self.obstacles = []
+        self.robots = []
+        self.counts = {}
+
+    # -- define chains -------------------------------------------------------------------
+    def resolve(self, entity):
+        chain = []
+        kind = entity.kind
+        seen = set()
+        while kind in self.defines:
+            if kind in seen:
+                raise WorldFileError(entity.path, entity.line, 'define cycle through "%s"' % kind)
+            seen.add(kind)
+            parent, body = self.defines[kind]
+            chain.append(body)
+            if parent not in self.defines and not _is_base_type(parent):
+                raise WorldFileError(body.path, body.line,
+                                     'unknown define parent "%s" (define %s %s)'
+                                     % (parent, kind, parent))
+            kind = parent
+        props = OrderedDict()
+        children = []
+        for body in reversed(chain):
+            props.update(body.props)
+            children.extend(body.children)
+        props.update(entity.props)
+        children.extend(entity.children)
+        name = _prop_string(props, 'name', None)
+        return _Resolved(kind, name, props, children, entity.path, entity.line)
+
+    # -- property access -----------------------------------------------------------------
+    def numbers(self, resolved, key, count, default, kinds=None):
+        """Tuple property `key` with at least `count` numbers, unit-converted by `kinds`."""
+        prop = resolved.props.get(key)
+        if prop is None:
+            return default
+        if len(prop.values) < count:
+            raise WorldFileError(prop.path, prop.line, '"%s" needs %d values, got %d'
+                                 % (key, count, len(prop.values)))
+        out = []
+        for i, value in enumerate(prop.values[:count]):
+            if not isinstance(value, float):
+                raise WorldFileError(prop.path, prop.line, 'bad number %r in "%s"' % (value, key))
+            kind = kinds[i] if kinds else 'f'
+            out.append(value * (self.unit_length if kind == 'l' else
+                                self.unit_angle if kind == 'a' else 1.0))
+        return tuple(out)
+
+    def number(self, resolved, key, default, kind='f'):
+        value = self.numbers(resolved, key, 1, None, kind)
+        return default if value is None else value[0]
+
+    def pose(self, resolved, key='pose'):
+        return self.numbers(resolved, key, 4, (0.0, 0.0, 0.0, 0.0), 'llla')
+
+    # -- world ---------------------------------------------------------------------------
+    def interpret(self):
+        top = _Resolved('', None, self.root.props, self.root.children, self.path, 1)
+        length_unit = _prop_string(top.props, 'unit_length', 'm')
+        angle_unit = _prop_string(top.props, 'unit_angle', 'degrees')
+        self.unit_length = {'m': 1.0, 'cm': 0.01, 'mm': 0.001}.get(length_unit, 1.0)
+        self.unit_angle = math.pi / 180.0 if angle_unit.startswith('deg') else 1.0
+        resolution = self.number(top, 'resolution', 0.02)
+        interval_ms = self.number(top, 'interval_sim', 100.0)
+        if resolution <= 0.0:
+            prop = top.props['resolution']
+            raise WorldFileError(prop.path, prop.line, 'resolution must be positive')
+        if interval_ms < 1.0:
+            prop = top.props['interval_sim']
+            raise WorldFileError(prop.path, prop.line, 'interval_sim must be at least 1 ms')
+        known = ('resolution', 'interval_sim', 'speedup', 'quit_time', 'paused', 'unit_length',
+                 'unit_angle')
+        for key in top.props:
+            if key not in known:
+                self.unknown.append(key)
+        for child in self.root.children:
+            self.top_level_entity(child)
+        return World(
+            path=self.path, resolution=resolution, interval_sim=int(interval_ms) / 1000.0,
+            speedup=self.number(top, 'speedup', 1.0), quit_time=self.number(top, 'quit_time', 0.0),
+            paused=bool(self.number(top, 'paused', 0.0)), obstacles=self.obstacles,
+            robots=self.robots, unknown_keywords=sorted(set(self.unknown)))
+
+    def top_level_entity(self, entity):
+        if entity.kind in _TOP_LEVEL_IGNORED:
+            return
+        resolved = self.resolve(entity)
+        if resolved.base == 'model':
+            self.model(resolved, parent_pose=None, parent_height=0.0)
+        elif resolved.base == 'position':
+            self.robot(resolved)
+        else:
+            self.unknown.append(entity.kind)
+
+    def _default_name(self, base):
+        count = self.counts.get(base, 0)
+        self.counts[base] = count + 1
+        return '%s:%d' % (base, count)
+
+    # -- static models -------------------------------------------------------------------
+    def model(self, resolved, parent_pose, parent_height):
+        name = resolved.name or self._default_name('model')
+        local = self.pose(resolved)
+        size = self.numbers(resolved, 'size', 3, (0.4, 0.4, 1.0), 'lll')
+        origin = self.pose(resolved, 'origin')
+        if parent_pose is None:
+            pose = (local[0], local[1], local[2], _normalize(local[3]))
+        else:
+            pose = _compose4(parent_pose, local, parent_height)
+        edges, z_range = self.model_shape(resolved, size)
+        base_z = pose[2] + origin[2]
+        if len(edges):
+            self.obstacles.append(Obstacle(
+                name=name, pose=pose, origin=origin, edges=edges,
+                z_range=(base_z + z_range[0], base_z + z_range[1]),
+                ranger_return=self.number(resolved, 'ranger_return', 1.0),
+                obstacle_return=self.number(resolved, 'obstacle_return', 1.0) != 0.0))
+        for child in resolved.children:
+            sub = self.resolve(child)
+            if sub.base == 'model':
+                self.model(sub, pose, size[2])
+            elif sub.base != 'block':
+                self.unknown.append(child.kind)
+        self.note_unknown_props(resolved, _MODEL_KEYS)
+
+    def model_shape(self, resolved, size):
+        """Edges of a model in its frame, scaled and centred as Stage's CalcSize does."""
+        blocks = []   # (directed edges (M, 2, 2), zmin, zmax)
+        bitmap = resolved.props.get('bitmap')
+        if bitmap is not None:
+            blocks.extend(self.bitmap_blocks(bitmap))
+        for child in resolved.children:
+            if child.kind == 'block':
+                blocks.append(self.block(child))
+        if not blocks and not self.number(resolved, 'noblocks', 0.0):
+            square = np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
+            blocks.append((polygon_edges(square), 0.0, 1.0))
+        if not blocks:
+            return np.zeros((0, 2, 2)), (0.0, 0.0)
+        if self.number(resolved, 'boundary', 0.0):
+            blocks.extend(_boundary_blocks(blocks, size))
+        return _fit_to_size(blocks, size)
+
+    def block(self, entity):
+        block = self.resolve(entity)
+        count = int(self.number(block, 'points', 0.0))
+        if count < 3:
+            raise WorldFileError(entity.path, entity.line,
+                                 'block needs "points N" with N >= 3, got %d' % count)
+        points = []
+        for i in range(count):
+            key = 'point[%d]' % i
+            if key not in block.props:
+                raise WorldFileError(entity.path, entity.line, 'block is missing %s' % key)
+            points.append(self.numbers(block, key, 2, None, 'll'))
+        zmin, zmax = self.numbers(block, 'z', 2, (0.0, 1.0), 'll')
+        return polygon_edges(np.array(points, dtype=float)), zmin, zmax
+
+    def bitmap_blocks(self, prop):
+        name = prop.values[0] if prop.values else ''
+        if not isinstance(name, str) or not name:
+            raise WorldFileError(prop.path, prop.line, 'bitmap needs a file name')
+        full = name if os.path.isabs(name) else os.path.join(os.path.dirname(prop.path), name)
+        if not os.path.isfile(full):
+            raise WorldFileError(prop.path, prop.line, 'missing bitmap file "%s"' % name)
+        try:
+            black = _black_pixels(full)
+        except (IOError, OSError, ValueError) as err:
+            raise WorldFileError(prop.path, prop.line, 'cannot read bitmap "%s" (%s)' % (name, err))
+        edges = bitmap_edges(black)
+        if not len(edges):
+            raise WorldFileError(prop.path, prop.line, 'bitmap "%s" has no black pixels' % name)
+        return [(edges, 0.0, 1.0)]
+
+    # -- robots --------------------------------------------------------------------------
+    def robot(self, resolved):
+        name = resolved.name or self._default_name('position')
+        pose = self.pose(resolved)
+        size = self.numbers(resolved, 'size', 3, (0.4, 0.4, 1.0), 'lll')
+        origin = self.pose(resolved, 'origin')
+        drive = _prop_string(resolved.props, 'drive', 'diff')
+        if drive != 'diff':
+            prop = resolved.props['drive']
+            raise WorldFileError(prop.path, prop.line,
+                                 'drive "%s" is not supported (only "diff")' % drive)
+        bounds = self.numbers(resolved, 'velocity_bounds', 8, STAGE_VELOCITY_BOUNDS, 'llllllaa')
+        odom_error = self.numbers(resolved, 'odom_error', 4, None, 'llla')
+        if odom_error is not None:
+            odom_error = (odom_error[0], odom_error[1], odom_error[3])
+        ranger = None
+        for child in resolved.children:
+            sub = self.resolve(child)
+            if sub.base == 'ranger' and ranger is None:
+                ranger = self.ranger(sub, size)
+            elif sub.base != 'block':
+                self.unknown.append(child.kind)
+        self.robots.append(RobotSpec(
+            name=name, pose=(pose[0], pose[1], _normalize(pose[3])), size=size,
+            origin=(origin[0], origin[1], origin[3]), drive=drive,
+            localization=_prop_string(resolved.props, 'localization', 'gps'),
+            velocity_bounds=bounds, ranger=ranger, odom_error=odom_error))
+        self.note_unknown_props(resolved, _POSITION_KEYS)
+
+    def ranger(self, resolved, robot_size):
+        sensors = [self.resolve(child) for child in resolved.children if child.kind == 'sensor']
+        if not sensors:
+            raise WorldFileError(resolved.path, resolved.line, 'ranger has no sensor( ... )')
+        sensor = sensors[0]
+        pose = self.pose(resolved)
+        sensor_pose = self.pose(sensor)
+        sensor_size = self.numbers(sensor, 'size', 3, (0.02, 0.02, 0.02), 'lll')
+        range_min, range_max = self.numbers(sensor, 'range', 2, (0.0, 5.0), 'll')
+        samples = int(self.number(sensor, 'samples', 1.0))
+        if samples < 1:
+            prop = sensor.props['samples']
+            raise WorldFileError(prop.path, prop.line, 'samples must be at least 1')
+        noise = self.numbers(sensor, 'noise', 3, (0.0, 0.0, 0.0), 'lfa')
+        height = robot_size[2] + pose[2] + sensor_pose[2] + sensor_size[2] / 2.0
+        return RangerSpec(pose=pose, sensor_pose=sensor_pose, sensor_height=height,
+                          range_min=range_min, range_max=range_max,
+                          fov=self.number(sensor, 'fov', 0.1 / self.unit_angle, 'a'),
+                          samples=samples, noise=noise)
+
+    def note_unknown_props(self, resolved, known):
+        for key in resolved.props:
+            if key not in known:
+                self.unknown.append(key)
+
+
+_COMMON_KEYS = frozenset((
+    'name', 'pose', 'size', 'origin', 'color', 'color_rgba', 'ranger_return', 'obstacle_return',
+    'gui_nose', 'gui_grid', 'gui_move', 'gui_outline', 'gripper_return', 'fiducial_return',
+    'blob_return', 'laser_return', 'visual_return', 'boundary', 'mass', 'update_interval',
+    'noblocks', 'stack_children', 'fiducial_key', 'map_resolution', 'say', 'alwayson', 'watts'))
+_MODEL_KEYS = _COMMON_KEYS | frozenset(('bitmap',))
+_POSITION_KEYS = _COMMON_KEYS | frozenset((
+    'drive', 'localization', 'velocity_bounds', 'acceleration_bounds', 'localization_origin',
+    'odom_error', 'wheelbase', 'velocity', 'bitmap'))
+
+
+def _is_base_type(kind):
+    return kind in ('model', 'position', 'ranger', 'sensor', 'block') or kind in _SKIPPED_MODEL_TYPES
+
+
+def _prop_string(props, key, default):
+    prop = props.get(key)
+    if prop is None or not prop.values:
+        return default
+    value = prop.values[0]
+    return value if isinstance(value, str) else default
+
+
+def _normalize(angle):
+    """Stage's normalize(): into [-pi, pi] by whole turns."""
+    while angle < -math.pi:
+        angle += 2.0 * math.pi
+    while angle > math.pi:
+        angle -= 2.0 * math.pi
+    return angle
+
+
+def _compose4(parent, local, parent_height):
+    cosa, sina = math.cos(parent[3]), math.sin(parent[3])
+    return (parent[0] + local[0] * cosa - local[1] * sina,
+            parent[1] + local[0] * sina + local[1] * cosa,
+            parent[2] + parent_height + local[2],
+            _normalize(parent[3] + local[3]))
+
+
+def polygon_edges(points):
+    """Directed edges of the closed polygon through `points` ((N, 2) -> (N, 2, 2))."""
+    points = np.asarray(points, dtype=float)
+    return np.stack([points, np.roll(points, -1, axis=0)], axis=1)
+
+
+def _boundary_blocks(blocks, size):
+    """Stage's `boundary 1`: four thin walls along the (scaled) bounding box."""
+    edges, _ = _fit_to_size(blocks, size)
+    flat = edges.reshape(-1, 2)
+    xmin, ymin = flat.min(axis=0)
+    xmax, ymax = flat.max(axis=0)
+    eps = 0.01
+    sx, sy = xmax - xmin, ymax - ymin
+
+    def rect(x, y, dx, dy):
+        corners = [[x, y], [x + dx, y], [x + dx, y + dy], [x, y + dy]]
+        return (polygon_edges(corners), 0.0, size[2])
+    return [rect(xmin, ymin, eps, sy), rect(xmin, ymin, sx, eps),
+            rect(xmin, ymax - eps, sx, eps), rect(xmax - eps, ymin, eps, sy)]
+
+
+def _fit_to_size(blocks, size):
+    """Scale and centre blocks so their joint bounding box fills `size` (Stage CalcSize).
+
+    Returns all edges as one (M, 2, 2) array and the model's (zmin, zmax).
+    """
+    eps = np.finfo(float).eps
+    edges = np.concatenate([b[0] for b in blocks])
+    flat = edges.reshape(-1, 2)
+    bmin = flat.min(axis=0)
+    bmax = flat.max(axis=0)
+    extent = np.where(np.abs(bmax - bmin) >= eps, bmax - bmin, eps)
+    offset = bmin + extent / 2.0
+    zmin = min(b[1] for b in blocks)
+    zmax = max(b[2] for b in blocks)
+    zextent = zmax - zmin if abs(zmax - zmin) >= eps else eps
+    scaled = np.empty_like(edges)
+    scaled[..., 0] = (edges[..., 0] - offset[0]) * (size[0] / extent[0])
+    scaled[..., 1] = (edges[..., 1] - offset[1]) * (size[1] / extent[1])
+    return scaled, (zmin * (size[2] / zextent), zmax * (size[2] / zextent))
+
+
+def _black_pixels(path):
+    from PIL import Image
+    with Image.open(path) as image:
+        image.load()
+        if image.mode in ('RGBA', 'LA', 'P'):
+            image = image.convert('RGBA')
+        bands = image.split()
+        first = np.asarray(bands[0], dtype=np.uint8)
+        if image.mode == 'RGBA':
+            # Fully transparent pixels count as white, like a blank canvas.
+            alpha = np.asarray(bands[3], dtype=np.uint8)
+            return (first <= _BITMAP_THRESHOLD) & (alpha > 0)
+        return first <= _BITMAP_THRESHOLD
+
+
+def bitmap_edges(black):
+    """Directed black/white boundary edges of a boolean image, in Stage's bitmap frame.
+
+    Pixel (row r, column c) spans x in [c, c+1] and y in [-(r+1), -r]: image row 0 is the
+    top (+y) edge. Each edge is one maximal straight run of boundary, directed the way
+    Stage's image tracing walks a black pixel's sides (top +x, right -y, bottom -x,
+    left +y), because Stage's line rasteriser gives different cells in either direction.
+    """
+    black = np.asarray(black, dtype=bool)
+    padded = np.pad(black, 1, mode='constant', constant_values=False)
+    inner = padded[1:-1, 1:-1]
+    runs = []
+    runs += _runs(inner & ~padded[:-2, 1:-1], horizontal=True, forward=True, offset=0)
+    runs += _runs(inner & ~padded[2:, 1:-1], horizontal=True, forward=False, offset=1)
+    runs += _runs(inner & ~padded[1:-1, 2:], horizontal=False, forward=True, offset=1)
+    runs += _runs(inner & ~padded[1:-1, :-2], horizontal=False, forward=False, offset=0)
+    return np.array(runs, dtype=float).reshape(-1, 2, 2)
+
+
+def _runs(mask, horizontal, forward, offset):
+    """Maximal runs of True in `mask` along rows (horizontal) or columns, as directed segments."""
+    if not horizontal:
+        mask = mask.T
+    out = []
+    padded = np.zeros((mask.shape[0], mask.shape[1] + 2), dtype=np.int8)
+    padded[:, 1:-1] = mask
+    diff = np.diff(padded, axis=1)
+    starts = np.argwhere(diff == 1)
+    ends = np.argwhere(diff == -1)
+    for (line, a), (_, b) in zip(starts, ends):
+        # the run covers pixels a .. b-1 along the line; its edge spans a .. b
+        lo, hi = float(a), float(b)
+        first, last = (lo, hi) if forward else (hi, lo)
+        if horizontal:
+            y = -float(line + offset)
+            out.append([[first, y], [last, y]])
+        else:
+            x = float(line + offset)
+            out.append([[x, -first], [x, -last]])
+    return out
+
+
+def load_world(path):
+    """Parse the Stage world file at `path` into a World (raises WorldFileError)."""
+    if not os.path.isfile(path):
+        raise WorldFileError(path, 0, 'world file not found')
+    tokens = _tokenize(path)
+    parser = _Parser(tokens, path)
+    root = parser.parse()
+    return _Interpreter(path, parser, root).interpret()
