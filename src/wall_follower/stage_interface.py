@@ -1,12 +1,7 @@
-"""The rules stageros applies around each world step, kept free of ROS so that
-they can be tested alone: how several robots are named, when the cmd_vel
-watchdog stops a robot, and how a start pose is written on the command line.
+"""stage_sim's interface rules that need no ROS: how several robots are named
+(as stageros names them) and how a start pose is written as a parameter.
 """
 import math
-
-# Simulated times are sums of 0.1 s steps; compare them with this slack so
-# that 0.7 - 0.5 counts as the 0.2 s it means (stageros uses integer ns).
-_TIME_EPSILON = 1e-9
 
 
 def robot_prefix(index, robot_count):
@@ -17,34 +12,6 @@ def robot_prefix(index, robot_count):
     if robot_count <= 1:
         return ''
     return 'robot_%d/' % index
-
-
-class CommandWatchdog(object):
-    """Stops a robot whose velocity commands have stopped coming.
-
-    stageros stamps each cmd_vel with the simulated time of the last world
-    update before it arrived and, after every update, stops the robot once
-    `now - stamp >= timeout`. One single message therefore drives the robot
-    for two 0.1 s updates with the default 0.2 s. A timeout <= 0 disables
-    the watchdog; a robot that never received a command counts as stopped.
-    """
-
-    def __init__(self, timeout):
-        self.timeout = timeout
-        self.last_command = None
-
-    def command_received(self, sim_time):
-        self.last_command = sim_time
-
-    def reset(self):
-        self.last_command = None
-
-    def expired(self, sim_time):
-        if self.last_command is None:
-            return True
-        if self.timeout <= 0.0:
-            return False
-        return sim_time - self.last_command >= self.timeout - _TIME_EPSILON
 
 
 def parse_pose(text):

@@ -1,0 +1,297 @@
+"""stage_sim: a Stage-compatible simulator node, standing in for stageros.
+
+    stage_sim [-g] [--simulator builtin|stage|auto] WORLD
+
+Offers what stageros 1.8 offers, under the same relative names: publishes
+base_scan (frame base_laser_link), odom and base_pose_ground_truth (frame
+odom, empty child frame), /clock and tf odom -> base_footprint -> base_link
+-> base_laser_link, once per world step; subscribes cmd_vel; serves
+reset_positions. Several robots get stageros' names: robot_0/base_scan,
+robot_0/base_link, ... Beyond stageros it publishes `stalled` (std_msgs/Bool)
+and holds ~speedup headless. -g (headless) is accepted for compatibility:
+this simulator has no GUI anyway.
+
+--simulator stage or auto hands the process over to the real stageros when
+the stage_ros package is installed (exec, so that roslaunch keeps watching
+the same process); auto falls back to this simulator, stage fails without it.
+
+Private parameters:
+  ~base_watchdog_timeout (0.2) simulated seconds without cmd_vel before a robot stops
+  ~speedup (1.0)          simulated seconds per wall second, held; <= 0 runs as fast
+                          as the CPU allows. The world file's `speedup` is ignored,
+                          as stageros -g ignores it.
+  ~laser_profile (stage)  scan convention: stage, lds01 or gazebo
+  ~seed (0)               seed of the laser noise
+  ~pose ('')              'x y yaw_deg' start pose of the first robot instead of the
+                          world file's; reset_positions returns there
+  ~lockstep (false)       before each step, wait for a new cmd_vel from every robot
+                          that is moving, so a busy machine cannot change a run
+  ~lockstep_grace (0.05)  lockstep: wall seconds to wait when no robot is moving
+  ~lockstep_timeout (1.0) lockstep: longest wall wait for a moving robot's command
+  ~quit_time (the world's quit_time) exit after this many simulated seconds; 0 = never
+
+/use_sim_time must be true before any node starts, which is the launch
+file's job; like stageros, this node sets it if nobody did, too late for the
+nodes already running.
+"""
+import argparse
+import math
+import os
+import sys
+import threading
+
+import rospkg
+import rospy
+import tf2_ros
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from roslib.packages import find_node
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import Bool
+from std_srvs.srv import Empty, EmptyResponse
+
+from wall_follower.nodes.common import private_params
+from wall_follower.sim.engine import Simulation
+from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.sim.worldfile import WorldFileError, load_world
+from wall_follower.stage_interface import parse_pose, robot_prefix
+from wall_follower.step_pacer import StepPacer
+
+DEFAULTS = {
+    'base_watchdog_timeout': 0.2,
+    'speedup': 1.0,
+    'laser_profile': 'stage',
+    'seed': 0,
+    'pose': '',
+    'lockstep': False,
+    'lockstep_grace': 0.05,
+    'lockstep_timeout': 1.0,
+}
+
+SIMULATORS = ('builtin', 'stage', 'auto')
+
+
+def stamp_of(seconds):
+    """rospy.Time of a simulated time, exact to the microsecond (the engine's
+    unit), so that every topic of one step carries the identical stamp."""
+    micros = int(round(seconds * 1e6))
+    return rospy.Time(micros // 1000000, (micros % 1000000) * 1000)
+
+
+def quaternion_z(yaw):
+    """(z, w) of a rotation by yaw about the z axis."""
+    return math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+class RobotTopics(object):
+    """One robot's publishers and frame names, with stageros' prefix."""
+
+    def __init__(self, prefix):
+        self.prefix = prefix
+        self.odom_frame = prefix + 'odom'
+        self.footprint_frame = prefix + 'base_footprint'
+        self.base_frame = prefix + 'base_link'
+        self.laser_frame = prefix + 'base_laser_link'
+        self.scan = rospy.Publisher(prefix + 'base_scan', LaserScan, queue_size=10)
+        self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=10)
+        self.truth = rospy.Publisher(prefix + 'base_pose_ground_truth', Odometry, queue_size=10)
+        self.stalled = rospy.Publisher(prefix + 'stalled', Bool, queue_size=10)
+
+    def scan_msg(self, stamp, scan):
+        msg = LaserScan()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.laser_frame
+        msg.angle_min = scan.angle_min
+        msg.angle_max = scan.angle_max
+        msg.angle_increment = scan.angle_increment
+        msg.range_min = scan.range_min
+        msg.range_max = scan.range_max
+        msg.ranges = scan.ranges.tolist()
+        msg.intensities = scan.intensities.tolist()
+        return msg
+
+    def odometry_msg(self, stamp, odometry):
+        """stageros fills both odom and ground truth this way: frame odom,
+        no child frame, zero covariances."""
+        msg = Odometry()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.odom_frame
+        msg.pose.pose.position.x = odometry.x
+        msg.pose.pose.position.y = odometry.y
+        msg.pose.pose.orientation.z, msg.pose.pose.orientation.w = quaternion_z(odometry.yaw)
+        msg.twist.twist.linear.x = odometry.vx
+        msg.twist.twist.linear.y = odometry.vy
+        msg.twist.twist.angular.z = odometry.wz
+        return msg
+
+    def transforms(self, stamp, robot):
+        odom = robot.odom
+        laser = robot.laser
+        chain = [(self.odom_frame, self.footprint_frame, odom.x, odom.y, 0.0, odom.yaw),
+                 (self.footprint_frame, self.base_frame, 0.0, 0.0, 0.0, 0.0)]
+        if laser is not None:
+            chain.append((self.base_frame, self.laser_frame, laser.x, laser.y, laser.z, laser.yaw))
+        transforms = []
+        for parent, child, x, y, z, yaw in chain:
+            transform = TransformStamped()
+            transform.header.stamp = stamp
+            transform.header.frame_id = parent
+            transform.child_frame_id = child
+            transform.transform.translation.x = x
+            transform.transform.translation.y = y
+            transform.transform.translation.z = z
+            transform.transform.rotation.z, transform.transform.rotation.w = quaternion_z(yaw)
+            transforms.append(transform)
+        return transforms
+
+
+class StageSimNode(object):
+    """Steps a Simulation at the paced rate and speaks stageros' ROS interface.
+
+    The main thread owns the loop; cmd_vel and reset_positions arrive on
+    rospy's threads and reach the simulation under one lock.
+    """
+
+    def __init__(self, world, params, quit_time):
+        poses = {}
+        start = parse_pose(params['pose'])
+        if start is not None:
+            poses[0] = start
+        self._sim = Simulation(world, laser_profile=params['laser_profile'],
+                               seed=params['seed'], poses=poses,
+                               watchdog_timeout=params['base_watchdog_timeout'])
+        self._quit_time = quit_time
+        self._lock = threading.Lock()
+        count = len(self._sim.robots)
+        speedup = params['speedup']
+        self._pacer = StepPacer(self._sim.dt / speedup if speedup > 0 else 0.0,
+                                robot_count=count, lockstep=bool(params['lockstep']),
+                                grace=params['lockstep_grace'],
+                                timeout=params['lockstep_timeout'])
+        self._robots = [RobotTopics(robot_prefix(index, count)) for index in range(count)]
+        self._clock = rospy.Publisher('/clock', Clock, queue_size=10)
+        self._tf = tf2_ros.TransformBroadcaster()
+        self._command_subs = [
+            rospy.Subscriber(topics.prefix + 'cmd_vel', Twist, self._on_cmd_vel, index,
+                             queue_size=1)
+            for index, topics in enumerate(self._robots)]
+        self._reset_service = rospy.Service('reset_positions', Empty, self._on_reset)
+        rospy.on_shutdown(self._pacer.stop)
+
+    def _on_cmd_vel(self, msg, index):
+        with self._lock:
+            self._sim.set_command(index, msg.linear.x, msg.angular.z)
+        self._pacer.command_arrived(index)
+
+    def _on_reset(self, _request):
+        with self._lock:
+            self._sim.reset()
+        rospy.loginfo('reset_positions: robots back at their start poses')
+        return EmptyResponse()
+
+    def run(self):
+        """Steps until shutdown or quit_time."""
+        while not rospy.is_shutdown():
+            with self._lock:
+                moving = [robot.command != (0.0, 0.0) for robot in self._sim.robots]
+            if not self._pacer.wait_turn(moving):
+                return
+            with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
+            with self._lock:
+                frame = self._sim.step(with_scans=with_scans)
+            self._publish(frame)
+            if 0.0 < self._quit_time <= frame.stamp + 1e-9:
+                rospy.loginfo('quit_time %.1f s of simulated time reached', self._quit_time)
+                return
+
+    def _publish(self, frame):
+        """All topics of one step, /clock last as stageros does, so that a
+        controller woken by the clock already has this step's scan."""
+        stamp = stamp_of(frame.stamp)
+        transforms = []
+        for topics, robot in zip(self._robots, frame.robots):
+            if robot.scan is not None and topics.scan.get_num_connections():
+                topics.scan.publish(topics.scan_msg(stamp, robot.scan))
+            if topics.odom.get_num_connections():
+                topics.odom.publish(topics.odometry_msg(stamp, robot.odom))
+            if topics.truth.get_num_connections():
+                topics.truth.publish(topics.odometry_msg(stamp, robot.ground_truth))
+            if topics.stalled.get_num_connections():
+                topics.stalled.publish(Bool(robot.stalled))
+            transforms.extend(topics.transforms(stamp, robot))
+        if self._tf.pub_tf.get_num_connections():
+            self._tf.sendTransform(transforms)
+        self._clock.publish(Clock(clock=stamp))
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog='stage_sim', description='Stage-compatible simulator with the stageros interface.')
+    parser.add_argument('-g', dest='headless', action='store_true',
+                        help='headless (accepted for stageros compatibility; always true here)')
+    parser.add_argument('--simulator', choices=SIMULATORS, default='builtin',
+                        help='stage/auto: run the real stageros when stage_ros is installed')
+    parser.add_argument('world', help='Stage .world file')
+    return parser.parse_args(argv)
+
+
+def find_stageros():
+    """Path of the real stageros executable, or None when stage_ros is not installed."""
+    try:
+        found = find_node('stage_ros', 'stageros')
+    except rospkg.ResourceNotFound:
+        return None
+    return found[0] if found else None
+
+
+def exec_stageros(path, argv, headless, world):
+    """Replaces this process by stageros with the same remappings."""
+    remaps = [arg for arg in argv[1:] if ':=' in arg]
+    args = [path] + (['-g'] if headless else []) + [world] + remaps
+    print('stage_sim: stage_ros is installed: running %s' % ' '.join(args))
+    sys.stdout.flush()
+    os.execv(path, args)
+
+
+def main(argv=None):
+    argv = list(sys.argv if argv is None else argv)
+    args = parse_args(rospy.myargv(argv)[1:])
+    if args.simulator != 'builtin':
+        stageros = find_stageros()
+        if stageros is not None:
+            exec_stageros(stageros, argv, args.headless, args.world)
+        if args.simulator == 'stage':
+            sys.stderr.write('stage_sim: error: --simulator stage needs stageros '
+                             '(package stage_ros), which is not installed\n')
+            return 1
+    try:
+        world = load_world(args.world)
+    except WorldFileError as error:
+        sys.stderr.write('stage_sim: error: %s\n' % error)
+        return 1
+    rospy.init_node('stage_sim', argv=argv)
+    params = private_params(DEFAULTS)
+    if params['laser_profile'] not in PROFILES:
+        rospy.logerr('~laser_profile %r is not one of %s', params['laser_profile'],
+                     ', '.join(PROFILES))
+        return 1
+    try:
+        node = StageSimNode(world, params,
+                            float(rospy.get_param('~quit_time', world.quit_time)))
+    except ValueError as error:
+        rospy.logerr('~%s', error)
+        return 1
+    if not rospy.get_param('/use_sim_time', False):
+        rospy.set_param('/use_sim_time', True)
+        rospy.logwarn('/use_sim_time was not set: set it now, as stageros does; nodes that '
+                      'started before keep wall time (set it in the launch file)')
+    rospy.loginfo('world %s: %d robot(s), %d obstacle model(s), resolution %g m, step %g s; '
+                  'speedup %s, laser %s%s', world.path, len(world.robots), len(world.obstacles),
+                  world.resolution, world.interval_sim,
+                  params['speedup'] if params['speedup'] > 0 else 'unlimited',
+                  params['laser_profile'], ', lockstep' if params['lockstep'] else '')
+    if world.unknown_keywords:
+        rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
+    node.run()
+    return 0
