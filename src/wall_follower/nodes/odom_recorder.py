@@ -1,0 +1,151 @@
+"""The record_odom action server: records the robot's path for one lap.
+
+Each goal starts a fresh LapRecorder. The odometry callback feeds it every
+pose (so the distance is integrated at the odometry rate); the goal's own
+loop publishes feedback and the growing path whenever a point is added, and
+ends the goal when the lap closes (succeeded), when the client cancels
+(preempted, with the points so far) or when odometry stops coming
+(aborted, with the points so far).
+
+Each point is a geometry_msgs/Point holding x and y (m) in the odometry
+frame and, in z, the yaw (rad): the course's (x, y, theta).
+"""
+import math
+import threading
+
+import actionlib
+import rospy
+from geometry_msgs.msg import Point, PoseStamped
+from nav_msgs.msg import Odometry, Path
+
+from wall_follower.lap import LapRecorder
+from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
+from wall_follower.nodes.common import private_params
+
+DEFAULTS = {
+    'sample_period': 1.0,
+    'min_travel': 2.0,
+    'leave_radius': 0.5,
+    'close_tolerance': 0.3,
+    'max_heading_error': math.radians(60.0),
+    'timeout': 5.0,
+    'rate': 10.0,
+}
+"""Parameters (private, ~name).
+
+sample_period: a point is recorded every this many seconds (ROS time).
+min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
+    counts as closed (m, m, m, rad); see wall_follower.lap.LapDetector.
+timeout: a goal is aborted when no odometry has arrived for this long
+    (ROS s), whether at its start or later.
+rate: how often (Hz, ROS time) the goal loop checks for new points, the
+    lap's end, cancellation and the odometry time-out.
+"""
+
+LAP_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_error')
+
+
+def yaw_of(orientation):
+    """Yaw (rad) of a geometry_msgs/Quaternion."""
+    q = orientation
+    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+class OdomRecorderNode(object):
+    """Serves record_odom: one recording per goal, fed from the odom topic."""
+
+    def __init__(self):
+        self.params = private_params(DEFAULTS)
+        self._lock = threading.Lock()
+        self._recording = None
+        self._frame_id = ''
+        self._last_odom_time = None
+        self.path_pub = rospy.Publisher('record_odom/path', Path, queue_size=1, latch=True)
+        self.odom_sub = rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=50)
+        self.server = actionlib.SimpleActionServer(
+            'record_odom', OdomRecordAction, execute_cb=self._execute, auto_start=False)
+        self.server.start()
+        rospy.loginfo('record_odom: ready (a point every %.1f s)', self.params['sample_period'])
+
+    def _on_odom(self, msg):
+        stamp = msg.header.stamp.to_sec() or rospy.get_time()
+        pose = msg.pose.pose
+        with self._lock:
+            self._last_odom_time = rospy.get_time()
+            self._frame_id = msg.header.frame_id
+            if self._recording is not None:
+                self._recording.add(stamp, pose.position.x, pose.position.y,
+                                    yaw_of(pose.orientation))
+
+    def _execute(self, _goal):
+        recording = LapRecorder(self.params['sample_period'],
+                                **{name: self.params[name] for name in LAP_PARAMS})
+        started = rospy.get_time()
+        with self._lock:
+            self._recording = recording
+        rospy.loginfo('record_odom: recording started')
+        published = 0
+        rate = rospy.Rate(self.params['rate'])
+        try:
+            while not rospy.is_shutdown():
+                with self._lock:
+                    points = list(recording.points)
+                    total = recording.total_distance
+                    closed = recording.closed
+                    last_odom = self._last_odom_time
+                    frame_id = self._frame_id
+                if len(points) > published:
+                    published = len(points)
+                    self.server.publish_feedback(OdomRecordFeedback(current_total=total))
+                    self.path_pub.publish(_path(points, frame_id))
+                if closed:
+                    rospy.loginfo('record_odom: lap complete: %d points, %.2f m',
+                                  len(points), total)
+                    self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
+                    return
+                if self.server.is_preempt_requested():
+                    rospy.loginfo('record_odom: cancelled after %d points, %.2f m',
+                                  len(points), total)
+                    self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
+                    return
+                silent_since = started if last_odom is None or last_odom < started else last_odom
+                if rospy.get_time() - silent_since > self.params['timeout']:
+                    text = 'no odometry on %s for %.1f s' % (
+                        rospy.resolve_name('odom'), self.params['timeout'])
+                    rospy.logerr('record_odom: aborted: %s', text)
+                    self.server.set_aborted(_result(points), text)
+                    return
+                rate.sleep()
+        except rospy.ROSInterruptException:
+            pass
+        finally:
+            with self._lock:
+                self._recording = None
+        if self.server.is_active():
+            self.server.set_aborted(OdomRecordResult(), 'shutting down')
+
+
+def _result(points):
+    return OdomRecordResult(list_of_odoms=[Point(x, y, yaw) for x, y, yaw in points])
+
+
+def _path(points, frame_id):
+    """The recorded points as a nav_msgs/Path, for rviz."""
+    path = Path()
+    path.header.stamp = rospy.Time.now()
+    path.header.frame_id = frame_id
+    for x, y, yaw in points:
+        pose = PoseStamped()
+        pose.header = path.header
+        pose.pose.position.x = x
+        pose.pose.position.y = y
+        pose.pose.orientation.z = math.sin(yaw / 2.0)
+        pose.pose.orientation.w = math.cos(yaw / 2.0)
+        path.poses.append(pose)
+    return path
+
+
+def main():
+    rospy.init_node('odom_recorder')
+    OdomRecorderNode()
+    rospy.spin()

@@ -1,0 +1,127 @@
+"""The find_wall service node: on each call, drive to the nearest wall and put it on the right.
+
+The handler runs the WallFinder state machine at ~rate (ROS time) while the
+scan subscriber keeps delivering scans in its own thread. Whatever happens
+(success, failure, time-out, shutdown), the robot is left standing still.
+Only one search runs at a time: a call that arrives while another is in
+progress is refused at once with wallfound false.
+"""
+import math
+import threading
+
+import rospy
+
+from wall_follower.finder import DEFAULTS as FINDER_DEFAULTS
+from wall_follower.finder import WallFinder
+from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.srv import FindWall, FindWallResponse
+
+NODE_DEFAULTS = {
+    'rate': 20.0,
+    'timeout': 60.0,
+    'scan_timeout': 1.0,
+}
+"""Parameters of the node itself (the finder's own are finder.DEFAULTS).
+
+rate: control loop frequency (Hz of ROS time); commands are re-sent at
+    this rate so that a velocity watchdog never stops the robot mid-turn.
+timeout: a call that has not succeeded after this long (ROS s) answers false.
+scan_timeout: a call answers false when no scan younger than this (ROS s)
+    is available this long after it started, or at any point later on.
+"""
+
+# The TurtleBot3 Burger (and every world of this package) has its laser
+# 32 mm behind the wheel axle; the finder's own default assumes none.
+ROBOT_DEFAULTS = {'laser_x': -0.032}
+
+
+class WallFinderNode(object):
+    """Offers find_wall; each call runs one search with a fresh WallFinder."""
+
+    def __init__(self):
+        defaults = dict(FINDER_DEFAULTS)
+        defaults.update(ROBOT_DEFAULTS)
+        defaults.update(NODE_DEFAULTS)
+        params = private_params(defaults)
+        self.rate = params.pop('rate')
+        self.timeout = params.pop('timeout')
+        self.scan_timeout = params.pop('scan_timeout')
+        self.finder_params = params
+        self.commander = VelocityCommander('cmd_vel')
+        # The behaviour never asks for more than the node will send.
+        self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)
+        self.finder_params['max_angular'] = min(params['max_angular'], self.commander.max_angular)
+        self.scan = LatestScan('scan')
+        self._busy = threading.Lock()
+        self.service = rospy.Service('find_wall', FindWall, self.handle)
+        rospy.loginfo('find_wall: ready (rate %.0f Hz, timeout %.0f s)', self.rate, self.timeout)
+
+    def handle(self, _request):
+        if not self._busy.acquire(False):
+            rospy.logwarn('find_wall: refused: a search is already running; call again when it ends')
+            return FindWallResponse(wallfound=False)
+        try:
+            return FindWallResponse(wallfound=self._search())
+        except rospy.ROSInterruptException:
+            return FindWallResponse(wallfound=False)
+        finally:
+            self.commander.stop()
+            self._busy.release()
+
+    def _search(self):
+        """Run one search to its end; True when the wall is on the right."""
+        finder = WallFinder(**self.finder_params)
+        finder.start()
+        rospy.loginfo('find_wall: searching for the nearest wall')
+        started = rospy.get_time()
+        state = finder.state
+        last_view = None
+        rate = rospy.Rate(self.rate)
+        while not rospy.is_shutdown():
+            elapsed = rospy.get_time() - started
+            if elapsed > self.timeout:
+                rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
+                              elapsed, finder.state)
+                return False
+            view = self.scan.fresh(self.scan_timeout)
+            if view is None:
+                if elapsed > self.scan_timeout:
+                    rospy.logwarn('find_wall: no scan on %s for %.1f s; stopping',
+                                  rospy.resolve_name('scan'), self.scan_timeout)
+                    return False
+                self.commander.stop()
+            elif view is last_view:
+                # No new scan yet: repeat the last command to keep the robot going.
+                self.commander.send(self.commander.last)
+            else:
+                last_view = view
+                self.commander.send(finder.update(view))
+                if finder.state != state:
+                    rospy.loginfo('find_wall: %s -> %s%s', state, finder.state, _describe(finder))
+                    state = finder.state
+                if finder.done:
+                    return self._report(finder, rospy.get_time() - started)
+            rate.sleep()
+        return False
+
+    @staticmethod
+    def _report(finder, elapsed):
+        if finder.success:
+            rospy.loginfo('find_wall: wall found: %.3f m on the right after %.1f s',
+                          finder.wall.distance, elapsed)
+        else:
+            rospy.logwarn('find_wall: no wall found: %s', finder.failure_reason)
+        return finder.success
+
+
+def _describe(finder):
+    if finder.wall is None:
+        return ''
+    return ' (wall %.2f m away at %.0f deg)' % (
+        finder.wall.distance, math.degrees(finder.wall.angle))
+
+
+def main():
+    rospy.init_node('wall_finder')
+    WallFinderNode()
+    rospy.spin()
