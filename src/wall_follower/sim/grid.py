@@ -45,6 +45,8 @@ class OccupancyGrid(object):
         self.origin = (self.ix0 * self.resolution, self.iy0 * self.resolution)
         self._visible = {}
         self._occupied_cells = None
+        # Derived lookup structures other modules build once per grid (e.g. raytrace).
+        self.cache = {}
 
     @property
     def shape(self):

@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from .stage_walk import steps_until_x, steps_until_y, x_count
+from .stage_walk import steps_until_x, steps_until_y, x_count, x_steps_before_y, y_steps_before_x
 
 __all__ = ['stage_ranges', 'exact_ranges', 'stage_beam_angles', 'REGION_WIDTH']
 
@@ -46,7 +46,14 @@ def stage_beam_angles(start, increment, samples):
 
 
 class _RegionMap(object):
-    """Which Stage regions hold any block, and the visible cells padded to whole regions."""
+    """What the walk needs to know about the grid, on arrays padded to whole regions.
+
+    populated[region row, region col]: the region holds some block (so it is walked).
+    visible / returns [cell row, cell col]: cells a beam can hit, and what it reads there.
+    next_visible: for each cell, the nearest visible cell at or beyond it along its row
+    (+x, -x) and along its column (+y, -y), flattened into one array so that a beam
+    looks up its own direction's table by offset and stride.
+    """
 
     def __init__(self, populated, rx0, ry0, visible, returns):
         self.populated = populated
@@ -55,9 +62,31 @@ class _RegionMap(object):
         self.cy0 = ry0 * REGION_WIDTH
         self.visible = visible
         self.returns = returns
+        height, width = visible.shape
         blocks = visible.reshape(populated.shape[0], REGION_WIDTH, populated.shape[1],
                                  REGION_WIDTH)
         self.has_visible = blocks.any(axis=(1, 3))
+        # bounding box of each region's visible cells, in cells of the padded arrays
+        in_cols = blocks.any(axis=1)   # [region row, region col, cell col within]
+        in_rows = blocks.any(axis=3)   # [region row, cell row within, region col]
+        col_base = (np.arange(populated.shape[1]) * REGION_WIDTH)[None, :]
+        row_base = (np.arange(populated.shape[0]) * REGION_WIDTH)[:, None]
+        self.box_x_lo = col_base + np.argmax(in_cols, axis=2)
+        self.box_x_hi = col_base + REGION_WIDTH - 1 - np.argmax(in_cols[:, :, ::-1], axis=2)
+        self.box_y_lo = row_base + np.argmax(in_rows, axis=1)
+        self.box_y_hi = row_base + REGION_WIDTH - 1 - np.argmax(in_rows[:, ::-1, :], axis=1)
+        far = np.int64(1 << 40)
+        cols = np.where(visible, np.arange(width)[None, :], far)
+        rows = np.where(visible, np.arange(height)[:, None], far)
+        plus_x = np.minimum.accumulate(cols[:, ::-1], axis=1)[:, ::-1]
+        minus_x = np.maximum.accumulate(np.where(visible, cols, -far), axis=1)
+        plus_y = np.minimum.accumulate(rows[::-1, :], axis=0)[::-1, :]
+        minus_y = np.maximum.accumulate(np.where(visible, rows, -far), axis=0)
+        # row tables are indexed [y, x]; column tables transposed to [x, y]
+        self.next_visible = np.concatenate([plus_x.ravel(), minus_x.ravel(),
+                                            plus_y.T.ravel(), minus_y.T.ravel()])
+        self.table_size = height * width
+        self.height, self.width = height, width
 
     @classmethod
     def build(cls, grid, visible, ranger_return, extra_cells):
@@ -92,20 +121,21 @@ class _RegionMap(object):
         if r.min() < 0 or c.min() < 0 or r.max() >= self.populated.shape[0] or \
                 c.max() >= self.populated.shape[1]:
             return None
-        populated = self.populated.copy()
-        populated[r, c] = True
         out = _RegionMap.__new__(_RegionMap)
         out.__dict__.update(self.__dict__)
-        out.populated = populated
+        out.populated = self.populated.copy()
+        out.populated[r, c] = True
         return out
 
-    def lookup(self, table, rx, ry):
+    def region_flag(self, table, rx, ry):
+        """table[region] for regions (rx, ry); False outside the table."""
+        rows, cols = table.shape
         r = ry - self.ry0
         c = rx - self.rx0
-        inside = (r >= 0) & (c >= 0) & (r < table.shape[0]) & (c < table.shape[1])
-        out = np.zeros(rx.shape, dtype=table.dtype)
-        out[inside] = table[r[inside], c[inside]]
-        return out
+        inside = (r >= 0) & (c >= 0) & (r < rows) & (c < cols)
+        flat = np.minimum(np.maximum(r, 0), rows - 1) * cols + np.minimum(np.maximum(c, 0),
+                                                                             cols - 1)
+        return table.ravel()[flat] & inside
 
 
 def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), other_cells=()):
@@ -137,7 +167,7 @@ def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), oth
             returns[rows[ok], cols[ok]] = intensity
         bodies = bodies + [(c[0], c[1]) for c in others]
         regions = _RegionMap.build(grid, visible, returns, bodies)
-    return _trace(regions, grid.ppm, float(x), float(y), angles, float(range_max))
+    return _StageTrace(regions, grid.ppm, float(x), float(y), angles, float(range_max)).run()
 
 
 def _visible(grid, height):
@@ -146,191 +176,275 @@ def _visible(grid, height):
 
 def _static_regions(grid, height):
     """The region map of the grid alone, cached on the grid per beam height."""
-    cache = grid.__dict__.setdefault('_stage_region_maps', {})
-    key = None if height is None else round(float(height), 9)
-    regions = cache.get(key)
+    key = ('stage_regions', None if height is None else round(float(height), 9))
+    regions = grid.cache.get(key)
     if regions is None:
         regions = _RegionMap.build(grid, _visible(grid, height), grid.ranger_return, [])
-        cache[key] = regions
+        grid.cache[key] = regions
     return regions
 
 
-def _trace(regions, ppm, x, y, angles, range_max):
-    nbeams = len(angles)
-    angle = np.where(angles == 0.0, 1e-12, angles)
-    sina = np.sin(angle)
-    cosa = np.cos(angle)
-    tana = sina / cosa
-    dx = ppm * range_max * cosa
-    dy = ppm * range_max * sina
-    sx = np.where(dx < 0, -1, 1)
-    sy = np.where(dy < 0, -1, 1)
-    ax = np.abs(dx).astype(np.int64)
-    ay = np.abs(dy).astype(np.int64)
-    x_major = ax > ay
-    startx, starty = x * ppm, y * ppm
-    xjumpx = sx * float(REGION_WIDTH)
-    xjumpy = sx * REGION_WIDTH * tana
-    yjumpx = sy * REGION_WIDTH / tana
-    yjumpy = sy * float(REGION_WIDTH)
-    xjumpdist = np.abs(xjumpx) + np.abs(xjumpy)
-    yjumpdist = np.abs(yjumpx) + np.abs(yjumpy)
+class _StageTrace(object):
+    """All beams of one scan walked together, region by region, as World::Raytrace does.
 
-    ranges = np.full(nbeams, range_max)
-    intensities = np.zeros(nbeams)
-    # per-beam walk state
-    steps = np.zeros(nbeams, dtype=np.int64)        # i + j so far
-    budget = ax + ay                                 # Stage's n
-    globx = np.full(nbeams, startx)
-    globy = np.full(nbeams, starty)
-    recalc = np.ones(nbeams, dtype=bool)
-    xcx = np.zeros(nbeams)
-    xcy = np.zeros(nbeams)
-    ycx = np.zeros(nbeams)
-    ycy = np.zeros(nbeams)
-    dist_x = np.zeros(nbeams)
-    dist_y = np.zeros(nbeams)
-    active = np.nonzero(budget > 0)[0]
-    # beams outside the populated regions and heading away can never hit anything
-    rx_lo, ry_lo = regions.rx0, regions.ry0
-    rx_hi = rx_lo + regions.populated.shape[1] - 1
-    ry_hi = ry_lo + regions.populated.shape[0] - 1
-
-    while len(active):
-        b = active
-        cell_x = np.trunc(globx[b]).astype(np.int64)
-        cell_y = np.trunc(globy[b]).astype(np.int64)
-        reg_x = cell_x >> REGION_BITS
-        reg_y = cell_y >> REGION_BITS
-        populated = regions.lookup(regions.populated, reg_x, reg_y)
-
-        finished = np.zeros(len(b), dtype=bool)
-
-        # -- walk cell by cell through a populated region ---------------------------------
-        p = np.nonzero(populated)[0]
-        if len(p):
-            bp = b[p]
-            pax, pay = ax[bp], ay[bp]
-            psx, psy = sx[bp], sy[bp]
-            m0 = steps[bp]
-            i0 = x_count(m0, pax, pay)
-            j0 = m0 - i0
-            cx0, cy0 = cell_x[p], cell_y[p]
-            # x and y steps left before the walk leaves this region
-            left_x = np.where(psx > 0, ((reg_x[p] + 1) << REGION_BITS) - cx0,
-                              cx0 - (reg_x[p] << REGION_BITS) + 1)
-            left_y = np.where(psy > 0, ((reg_y[p] + 1) << REGION_BITS) - cy0,
-                              cy0 - (reg_y[p] << REGION_BITS) + 1)
-            exit_steps = np.minimum(steps_until_x(i0 + left_x, pax, pay),
-                                    steps_until_y(j0 + left_y, pax, pay)) - m0
-            limit = np.minimum(exit_steps, budget[bp])
-            hit_q = np.full(len(p), -1, dtype=np.int64)
-            has_visible = regions.lookup(regions.has_visible, reg_x[p], reg_y[p])
-            v = np.nonzero(has_visible)[0]
-            if len(v):
-                hit_q[v] = _first_hit_in_window(
-                    regions, m0[v], i0[v], j0[v], cx0[v], cy0[v], limit[v], pax[v], pay[v],
-                    psx[v], psy[v])
-            hit = hit_q >= 0
-            q = np.where(hit, hit_q, exit_steps)
-            m_new = m0 + q
-            i_new = x_count(m_new, pax, pay)
-            j_new = m_new - i_new
-            gx = globx[bp] + psx * (i_new - i0)
-            gy = globy[bp] + psy * (j_new - j0)
-            hb = bp[hit]
-            if len(hb):
-                along_x = np.abs((gx[hit] - startx) / cosa[hb]) / ppm
-                along_y = np.abs((gy[hit] - starty) / sina[hb]) / ppm
-                ranges[hb] = np.where(x_major[hb], along_x, along_y)
-                hx = cx0[hit] + psx[hit] * (i_new[hit] - i0[hit]) - regions.cx0
-                hy = cy0[hit] + psy[hit] * (j_new[hit] - j0[hit]) - regions.cy0
-                intensities[hb] = regions.returns[hy, hx]
-            out_of_budget = ~hit & (exit_steps >= budget[bp])
-            finished[p] = hit | out_of_budget
-            moving = ~hit & ~out_of_budget
-            bm = bp[moving]
-            steps[bm] = m_new[moving]
-            budget[bm] -= exit_steps[moving]
-            globx[bm] = gx[moving]
-            globy[bm] = gy[moving]
-            recalc[bm] = True
-
-        # -- jump over an empty region --------------------------------------------------
-        e = np.nonzero(~populated)[0]
-        if len(e):
-            be = b[e]
-            fresh = be[recalc[be]]
-            if len(fresh):
-                _region_crossings(fresh, globx, globy, sx, sy, tana, xcx, xcy, ycx, ycy,
-                                  dist_x, dist_y)
-                recalc[fresh] = False
-            along_x = dist_x[be] < dist_y[be]
-            jx, jy = be[along_x], be[~along_x]
-            globx[jx], globy[jx] = xcx[jx], xcy[jx]
-            budget[jx] = np.trunc(budget[jx] - dist_x[jx]).astype(np.int64)
-            xcx[jx] += xjumpx[jx]
-            xcy[jx] += xjumpy[jx]
-            dist_y[jx] -= dist_x[jx]
-            dist_x[jx] = xjumpdist[jx]
-            globx[jy], globy[jy] = ycx[jy], ycy[jy]
-            budget[jy] = np.trunc(budget[jy] - dist_y[jy]).astype(np.int64)
-            ycx[jy] += yjumpx[jy]
-            ycy[jy] += yjumpy[jy]
-            dist_x[jy] -= dist_y[jy]
-            dist_y[jy] = yjumpdist[jy]
-            nrx = np.trunc(globx[be]).astype(np.int64) >> REGION_BITS
-            nry = np.trunc(globy[be]).astype(np.int64) >> REGION_BITS
-            gone = (((nrx > rx_hi) & (sx[be] > 0)) | ((nrx < rx_lo) & (sx[be] < 0)) |
-                    ((nry > ry_hi) & (sy[be] > 0)) | ((nry < ry_lo) & (sy[be] < 0)))
-            finished[e] = (budget[be] <= 0) | gone
-
-        active = b[~finished]
-    return ranges, intensities
-
-
-def _region_crossings(b, globx, globy, sx, sy, tana, xcx, xcy, ycx, ycy, dist_x, dist_y):
-    """Where the ray from the current point leaves its region along x and along y.
-
-    Stage aims one cell past the border when going left or down.
+    Per beam the walk state is (i, j), the x and y steps made, the floating position
+    `glob` in cell units (re-anchored on the ray by every jump) and Stage's budget n.
+    Each round, every live beam either walks through its populated region (to a hit,
+    out of the region, or out of budget) or jumps over one empty region; the
+    arithmetic runs masked over all beams because numpy's per-call cost, not the
+    element count, dominates at a few hundred beams.
     """
-    gx, gy = globx[b], globy[b]
-    ix = np.trunc(gx).astype(np.int64)
-    iy = np.trunc(gy).astype(np.int64)
-    # C integer division truncates; floor it for negative coordinates off a border
-    region_x = (np.fix(ix / REGION_WIDTH) * REGION_WIDTH).astype(np.float64)
-    region_y = (np.fix(iy / REGION_WIDTH) * REGION_WIDTH).astype(np.float64)
-    region_x -= np.where((gx < 0) & (ix % REGION_WIDTH != 0), REGION_WIDTH, 0)
-    region_y -= np.where((gy < 0) & (iy % REGION_WIDTH != 0), REGION_WIDTH, 0)
-    xdx = np.where(sx[b] < 0, region_x - gx - 1.0, region_x + REGION_WIDTH - gx)
-    xdy = xdx * tana[b]
-    ydy = np.where(sy[b] < 0, region_y - gy - 1.0, region_y + REGION_WIDTH - gy)
-    ydx = ydy / tana[b]
-    xcx[b] = gx + xdx
-    xcy[b] = gy + xdy
-    ycx[b] = gx + ydx
-    ycy[b] = gy + ydy
-    dist_x[b] = np.abs(xdx) + np.abs(xdy)
-    dist_y[b] = np.abs(ydx) + np.abs(ydy)
+
+    def __init__(self, regions, ppm, x, y, angles, range_max):
+        self.regions = regions
+        self.ppm = ppm
+        angle = np.where(angles == 0.0, 1e-12, angles)
+        self.sina = np.sin(angle)
+        self.cosa = np.cos(angle)
+        self.tana = self.sina / self.cosa
+        dx = ppm * range_max * self.cosa
+        dy = ppm * range_max * self.sina
+        self.sx = np.where(dx < 0, -1, 1)
+        self.sy = np.where(dy < 0, -1, 1)
+        self.ax = np.abs(dx).astype(np.int64)
+        self.ay = np.abs(dy).astype(np.int64)
+        self.x_major = self.ax > self.ay
+        self.startx, self.starty = x * ppm, y * ppm
+        self.xjumpx = self.sx * float(REGION_WIDTH)
+        self.xjumpy = self.sx * REGION_WIDTH * self.tana
+        self.yjumpx = self.sy * REGION_WIDTH / self.tana
+        self.yjumpy = self.sy * float(REGION_WIDTH)
+        self.xjumpdist = np.abs(self.xjumpx) + np.abs(self.xjumpy)
+        self.yjumpdist = np.abs(self.yjumpx) + np.abs(self.yjumpy)
+        count = len(angles)
+        self.ranges = np.full(count, range_max)
+        self.intensities = np.zeros(count)
+        self.i = np.zeros(count, dtype=np.int64)
+        self.j = np.zeros(count, dtype=np.int64)
+        self.n = self.ax + self.ay
+        self.live = self.n > 0
+        self.globx = np.full(count, self.startx)
+        self.globy = np.full(count, self.starty)
+        self.recalc = np.ones(count, dtype=bool)
+        # next region crossing along x (point, Manhattan distance) and along y
+        self.xcx = np.zeros(count)
+        self.xcy = np.zeros(count)
+        self.ycx = np.zeros(count)
+        self.ycy = np.zeros(count)
+        self.dist_x = np.zeros(count)
+        self.dist_y = np.zeros(count)
+        regions = self.regions
+        self.reg_lo = (regions.rx0, regions.ry0)
+        self.reg_hi = (regions.rx0 + regions.populated.shape[1] - 1,
+                       regions.ry0 + regions.populated.shape[0] - 1)
+
+    def run(self):
+        while self.live.any():
+            cell_x = self.globx.astype(np.int64)   # C's truncation towards zero
+            cell_y = self.globy.astype(np.int64)
+            reg_x = cell_x >> REGION_BITS
+            reg_y = cell_y >> REGION_BITS
+            populated = self.regions.region_flag(self.regions.populated, reg_x, reg_y)
+            walking = self.live & populated
+            jumping = self.live & ~populated
+            if walking.any():
+                self._walk_regions(walking, cell_x, cell_y, reg_x, reg_y)
+            if jumping.any():
+                self._jump(jumping)
+        return self.ranges, self.intensities
+
+    def _walk_regions(self, walking, cell_x, cell_y, reg_x, reg_y):
+        """Walk the `walking` beams through their current region."""
+        ax, ay, sx, sy = self.ax, self.ay, self.sx, self.sy
+        i0, j0 = self.i, self.j
+        m0 = i0 + j0
+        left_x = np.where(sx > 0, ((reg_x + 1) << REGION_BITS) - cell_x,
+                          cell_x - (reg_x << REGION_BITS) + 1)
+        left_y = np.where(sy > 0, ((reg_y + 1) << REGION_BITS) - cell_y,
+                          cell_y - (reg_y << REGION_BITS) + 1)
+        exit_x = steps_until_x(i0 + left_x, ax, ay)
+        exit_y = steps_until_y(j0 + left_y, ax, ay)
+        exit_m = np.minimum(exit_x, exit_y)
+        budget_m = m0 + self.n
+        end_m = np.minimum(exit_m, budget_m)   # the states m0 .. end_m-1 are tested
+        hit = np.zeros(len(walking), dtype=bool)
+        look = np.nonzero(walking & (end_m > m0) &
+                          self.regions.region_flag(self.regions.has_visible, reg_x, reg_y))[0]
+        if len(look):
+            start, stop = self._box_window(look, m0[look], end_m[look], cell_x[look],
+                                           cell_y[look], reg_x[look], reg_y[look])
+            look, start, stop = look[start < stop], start[start < stop], stop[start < stop]
+        if len(look):
+            found, hit_i, hit_j = self._first_hit(look, start, stop, cell_x[look],
+                                                  cell_y[look])
+            hits = look[found]
+            hit[hits] = True
+            self._record_hits(hits, hit_i[found], hit_j[found], cell_x[hits], cell_y[hits])
+        leaving = walking & ~hit & (exit_m < budget_m)
+        self.live &= ~walking | leaving
+        by_x = exit_x < exit_y
+        new_i = np.where(by_x, i0 + left_x, x_steps_before_y(j0 + left_y - 1, ax, ay))
+        new_j = np.where(by_x, y_steps_before_x(new_i - 1, ax, ay), j0 + left_y)
+        self.globx = np.where(leaving, self.globx + sx * (new_i - i0), self.globx)
+        self.globy = np.where(leaving, self.globy + sy * (new_j - j0), self.globy)
+        self.n = np.where(leaving, self.n - (exit_m - m0), self.n)
+        self.i = np.where(leaving, new_i, i0)
+        self.j = np.where(leaving, new_j, j0)
+        self.recalc |= leaving
+
+    def _box_window(self, b, m0, end_m, cell_x, cell_y, reg_x, reg_y):
+        """Steps [start, stop) of the walk that lie in the box around the region's targets.
+
+        Only there can the walk hit anything, and for a region crossed by a straight wall
+        that box is one cell wide, which keeps the hit search short.
+        """
+        regions = self.regions
+        r = reg_y - regions.ry0
+        c = reg_x - regions.rx0
+        box = [regions.box_x_lo[r, c] + regions.cx0, regions.box_x_hi[r, c] + regions.cx0,
+               regions.box_y_lo[r, c] + regions.cy0, regions.box_y_hi[r, c] + regions.cy0]
+        ax, ay, i0, j0 = self.ax[b], self.ay[b], self.i[b], self.j[b]
+        forward_x = self.sx[b] > 0
+        forward_y = self.sy[b] > 0
+        # steps along each axis to reach the box and to pass beyond it
+        into_x = np.maximum(np.where(forward_x, box[0] - cell_x, cell_x - box[1]), 0)
+        past_x = np.where(forward_x, box[1] - cell_x, cell_x - box[0]) + 1
+        into_y = np.maximum(np.where(forward_y, box[2] - cell_y, cell_y - box[3]), 0)
+        past_y = np.where(forward_y, box[3] - cell_y, cell_y - box[2]) + 1
+        start = np.maximum(np.where(into_x > 0, steps_until_x(i0 + into_x, ax, ay), m0),
+                           np.where(into_y > 0, steps_until_y(j0 + into_y, ax, ay), m0))
+        stop = np.minimum(np.minimum(steps_until_x(i0 + np.maximum(past_x, 0), ax, ay),
+                                     steps_until_y(j0 + np.maximum(past_y, 0), ax, ay)), end_m)
+        stop = np.where((past_x <= 0) | (past_y <= 0), start, stop)
+        return start, stop
+
+    def _first_hit(self, b, start, stop, cell_x, cell_y):
+        """First visible cell among the walk's states start .. stop-1.
+
+        (cell_x, cell_y) is the cell of the beams' current state (i, j). The states form
+        runs along the beam's major axis, one per minor-axis line; the next-visible
+        table answers each run with one lookup. Returns (found, i, j) of the hit state.
+        """
+        regions = self.regions
+        x_major = self.x_major[b]
+        ax, ay, sx, sy = self.ax[b], self.ay[b], self.sx[b], self.sy[b]
+        i0, j0 = self.i[b], self.j[b]
+        a_major = np.where(x_major, ax, ay)[:, None]
+        a_minor = np.where(x_major, ay, ax)[:, None]
+        major0 = np.where(x_major, i0, j0)
+        minor0 = np.where(x_major, j0, i0)
+        s_major = np.where(x_major, sx, sy)
+        cell_major0 = np.where(x_major, cell_x - regions.cx0, cell_y - regions.cy0)
+        cell_minor0 = np.where(x_major, cell_y - regions.cy0, cell_x - regions.cx0)
+        last = stop - 1
+        x_first = x_count(start, ax, ay)
+        x_last = x_count(last, ax, ay)
+        minor_first = np.where(x_major, start - x_first, x_first)
+        minor_last = np.where(x_major, last - x_last, x_last)
+        width = int((minor_last - minor_first).max()) + 1
+        k = minor_first[:, None] + np.arange(-1, width)[None, :]
+        bounds = _major_before_minor(k, a_major, a_minor, x_major[:, None])
+        k = k[:, 1:]
+        lo = np.maximum(bounds[:, :-1], start[:, None] - k)
+        hi = np.minimum(bounds[:, 1:], last[:, None] - k)
+        usable = (k <= minor_last[:, None]) & (lo <= hi)
+        minor_cell = cell_minor0[:, None] + np.where(x_major, sy, sx)[:, None] * (
+            k - minor0[:, None])
+        lo_cell = cell_major0[:, None] + s_major[:, None] * (lo - major0[:, None])
+        hi_cell = cell_major0[:, None] + s_major[:, None] * (hi - major0[:, None])
+        table = np.where(x_major, np.where(sx > 0, 0, 1), np.where(sy > 0, 2, 3)) * \
+            regions.table_size
+        stride = np.where(x_major, regions.width, regions.height)
+        index = table[:, None] + np.where(usable, minor_cell * stride[:, None] + lo_cell, 0)
+        nearest = regions.next_visible[index]
+        hits = usable & np.where(s_major[:, None] > 0, nearest <= hi_cell, nearest >= hi_cell)
+        found = hits.any(axis=1)
+        line = np.argmax(hits, axis=1)
+        rows = np.arange(len(b))
+        hit_major = major0 + s_major * (nearest[rows, line] - cell_major0)
+        hit_minor = k[rows, line]
+        return (found, np.where(x_major, hit_major, hit_minor),
+                np.where(x_major, hit_minor, hit_major))
+
+    def _record_hits(self, b, hit_i, hit_j, cell_x, cell_y):
+        i0, j0 = self.i[b], self.j[b]
+        sx, sy = self.sx[b], self.sy[b]
+        gx = self.globx[b] + sx * (hit_i - i0)
+        gy = self.globy[b] + sy * (hit_j - j0)
+        along_x = np.abs((gx - self.startx) / self.cosa[b]) / self.ppm
+        along_y = np.abs((gy - self.starty) / self.sina[b]) / self.ppm
+        self.ranges[b] = np.where(self.x_major[b], along_x, along_y)
+        regions = self.regions
+        self.intensities[b] = regions.returns[cell_y + sy * (hit_j - j0) - regions.cy0,
+                                              cell_x + sx * (hit_i - i0) - regions.cx0]
+
+    def _jump(self, jumping):
+        """Jump the `jumping` beams over one empty region each."""
+        fresh = jumping & self.recalc
+        if fresh.any():
+            self._region_crossings(fresh)
+            self.recalc &= ~fresh
+        by_x = self.dist_x < self.dist_y
+        jump_x = jumping & by_x
+        jump_y = jumping & ~by_x
+        self.globx = np.where(jump_x, self.xcx, np.where(jump_y, self.ycx, self.globx))
+        self.globy = np.where(jump_x, self.xcy, np.where(jump_y, self.ycy, self.globy))
+        travelled = np.where(by_x, self.dist_x, self.dist_y)
+        self.n = np.where(jumping, (self.n - travelled).astype(np.int64), self.n)
+        self.xcx = np.where(jump_x, self.xcx + self.xjumpx, self.xcx)
+        self.xcy = np.where(jump_x, self.xcy + self.xjumpy, self.xcy)
+        self.ycx = np.where(jump_y, self.ycx + self.yjumpx, self.ycx)
+        self.ycy = np.where(jump_y, self.ycy + self.yjumpy, self.ycy)
+        self.dist_x, self.dist_y = (
+            np.where(jump_x, self.xjumpdist, np.where(jump_y, self.dist_x - travelled,
+                                                      self.dist_x)),
+            np.where(jump_y, self.yjumpdist, np.where(jump_x, self.dist_y - travelled,
+                                                      self.dist_y)))
+        # a beam beyond every populated region, heading away, will never hit anything
+        reg_x = self.globx.astype(np.int64) >> REGION_BITS
+        reg_y = self.globy.astype(np.int64) >> REGION_BITS
+        gone = (((reg_x > self.reg_hi[0]) & (self.sx > 0)) |
+                ((reg_x < self.reg_lo[0]) & (self.sx < 0)) |
+                ((reg_y > self.reg_hi[1]) & (self.sy > 0)) |
+                ((reg_y < self.reg_lo[1]) & (self.sy < 0)))
+        self.live &= ~(jumping & ((self.n <= 0) | gone))
+
+    def _region_crossings(self, fresh):
+        """Where the ray from each `fresh` beam's point leaves its region along x and y.
+
+        Stage aims one cell past the border when going left or down.
+        """
+        gx, gy = self.globx, self.globy
+        ix = gx.astype(np.int64)
+        iy = gy.astype(np.int64)
+        # C's integer division truncates; Stage then floors it off a border when negative
+        region_x = ((np.abs(ix) >> REGION_BITS) * np.sign(ix)) << REGION_BITS
+        region_y = ((np.abs(iy) >> REGION_BITS) * np.sign(iy)) << REGION_BITS
+        region_x = region_x - np.where((gx < 0) & (ix != region_x), REGION_WIDTH, 0)
+        region_y = region_y - np.where((gy < 0) & (iy != region_y), REGION_WIDTH, 0)
+        xdx = np.where(self.sx < 0, region_x - gx - 1.0, region_x + REGION_WIDTH - gx)
+        xdy = xdx * self.tana
+        ydy = np.where(self.sy < 0, region_y - gy - 1.0, region_y + REGION_WIDTH - gy)
+        ydx = ydy / self.tana
+        self.xcx = np.where(fresh, gx + xdx, self.xcx)
+        self.xcy = np.where(fresh, gy + xdy, self.xcy)
+        self.ycx = np.where(fresh, gx + ydx, self.ycx)
+        self.ycy = np.where(fresh, gy + ydy, self.ycy)
+        self.dist_x = np.where(fresh, np.abs(xdx) + np.abs(xdy), self.dist_x)
+        self.dist_y = np.where(fresh, np.abs(ydx) + np.abs(ydy), self.dist_y)
 
 
-def _first_hit_in_window(regions, m0, i0, j0, cx0, cy0, limit, ax, ay, sx, sy):
-    """Index of the first tested state (< limit) whose cell is visible, else -1."""
-    width = int(limit.max()) if len(limit) else 0
-    if width <= 0:
-        return np.full(len(m0), -1, dtype=np.int64)
-    q = np.arange(width, dtype=np.int64)[None, :]
-    m = m0[:, None] + q
-    i = x_count(m, ax[:, None], ay[:, None])
-    j = m - i
-    cells_x = cx0[:, None] + sx[:, None] * (i - i0[:, None]) - regions.cx0
-    cells_y = cy0[:, None] + sy[:, None] * (j - j0[:, None]) - regions.cy0
-    tested = q < limit[:, None]
-    rows = np.clip(cells_y, 0, regions.visible.shape[0] - 1)
-    cols = np.clip(cells_x, 0, regions.visible.shape[1] - 1)
-    hits = tested & regions.visible[rows, cols]
-    first = np.argmax(hits, axis=1)
-    return np.where(hits.any(axis=1), first, -1)
+def _major_before_minor(k, a_major, a_minor, tie_to_minor):
+    """Major-axis steps made before minor step k (a_major when the walk has no step k).
+
+    With x major, ties go to the minor (y) step, so only strictly earlier x steps count.
+    """
+    safe = np.maximum(a_minor, 1)
+    strict = -((a_minor - (2 * k + 1) * a_major) // (2 * safe))
+    loose = ((2 * k + 1) * a_major + a_minor) // (2 * safe)
+    count = np.minimum(np.maximum(np.where(tie_to_minor, strict, loose), 0), a_major)
+    # a walk along an axis has a single minor line holding every major step
+    return np.where(a_minor == 0, np.where(k < 0, 0, a_major), count)
 
 
 def exact_ranges(grid, x, y, angles, range_max):

@@ -9,7 +9,7 @@ steps can be computed directly, for many walks at once with numpy.
 """
 import numpy as np
 
-__all__ = ['y_steps_before_x', 'x_count', 'steps_until_x', 'steps_until_y', 'line_cells']
+__all__ = ['y_steps_before_x', 'x_steps_before_y', 'x_count', 'steps_until_x', 'steps_until_y', 'line_cells']
 
 _NEVER = np.iinfo(np.int64).max
 
@@ -17,6 +17,11 @@ _NEVER = np.iinfo(np.int64).max
 def y_steps_before_x(i, ax, ay):
     """y steps made before x step number i (0-based): #{j : (2j+1)*ax <= (2i+1)*ay}."""
     return ((2 * i + 1) * ay + ax) // (2 * np.maximum(ax, 1))
+
+
+def x_steps_before_y(j, ax, ay):
+    """x steps made before y step number j (0-based): #{i : (2i+1)*ay < (2j+1)*ax}."""
+    return np.minimum(np.maximum(-((ay - (2 * j + 1) * ax) // (2 * np.maximum(ay, 1))), 0), ax)
 
 
 def x_count(m, ax, ay):
@@ -27,7 +32,7 @@ def x_count(m, ax, ay):
     """
     ax_safe = np.maximum(ax, 1)
     est = np.ceil(np.minimum(m, ax + ay) / (1.0 + ay / ax_safe) - 0.5).astype(np.int64)
-    est = np.clip(est, 0, ax)
+    est = np.minimum(np.maximum(est, 0), ax)
     for _ in range(2):
         after = est + y_steps_before_x(est, ax, ay)
         est = np.where((est < ax) & (after < m), est + 1, est)
@@ -47,9 +52,7 @@ def steps_until_x(count, ax, ay):
 def steps_until_y(count, ax, ay):
     """Number of steps after which the walk has made `count` >= 1 y steps (huge if never)."""
     j = count - 1
-    # x steps strictly before y step j: #{i : (2i+1)*ay < (2j+1)*ax}
-    before = np.clip(-((ay - (2 * j + 1) * ax) // (2 * np.maximum(ay, 1))), 0, ax)
-    steps = j + before + 1
+    steps = j + x_steps_before_y(j, ax, ay) + 1
     return np.where((count <= ay) & (ay > 0), steps, _NEVER)
 
 
