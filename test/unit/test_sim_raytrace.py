@@ -116,6 +116,11 @@ def _literal_scan(grid, x, y, angles, range_max, robot_cells=()):
     return np.array([o[0] for o in out]), np.array([o[1] for o in out])
 
 
+# beams exactly along, just off and diagonal to the axes: walks without minor steps, and ties
+_AXIS_AND_DIAGONAL_BEAMS = np.array([a + d for a in np.arange(-4, 4) * math.pi / 4
+                                     for d in (0.0, 1e-4, -1e-4, 1e-3, -1e-3)])
+
+
 @pytest.mark.parametrize('name', ['ref_room', 'ref_shapes', 'ref_lidar270'])
 def test_vectorised_walk_equals_stages_loop_beam_for_beam(name):
     world = load_world(os.path.join(REFERENCE, name + '.world'))
@@ -129,7 +134,8 @@ def test_vectorised_walk_equals_stages_loop_beam_for_beam(name):
         if rng.rand() < 0.5:
             x = rng.uniform(-0.019, 0.019)
         yaw = rng.uniform(-math.pi, math.pi)
-        angles = stage_beam_angles(yaw - math.pi, 2 * math.pi / 359, 360)
+        angles = np.concatenate([stage_beam_angles(yaw - math.pi, 2 * math.pi / 359, 360),
+                                 _AXIS_AND_DIAGONAL_BEAMS])
         cells = [footprint_cells(spec, (x, y, yaw), grid.ppm)]
         ranges, returns = stage_ranges(grid, x, y, angles, spec.ranger.range_max,
                                        robot_cells=cells)

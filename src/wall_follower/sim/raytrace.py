@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from .stage_walk import steps_until_x, steps_until_y, x_count, x_steps_before_y, y_steps_before_x
+from .stage_walk import Walks
 
 __all__ = ['stage_ranges', 'exact_ranges', 'stage_beam_angles', 'REGION_WIDTH']
 
@@ -66,6 +66,8 @@ class _RegionMap(object):
         blocks = visible.reshape(populated.shape[0], REGION_WIDTH, populated.shape[1],
                                  REGION_WIDTH)
         self.has_visible = blocks.any(axis=(1, 3))
+        self.has_visible_flags = self.flags(self.has_visible)
+        self.populated_flags = self.flags(populated)
         # bounding box of each region's visible cells, in cells of the padded arrays
         in_cols = blocks.any(axis=1)   # [region row, region col, cell col within]
         in_rows = blocks.any(axis=3)   # [region row, cell row within, region col]
@@ -125,17 +127,19 @@ class _RegionMap(object):
         out.__dict__.update(self.__dict__)
         out.populated = self.populated.copy()
         out.populated[r, c] = True
+        out.populated_flags = out.flags(out.populated)
         return out
 
-    def region_flag(self, table, rx, ry):
-        """table[region] for regions (rx, ry); False outside the table."""
-        rows, cols = table.shape
-        r = ry - self.ry0
-        c = rx - self.rx0
-        inside = (r >= 0) & (c >= 0) & (r < rows) & (c < cols)
-        flat = np.minimum(np.maximum(r, 0), rows - 1) * cols + np.minimum(np.maximum(c, 0),
-                                                                             cols - 1)
-        return table.ravel()[flat] & inside
+    def region_ids(self, rx, ry):
+        """Index of regions (rx, ry) into the flat flag tables; outside ones hit the border."""
+        rows, cols = self.populated.shape
+        r = np.minimum(np.maximum(ry - (self.ry0 - 1), 0), rows + 1)
+        c = np.minimum(np.maximum(rx - (self.rx0 - 1), 0), cols + 1)
+        return r * (cols + 2) + c
+
+    def flags(self, table):
+        """`table` flattened with a border of False regions, for region_ids()."""
+        return np.pad(table, 1, mode='constant', constant_values=False).ravel()
 
 
 def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), other_cells=()):
@@ -189,9 +193,9 @@ class _StageTrace(object):
 
     Per beam the walk state is (i, j), the x and y steps made, the floating position
     `glob` in cell units (re-anchored on the ray by every jump) and Stage's budget n.
-    Each round, every live beam either walks through its populated region (to a hit,
-    out of the region, or out of budget) or jumps over one empty region; the
-    arithmetic runs masked over all beams because numpy's per-call cost, not the
+    Beams in empty regions jump until they reach a populated one; then every live beam
+    walks its populated region to a hit, out of the region, or out of budget. The
+    arithmetic runs masked over all beams, because numpy's per-call cost, not the
     element count, dominates at a few hundred beams.
     """
 
@@ -204,11 +208,18 @@ class _StageTrace(object):
         self.tana = self.sina / self.cosa
         dx = ppm * range_max * self.cosa
         dy = ppm * range_max * self.sina
-        self.sx = np.where(dx < 0, -1, 1)
-        self.sy = np.where(dy < 0, -1, 1)
-        self.ax = np.abs(dx).astype(np.int64)
-        self.ay = np.abs(dy).astype(np.int64)
-        self.x_major = self.ax > self.ay
+        self.forward_x = dx >= 0
+        self.forward_y = dy >= 0
+        self.sx = np.where(self.forward_x, 1, -1)
+        self.sy = np.where(self.forward_y, 1, -1)
+        ax = np.abs(dx).astype(np.int64)
+        ay = np.abs(dy).astype(np.int64)
+        self.ax, self.ay = ax, ay
+        self.x_major = ax > ay
+        self.walks = Walks(ax, ay)
+        # steps to leave a region from cell offset c within it: 32 - c ahead, c + 1 back
+        self.exit_base_x = np.where(self.forward_x, REGION_WIDTH, 1)
+        self.exit_base_y = np.where(self.forward_y, REGION_WIDTH, 1)
         self.startx, self.starty = x * ppm, y * ppm
         self.xjumpx = self.sx * float(REGION_WIDTH)
         self.xjumpy = self.sx * REGION_WIDTH * self.tana
@@ -221,7 +232,7 @@ class _StageTrace(object):
         self.intensities = np.zeros(count)
         self.i = np.zeros(count, dtype=np.int64)
         self.j = np.zeros(count, dtype=np.int64)
-        self.n = self.ax + self.ay
+        self.n = ax + ay
         self.live = self.n > 0
         self.globx = np.full(count, self.startx)
         self.globy = np.full(count, self.starty)
@@ -233,47 +244,51 @@ class _StageTrace(object):
         self.ycy = np.zeros(count)
         self.dist_x = np.zeros(count)
         self.dist_y = np.zeros(count)
-        regions = self.regions
         self.reg_lo = (regions.rx0, regions.ry0)
         self.reg_hi = (regions.rx0 + regions.populated.shape[1] - 1,
                        regions.ry0 + regions.populated.shape[0] - 1)
 
+    # -- rounds --------------------------------------------------------------------------
     def run(self):
-        while self.live.any():
-            cell_x = self.globx.astype(np.int64)   # C's truncation towards zero
-            cell_y = self.globy.astype(np.int64)
-            reg_x = cell_x >> REGION_BITS
-            reg_y = cell_y >> REGION_BITS
-            populated = self.regions.region_flag(self.regions.populated, reg_x, reg_y)
-            walking = self.live & populated
-            jumping = self.live & ~populated
-            if walking.any():
-                self._walk_regions(walking, cell_x, cell_y, reg_x, reg_y)
-            if jumping.any():
+        regions = self.regions
+        while True:
+            # jump the beams in empty regions until each reaches a populated one
+            while True:
+                cell_x = self.globx.astype(np.int64)   # C's truncation towards zero
+                cell_y = self.globy.astype(np.int64)
+                reg_x = cell_x >> REGION_BITS
+                reg_y = cell_y >> REGION_BITS
+                region = regions.region_ids(reg_x, reg_y)
+                populated = regions.populated_flags[region]
+                jumping = self.live & ~populated
+                if not jumping.any():
+                    break
                 self._jump(jumping)
-        return self.ranges, self.intensities
+            walking = self.live & populated
+            if not walking.any():
+                return self.ranges, self.intensities
+            self._walk_regions(walking, cell_x, cell_y, reg_x, reg_y,
+                               regions.has_visible_flags[region])
 
-    def _walk_regions(self, walking, cell_x, cell_y, reg_x, reg_y):
+    def _walk_regions(self, walking, cell_x, cell_y, reg_x, reg_y, has_visible):
         """Walk the `walking` beams through their current region."""
-        ax, ay, sx, sy = self.ax, self.ay, self.sx, self.sy
         i0, j0 = self.i, self.j
         m0 = i0 + j0
-        left_x = np.where(sx > 0, ((reg_x + 1) << REGION_BITS) - cell_x,
-                          cell_x - (reg_x << REGION_BITS) + 1)
-        left_y = np.where(sy > 0, ((reg_y + 1) << REGION_BITS) - cell_y,
-                          cell_y - (reg_y << REGION_BITS) + 1)
-        exit_x = steps_until_x(i0 + left_x, ax, ay)
-        exit_y = steps_until_y(j0 + left_y, ax, ay)
+        left_x = self.exit_base_x - self.sx * (cell_x - (reg_x << REGION_BITS))
+        left_y = self.exit_base_y - self.sy * (cell_y - (reg_y << REGION_BITS))
+        walks = self.walks
+        exit_x = walks.steps_until_x(i0 + left_x)
+        exit_y = walks.steps_until_y(j0 + left_y)
         exit_m = np.minimum(exit_x, exit_y)
         budget_m = m0 + self.n
         end_m = np.minimum(exit_m, budget_m)   # the states m0 .. end_m-1 are tested
         hit = np.zeros(len(walking), dtype=bool)
-        look = np.nonzero(walking & (end_m > m0) &
-                          self.regions.region_flag(self.regions.has_visible, reg_x, reg_y))[0]
+        look = np.nonzero(walking & has_visible & (end_m > m0))[0]
         if len(look):
             start, stop = self._box_window(look, m0[look], end_m[look], cell_x[look],
                                            cell_y[look], reg_x[look], reg_y[look])
-            look, start, stop = look[start < stop], start[start < stop], stop[start < stop]
+            keep = start < stop
+            look, start, stop = look[keep], start[keep], stop[keep]
         if len(look):
             found, hit_i, hit_j = self._first_hit(look, start, stop, cell_x[look],
                                                   cell_y[look])
@@ -283,13 +298,15 @@ class _StageTrace(object):
         leaving = walking & ~hit & (exit_m < budget_m)
         self.live &= ~walking | leaving
         by_x = exit_x < exit_y
-        new_i = np.where(by_x, i0 + left_x, x_steps_before_y(j0 + left_y - 1, ax, ay))
-        new_j = np.where(by_x, y_steps_before_x(new_i - 1, ax, ay), j0 + left_y)
-        self.globx = np.where(leaving, self.globx + sx * (new_i - i0), self.globx)
-        self.globy = np.where(leaving, self.globy + sy * (new_j - j0), self.globy)
-        self.n = np.where(leaving, self.n - (exit_m - m0), self.n)
-        self.i = np.where(leaving, new_i, i0)
-        self.j = np.where(leaving, new_j, j0)
+        new_i = np.where(by_x, i0 + left_x, walks.x_before_y(j0 + left_y - 1))
+        new_j = np.where(by_x, walks.y_before_x(new_i - 1), j0 + left_y)
+        moved_i = (new_i - i0) * leaving
+        moved_j = (new_j - j0) * leaving
+        self.globx = self.globx + self.sx * moved_i
+        self.globy = self.globy + self.sy * moved_j
+        self.n = self.n - (moved_i + moved_j)
+        self.i = i0 + moved_i
+        self.j = j0 + moved_j
         self.recalc |= leaving
 
     def _box_window(self, b, m0, end_m, cell_x, cell_y, reg_x, reg_y):
@@ -301,20 +318,20 @@ class _StageTrace(object):
         regions = self.regions
         r = reg_y - regions.ry0
         c = reg_x - regions.rx0
-        box = [regions.box_x_lo[r, c] + regions.cx0, regions.box_x_hi[r, c] + regions.cx0,
-               regions.box_y_lo[r, c] + regions.cy0, regions.box_y_hi[r, c] + regions.cy0]
-        ax, ay, i0, j0 = self.ax[b], self.ay[b], self.i[b], self.j[b]
-        forward_x = self.sx[b] > 0
-        forward_y = self.sy[b] > 0
+        box_x = (regions.box_x_lo[r, c] + regions.cx0, regions.box_x_hi[r, c] + regions.cx0)
+        box_y = (regions.box_y_lo[r, c] + regions.cy0, regions.box_y_hi[r, c] + regions.cy0)
+        walks = self.walks.subset(b)
+        i0, j0 = self.i[b], self.j[b]
+        forward_x, forward_y = self.forward_x[b], self.forward_y[b]
         # steps along each axis to reach the box and to pass beyond it
-        into_x = np.maximum(np.where(forward_x, box[0] - cell_x, cell_x - box[1]), 0)
-        past_x = np.where(forward_x, box[1] - cell_x, cell_x - box[0]) + 1
-        into_y = np.maximum(np.where(forward_y, box[2] - cell_y, cell_y - box[3]), 0)
-        past_y = np.where(forward_y, box[3] - cell_y, cell_y - box[2]) + 1
-        start = np.maximum(np.where(into_x > 0, steps_until_x(i0 + into_x, ax, ay), m0),
-                           np.where(into_y > 0, steps_until_y(j0 + into_y, ax, ay), m0))
-        stop = np.minimum(np.minimum(steps_until_x(i0 + np.maximum(past_x, 0), ax, ay),
-                                     steps_until_y(j0 + np.maximum(past_y, 0), ax, ay)), end_m)
+        into_x = np.maximum(np.where(forward_x, box_x[0] - cell_x, cell_x - box_x[1]), 0)
+        past_x = np.where(forward_x, box_x[1] - cell_x, cell_x - box_x[0]) + 1
+        into_y = np.maximum(np.where(forward_y, box_y[0] - cell_y, cell_y - box_y[1]), 0)
+        past_y = np.where(forward_y, box_y[1] - cell_y, cell_y - box_y[0]) + 1
+        start = np.maximum(np.where(into_x > 0, walks.steps_until_x(i0 + into_x), m0),
+                           np.where(into_y > 0, walks.steps_until_y(j0 + into_y), m0))
+        stop = np.minimum(np.minimum(walks.steps_until_x(i0 + np.maximum(past_x, 1)),
+                                     walks.steps_until_y(j0 + np.maximum(past_y, 1))), end_m)
         stop = np.where((past_x <= 0) | (past_y <= 0), start, stop)
         return start, stop
 
@@ -327,23 +344,22 @@ class _StageTrace(object):
         """
         regions = self.regions
         x_major = self.x_major[b]
-        ax, ay, sx, sy = self.ax[b], self.ay[b], self.sx[b], self.sy[b]
+        sx, sy = self.sx[b], self.sy[b]
         i0, j0 = self.i[b], self.j[b]
-        a_major = np.where(x_major, ax, ay)[:, None]
-        a_minor = np.where(x_major, ay, ax)[:, None]
         major0 = np.where(x_major, i0, j0)
         minor0 = np.where(x_major, j0, i0)
         s_major = np.where(x_major, sx, sy)
         cell_major0 = np.where(x_major, cell_x - regions.cx0, cell_y - regions.cy0)
         cell_minor0 = np.where(x_major, cell_y - regions.cy0, cell_x - regions.cx0)
         last = stop - 1
-        x_first = x_count(start, ax, ay)
-        x_last = x_count(last, ax, ay)
+        walks = self.walks.subset(b)
+        x_first = walks.x_count(start)
+        x_last = walks.x_count(last)
         minor_first = np.where(x_major, start - x_first, x_first)
         minor_last = np.where(x_major, last - x_last, x_last)
         width = int((minor_last - minor_first).max()) + 1
         k = minor_first[:, None] + np.arange(-1, width)[None, :]
-        bounds = _major_before_minor(k, a_major, a_minor, x_major[:, None])
+        bounds = _major_before_minor(walks.column(), x_major[:, None], k)
         k = k[:, 1:]
         lo = np.maximum(bounds[:, :-1], start[:, None] - k)
         hi = np.minimum(bounds[:, 1:], last[:, None] - k)
@@ -391,22 +407,20 @@ class _StageTrace(object):
         self.globy = np.where(jump_x, self.xcy, np.where(jump_y, self.ycy, self.globy))
         travelled = np.where(by_x, self.dist_x, self.dist_y)
         self.n = np.where(jumping, (self.n - travelled).astype(np.int64), self.n)
-        self.xcx = np.where(jump_x, self.xcx + self.xjumpx, self.xcx)
-        self.xcy = np.where(jump_x, self.xcy + self.xjumpy, self.xcy)
-        self.ycx = np.where(jump_y, self.ycx + self.yjumpx, self.ycx)
-        self.ycy = np.where(jump_y, self.ycy + self.yjumpy, self.ycy)
+        self.xcx = self.xcx + self.xjumpx * jump_x
+        self.xcy = self.xcy + self.xjumpy * jump_x
+        self.ycx = self.ycx + self.yjumpx * jump_y
+        self.ycy = self.ycy + self.yjumpy * jump_y
         self.dist_x, self.dist_y = (
-            np.where(jump_x, self.xjumpdist, np.where(jump_y, self.dist_x - travelled,
-                                                      self.dist_x)),
-            np.where(jump_y, self.yjumpdist, np.where(jump_x, self.dist_y - travelled,
-                                                      self.dist_y)))
+            np.where(jump_x, self.xjumpdist, self.dist_x - travelled * jump_y),
+            np.where(jump_y, self.yjumpdist, self.dist_y - travelled * jump_x))
         # a beam beyond every populated region, heading away, will never hit anything
         reg_x = self.globx.astype(np.int64) >> REGION_BITS
         reg_y = self.globy.astype(np.int64) >> REGION_BITS
-        gone = (((reg_x > self.reg_hi[0]) & (self.sx > 0)) |
-                ((reg_x < self.reg_lo[0]) & (self.sx < 0)) |
-                ((reg_y > self.reg_hi[1]) & (self.sy > 0)) |
-                ((reg_y < self.reg_lo[1]) & (self.sy < 0)))
+        gone = (((reg_x > self.reg_hi[0]) & self.forward_x) |
+                ((reg_x < self.reg_lo[0]) & ~self.forward_x) |
+                ((reg_y > self.reg_hi[1]) & self.forward_y) |
+                ((reg_y < self.reg_lo[1]) & ~self.forward_y))
         self.live &= ~(jumping & ((self.n <= 0) | gone))
 
     def _region_crossings(self, fresh):
@@ -434,17 +448,14 @@ class _StageTrace(object):
         self.dist_y = np.where(fresh, np.abs(ydx) + np.abs(ydy), self.dist_y)
 
 
-def _major_before_minor(k, a_major, a_minor, tie_to_minor):
-    """Major-axis steps made before minor step k (a_major when the walk has no step k).
-
-    With x major, ties go to the minor (y) step, so only strictly earlier x steps count.
-    """
-    safe = np.maximum(a_minor, 1)
-    strict = -((a_minor - (2 * k + 1) * a_major) // (2 * safe))
-    loose = ((2 * k + 1) * a_major + a_minor) // (2 * safe)
-    count = np.minimum(np.maximum(np.where(tie_to_minor, strict, loose), 0), a_major)
+def _major_before_minor(walks, x_major, k):
+    """Major-axis steps made before minor step k (all of them when there is no step k)."""
+    after_start = k >= 0
     # a walk along an axis has a single minor line holding every major step
-    return np.where(a_minor == 0, np.where(k < 0, 0, a_major), count)
+    along_x = np.where(walks.ay == 0, walks.ax * after_start, walks.x_before_y(k))
+    along_y = np.where(walks.ax == 0, walks.ay * after_start,
+                       np.minimum(np.maximum(walks.y_before_x(k), 0), walks.ay))
+    return np.where(x_major, along_x, along_y)
 
 
 def exact_ranges(grid, x, y, angles, range_max):

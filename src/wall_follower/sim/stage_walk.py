@@ -9,51 +9,64 @@ steps can be computed directly, for many walks at once with numpy.
 """
 import numpy as np
 
-__all__ = ['y_steps_before_x', 'x_steps_before_y', 'x_count', 'steps_until_x', 'steps_until_y', 'line_cells']
+__all__ = ['Walks', 'line_cells', 'NEVER']
 
-_NEVER = np.iinfo(np.int64).max
-
-
-def y_steps_before_x(i, ax, ay):
-    """y steps made before x step number i (0-based): #{j : (2j+1)*ax <= (2i+1)*ay}."""
-    return ((2 * i + 1) * ay + ax) // (2 * np.maximum(ax, 1))
+NEVER = np.iinfo(np.int64).max
 
 
-def x_steps_before_y(j, ax, ay):
-    """x steps made before y step number j (0-based): #{i : (2i+1)*ay < (2j+1)*ax}."""
-    return np.minimum(np.maximum(-((ay - (2 * j + 1) * ax) // (2 * np.maximum(ay, 1))), 0), ax)
+class Walks(object):
+    """Many walks at once: arrays ax, ay >= 0 of cell distances along x and y."""
 
+    def __init__(self, ax, ay):
+        self.ax = np.asarray(ax, dtype=np.int64)
+        self.ay = np.asarray(ay, dtype=np.int64)
+        self._two_ax = 2 * self.ax
+        self._two_ay = 2 * self.ay
+        self._div_x = 2 * np.maximum(self.ax, 1)
+        self._div_y = 2 * np.maximum(self.ay, 1)
+        self._ax_plus_ay = self.ax + self.ay
+        self._ay_minus_ax = self.ay - self.ax
+        self._slope = self.ay / np.maximum(self.ax, 1)
 
-def x_count(m, ax, ay):
-    """Number of x steps among the first m steps of the walk towards (ax, ay).
+    def subset(self, index):
+        """The walks selected by `index`."""
+        return Walks(self.ax[index], self.ay[index])
 
-    x step number i is step i + y_steps_before_x(i) of the walk; invert that by an
-    estimate from the slope and two correction rounds.
-    """
-    ax_safe = np.maximum(ax, 1)
-    est = np.ceil(np.minimum(m, ax + ay) / (1.0 + ay / ax_safe) - 0.5).astype(np.int64)
-    est = np.minimum(np.maximum(est, 0), ax)
-    for _ in range(2):
-        after = est + y_steps_before_x(est, ax, ay)
-        est = np.where((est < ax) & (after < m), est + 1, est)
+    def column(self):
+        """These walks with their constants shaped (n, 1), to broadcast over a row."""
+        return Walks(self.ax[:, None], self.ay[:, None])
+
+    def y_before_x(self, i):
+        """y steps made before x step number i (0-based): #{j : (2j+1)*ax <= (2i+1)*ay}."""
+        return (i * self._two_ay + self._ax_plus_ay) // self._div_x
+
+    def x_before_y(self, j):
+        """x steps made before y step number j (0-based): #{i : (2i+1)*ay < (2j+1)*ax}."""
+        return np.minimum(np.maximum(-((self._ay_minus_ax - j * self._two_ax) // self._div_y),
+                                     0), self.ax)
+
+    def x_count(self, m):
+        """Number of x steps among the first m steps.
+
+        x step number i is step i + y_before_x(i), within half a step of
+        (i + 1/2) * (1 + ay/ax); so the estimate below is off by at most one, and one
+        check in each direction settles it.
+        """
+        ax = self.ax
+        est = np.ceil(np.minimum(m, self._ax_plus_ay) / (1.0 + self._slope) - 0.5)
+        est = np.minimum(np.maximum(est.astype(np.int64), 0), ax)
+        est = np.where((est < ax) & (est + self.y_before_x(est) < m), est + 1, est)
         prev = est - 1
-        before = prev + y_steps_before_x(prev, ax, ay)
-        est = np.where((est > 0) & (before >= m), prev, est)
-    return np.where(ax == 0, 0, est)
+        est = np.where((est > 0) & (prev + self.y_before_x(prev) >= m), prev, est)
+        return np.where(ax == 0, 0, est)
 
+    def steps_until_x(self, count):
+        """Steps after which `count` >= 1 x steps are made (NEVER if the walk has fewer)."""
+        return np.where(count <= self.ax, count + self.y_before_x(count - 1), NEVER)
 
-def steps_until_x(count, ax, ay):
-    """Number of steps after which the walk has made `count` >= 1 x steps (huge if never)."""
-    i = count - 1
-    steps = i + y_steps_before_x(i, ax, ay) + 1
-    return np.where((count <= ax) & (ax > 0), steps, _NEVER)
-
-
-def steps_until_y(count, ax, ay):
-    """Number of steps after which the walk has made `count` >= 1 y steps (huge if never)."""
-    j = count - 1
-    steps = j + x_steps_before_y(j, ax, ay) + 1
-    return np.where((count <= ay) & (ay > 0), steps, _NEVER)
+    def steps_until_y(self, count):
+        """Steps after which `count` >= 1 y steps are made (NEVER if the walk has fewer)."""
+        return np.where(count <= self.ay, count + self.x_before_y(count - 1), NEVER)
 
 
 def line_cells(x0, y0, x1, y1):
@@ -72,6 +85,5 @@ def line_cells(x0, y0, x1, y1):
     sy = np.where(y1 < y0, -1, 1)
     edge = np.repeat(np.arange(len(n)), n)
     m = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
-    i = x_count(m, ax[edge], ay[edge])
-    j = m - i
-    return x0[edge] + sx[edge] * i, y0[edge] + sy[edge] * j
+    i = Walks(ax[edge], ay[edge]).x_count(m)
+    return x0[edge] + sx[edge] * i, y0[edge] + sy[edge] * (m - i)
