@@ -4,9 +4,10 @@ A plain state machine fed one ScanView at a time, free of ROS so that it can
 be driven by unit tests, by the simulator in a closed loop, or by the
 find_wall service node alike:
 
-    CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
-         |               (wall lost: back to CHOOSE_WALL)
-         +-> FAILED (no wall in range, or the wall kept getting lost)
+    IDLE -> start() -> CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
+                           |    +-> ALIGN (already beside the wall)
+                           +-> FAILED (no wall in range, or the wall kept getting lost)
+    (a chosen wall lost from sight for a while: back to CHOOSE_WALL)
 
 Every state re-measures the chosen wall on every scan (closed loop): the
 turns end when the wall's normal is where it should be, not after a time.
@@ -17,7 +18,7 @@ import math
 
 from wall_follower.motion import STOP, Command
 from wall_follower.scan import RIGHT, wrap_angle
-from wall_follower.walls import closest_match, extract_walls, path_is_clear
+from wall_follower.walls import closest_match, extract_walls, path_is_clear, refine
 
 CHOOSE_WALL = 'CHOOSE_WALL'
 ROTATE_TO_WALL = 'ROTATE_TO_WALL'
@@ -32,18 +33,18 @@ DEFAULTS = {
     'laser_x': 0.0,
     'min_wall_length': 0.5,
     'corridor_half_width': 0.15,
+    'end_margin': 0.2,
     'max_linear': 0.19,
     'max_angular': 0.49,
     'min_linear': 0.02,
-    'min_angular': 0.06,
-    'linear_decel': 0.25,
-    'angular_decel': 1.2,
-    'latency': 0.15,
-    'distance_tolerance': 0.005,
-    'heading_tolerance': math.radians(1.0),
-    'approach_heading': math.radians(20.0),
+    'min_angular': 0.03,
+    'linear_gain': 2.0,
+    'angular_gain': 2.0,
+    'distance_tolerance': 0.01,
+    'heading_tolerance': 0.0175,
+    'approach_heading': 0.35,
     'settle_updates': 2,
-    'track_angle': math.radians(25.0),
+    'track_angle': 0.44,
     'track_distance': 0.2,
     'lost_updates': 5,
     'max_reacquire': 3,
@@ -59,21 +60,23 @@ min_wall_length: a straight run of hits this long (m) counts as a wall;
     shorter ones (boxes, legs, spurious beams) are never chosen.
 corridor_half_width: a wall is chosen only if nothing lies within this
     distance (m) of the straight path to it.
+end_margin: walls seen to extend at least this far (m) on both sides of
+    the point straight across from the robot are preferred.
 max_linear, max_angular: the behaviour's own speed limits (m/s, rad/s).
 min_linear, min_angular: slowest useful speeds; below these a real robot
     stalls, so the last millimetres are covered at these speeds.
-linear_decel, angular_decel: braking used for the speed profile (m/s^2,
-    rad/s^2): speed = sqrt(2 * decel * remaining), so the robot slows as it
-    nears the target instead of overshooting it.
-latency: time (s) from a scan to its command taking effect; the remaining
-    error is predicted that far ahead so the robot stops on target.
-distance_tolerance, heading_tolerance: how close (m, rad) counts as there.
-approach_heading: the approach starts once the wall is this close (rad) to
-    straight ahead; the heading is corrected further while driving.
+linear_gain, angular_gain: speed per unit of error still to go (1/s):
+    the robot slows down as it nears its target. Commands act a scan or two
+    late, so a higher gain overshoots and hunts around the target.
+distance_tolerance, heading_tolerance: how close (m, rad: 1 deg) counts as
+    there. Stage's 2 cm grid moves the measured distance in steps of up
+    to 2 cm, so a tolerance under 1 cm would hunt for ever.
+approach_heading: the approach starts once the wall is this close (rad:
+    20 deg) to straight ahead; the heading is corrected while driving.
 settle_updates: scans in a row that must show the robot stopped and
     aligned before it reports success.
-track_angle, track_distance: how far (rad, m) the chosen wall may appear to
-    move between two scans and still be taken for the same wall.
+track_angle, track_distance: how far (rad: 25 deg, m) the chosen wall may
+    appear to move between two scans and still be taken for the same wall.
 lost_updates: scans in a row without the chosen wall before choosing again.
 max_reacquire: how many times a lost wall may be chosen again before the
     behaviour gives up.
@@ -89,13 +92,7 @@ class WallFinder(object):
             raise ValueError('unknown WallFinder parameters: %s' % ', '.join(sorted(unknown)))
         self.params = dict(DEFAULTS)
         self.params.update(params)
-        self.state = IDLE
-        self.failure_reason = None
-        self.wall = None
-        self._last = STOP
-        self._lost = 0
-        self._reacquired = 0
-        self._settled = 0
+        self._reset(IDLE)
 
     @property
     def done(self):
@@ -107,7 +104,10 @@ class WallFinder(object):
 
     def start(self):
         """Forget any previous run and begin by choosing a wall."""
-        self.state = CHOOSE_WALL
+        self._reset(CHOOSE_WALL)
+
+    def _reset(self, state):
+        self.state = state
         self.failure_reason = None
         self.wall = None
         self._last = STOP
@@ -131,8 +131,12 @@ class WallFinder(object):
 
     def _choose_wall(self, view):
         p = self.params
-        walls = [wall for wall in self._walls(view)
-                 if wall.foot_visible and path_is_clear(view, wall, p['corridor_half_width'])]
+        walls = [wall for wall in extract_walls(view, min_length=p['min_wall_length'])
+                 if wall.foot_inside() and path_is_clear(view, wall, p['corridor_half_width'])]
+        # Ending near a wall's end leaves the robot at a corner, with another
+        # wall on its right as soon as it moves: choose such a wall only if
+        # there is nothing better.
+        walls = [wall for wall in walls if wall.foot_inside(p['end_margin'])] or walls
         if not walls:
             return self._fail('no wall in range: no clear, straight run of hits at least '
                               '%.2f m long in the scan' % p['min_wall_length'])
@@ -161,12 +165,10 @@ class WallFinder(object):
             return self._on_lost()
         heading_error = self._heading_error(0.0)
         remaining = self.wall.distance - (p['wall_distance'] - p['laser_x'])
-        predicted = remaining - self._last.linear * p['latency']
-        if abs(remaining) <= p['distance_tolerance'] and abs(predicted) <= p['distance_tolerance']:
+        if abs(remaining) <= p['distance_tolerance']:
             self.state = ALIGN
             return self._align(view, tracked=True)
-        linear = _profile(predicted, p['max_linear'], p['linear_decel'],
-                          p['min_linear'], p['distance_tolerance'])
+        linear = _speed(remaining, p['max_linear'], p['linear_gain'], p['min_linear'])
         # Driving while still turned away would reach the wall at an angle.
         linear *= max(0.0, 1.0 - abs(heading_error) / p['approach_heading'])
         return Command(linear, self._turn(heading_error))
@@ -187,16 +189,18 @@ class WallFinder(object):
 
     # Helpers
 
-    def _walls(self, view):
-        return extract_walls(view, min_length=self.params['min_wall_length'])
-
     def _track(self, view):
-        """Re-measure the chosen wall on this scan; False if it cannot be found."""
+        """Re-measure the chosen wall on this scan; False if it cannot be found.
+
+        Any straight piece close to where the wall was will do (noise can
+        break a wall into pieces shorter than min_wall_length); the wall is
+        then refitted to all the hits along that piece's line.
+        """
         p = self.params
-        match = closest_match(self._walls(view), self.wall, p['track_angle'], p['track_distance'])
+        match = closest_match(extract_walls(view), self.wall, p['track_angle'], p['track_distance'])
         if match is None:
             return False
-        self.wall = match
+        self.wall = refine(view, match)
         self._lost = 0
         return True
 
@@ -225,20 +229,12 @@ class WallFinder(object):
 
     def _turn(self, heading_error):
         p = self.params
-        predicted = heading_error - self._last.angular * p['latency']
-        return _profile(predicted, p['max_angular'], p['angular_decel'],
-                        p['min_angular'], p['heading_tolerance'])
+        if abs(heading_error) <= p['heading_tolerance']:
+            return 0.0
+        return _speed(heading_error, p['max_angular'], p['angular_gain'], p['min_angular'])
 
 
-def _profile(remaining, max_speed, decel, min_speed, tolerance):
-    """Signed speed that covers `remaining` and can still brake in time.
-
-    sqrt(2 * decel * remaining) is the speed from which braking at decel
-    stops exactly on target; it is capped at max_speed, kept above
-    min_speed, and zero once within tolerance.
-    """
-    distance = abs(remaining)
-    if distance <= tolerance:
-        return 0.0
-    speed = min(max_speed, max(min_speed, math.sqrt(2.0 * decel * distance)))
+def _speed(remaining, max_speed, gain, min_speed):
+    """Signed speed proportional to what remains, between min_speed and max_speed."""
+    speed = min(max_speed, max(min_speed, gain * abs(remaining)))
     return math.copysign(speed, remaining)

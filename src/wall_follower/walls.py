@@ -28,21 +28,21 @@ class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
         the perpendicular from the laser.
     """
 
-    @property
-    def foot_visible(self):
-        """True when the point of the wall straight across from the laser was seen.
+    def foot_inside(self, margin=0.0):
+        """True when the point of the wall straight across from the laser was seen,
+        with at least margin (m) of seen wall on either side of it.
 
         Driving along the normal then ends on wall that is known to be there,
-        not on wall merely extrapolated behind an obstacle.
+        not on wall merely extrapolated behind an obstacle or past a corner.
         """
-        return self.start <= self.foot <= self.end
+        return self.start + margin <= self.foot <= self.end - margin
 
     @property
     def normal(self):
         return np.array([math.cos(self.angle), math.sin(self.angle)])
 
 
-def extract_walls(view, min_points=6, split_tolerance=0.04, max_gap=0.1,
+def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,
                   gap_beams=3.0, max_rms=0.025, min_length=0.0):
     """Straight pieces of wall in a ScanView, nearest first.
 
@@ -151,7 +151,7 @@ def _merge_collinear(pieces, points, max_rms):
         if merged:
             joined = (merged[-1][0], piece[1])
             wall = _fit(points[joined[0]:joined[1]])
-            if wall is not None and wall.rms <= max_rms / 2.0:
+            if wall is not None and wall.rms <= max_rms:
                 merged[-1] = joined
                 continue
         merged.append(piece)
@@ -178,6 +178,24 @@ def _fit(points):
                 start=float(along.min()),
                 end=float(along.max()),
                 foot=float(-np.dot(mean, direction)))
+
+
+def refine(view, wall, gate=0.05, min_points=6):
+    """The wall refitted to every valid hit within gate (m) of its line.
+
+    A noisy wall may come out of extract_walls in pieces; refitting to all
+    the hits near the line gathers the pieces again, and with them all the
+    evidence there is for the wall's distance and direction.
+    """
+    points = view.points()
+    if len(points) == 0:
+        return wall
+    for _ in range(2):
+        near = points[np.abs(points.dot(wall.normal) - wall.distance) <= gate]
+        if len(near) < min_points:
+            return wall
+        wall = _fit(near)
+    return wall
 
 
 def path_is_clear(view, wall, half_width, margin=0.08):

@@ -156,14 +156,14 @@ def test_a_wall_behind_an_obstacle_is_passed_over_for_a_clear_one():
 
 def test_approach_slows_near_the_target_and_backs_off_when_too_close():
     speeds = {}
-    for distance in (1.0, 0.6, 0.4, 0.2):
+    for distance in (1.0, 0.40, 0.36, 0.2):  # laser to wall
         walker = WallFinder(laser_x=LASER_X)
         walker.start()
         command = walker.update(scan_view(ROOM, (2.0 - distance, 0.0, 0.0), STAGE))
         assert walker.state == finder.APPROACH
         speeds[distance] = command.linear
     assert speeds[1.0] == pytest.approx(0.19, abs=0.002)
-    assert 0.0 < speeds[0.4] < speeds[0.6] < speeds[1.0]
+    assert 0.0 < speeds[0.36] < speeds[0.40] < speeds[1.0]
     assert speeds[0.2] < 0.0
 
 
@@ -228,3 +228,14 @@ def test_start_forgets_the_previous_run():
 def test_unknown_parameters_are_refused():
     with pytest.raises(ValueError):
         WallFinder(wall_distanse=0.3)
+
+
+def test_a_wall_ending_just_beside_the_robot_is_passed_over_for_one_that_goes_on():
+    # A free-standing wall 0.5 m ahead ends 0.1 m to the left of the point
+    # straight ahead: the robot would end at its corner. The room's walls,
+    # 1.5 m away, go on for metres either side.
+    world = ROOM + [((0.5, -1.0), (0.5, 0.1))]
+    walker = WallFinder()
+    walker.start()
+    walker.update(scan_view(world, (0.0, 0.0, 0.0), STAGE))
+    assert walker.wall.distance == pytest.approx(1.5, abs=0.01)

@@ -1,0 +1,72 @@
+"""The find-wall behaviour in a closed loop with the built-in simulator (no ROS).
+
+scan -> ScanView -> WallFinder -> clamp -> simulator, once per 0.1 s world
+update, as the service node runs it against stage_sim in lockstep. Scored
+from ground truth against the world's exact edges, as the benchmark does.
+"""
+import math
+import os
+
+import pytest
+
+from wall_follower.finder import WallFinder
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, clamp
+from wall_follower.scan import ScanView
+from wall_follower.scoring import CourseMap
+from wall_follower.sim.engine import Simulation
+from wall_follower.sim.worldfile import load_world
+
+WORLD = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'obstacles.world')
+LASER_X = -0.032  # the Burger of worlds/burger.inc
+TIME_LIMIT = 20.0
+
+POSES = {
+    'world start, wall on the right at 0.25 m': (-1.75, 0.8, -math.pi / 2),
+    'facing away from the nearest wall': (1.0, 1.1, -math.pi / 2),
+    'in a corner': (-1.7, -1.2, -2.4),
+    'next to the free-standing box': (0.3, -0.6, 0.0),
+}
+
+
+def find_wall(pose, profile):
+    """Run one search; returns (finder, seconds, final true pose, stalled, commands)."""
+    sim = Simulation(load_world(WORLD), laser_profile=profile, seed=3, poses={0: pose})
+    finder = WallFinder(laser_x=LASER_X)
+    finder.start()
+    stalled, commands = False, []
+    while not finder.done and sim.time < TIME_LIMIT:
+        robot = sim.step().robots[0]
+        stalled = stalled or robot.stalled
+        scan = robot.scan
+        view = ScanView(scan.ranges, scan.angle_min, scan.angle_increment,
+                        scan.range_min, scan.range_max)
+        command = clamp(finder.update(view))
+        commands.append(command)
+        sim.set_command(0, command.linear, command.angular)
+    elapsed = sim.time
+    # The last commands still act for an update or two: score the pose at rest.
+    for _ in range(3):
+        robot = sim.step(with_scans=False).robots[0]
+        stalled = stalled or robot.stalled
+    truth = robot.ground_truth
+    return finder, elapsed, (truth.x, truth.y, truth.yaw), stalled, commands
+
+
+@pytest.fixture(scope='module')
+def course_map():
+    return CourseMap(WORLD)
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01'])
+@pytest.mark.parametrize('start', sorted(POSES))
+def test_ends_parallel_at_0_30_m_from_the_wall_on_its_right(course_map, start, profile):
+    finder, elapsed, pose, stalled, commands = find_wall(POSES[start], profile)
+    assert finder.success, finder.failure_reason
+    assert elapsed <= TIME_LIMIT
+    distance = course_map.right_wall_distance(pose)
+    _, heading_error = course_map.right_wall_alignment(pose)
+    assert distance == pytest.approx(0.30, abs=0.015)
+    assert abs(math.degrees(heading_error)) <= 3.0
+    assert not stalled
+    assert max(abs(c.linear) for c in commands) <= MAX_LINEAR
+    assert max(abs(c.angular) for c in commands) <= MAX_ANGULAR
