@@ -22,7 +22,8 @@ def _euler_closed_form(pose, v, w, steps):
     if turn == 0.0:
         total = steps * cmath.exp(1j * yaw)
     else:
-        total = cmath.exp(1j * yaw) * (1 - cmath.exp(1j * steps * turn)) / (1 - cmath.exp(1j * turn))
+        ratio = cmath.exp(1j * turn)
+        total = cmath.exp(1j * yaw) * (1 - ratio ** steps) / (1 - ratio)
     end = complex(x, y) + v * DT * total
     return end.real, end.imag, normalize_angle(yaw + steps * turn)
 

@@ -19,6 +19,8 @@ from collections import OrderedDict, namedtuple
 
 import numpy as np
 
+from .kinematics import normalize_angle
+
 __all__ = ['WorldFileError', 'World', 'Obstacle', 'RobotSpec', 'RangerSpec', 'load_world',
            'STAGE_VELOCITY_BOUNDS']
 
@@ -400,7 +402,7 @@ class _Interpreter(object):
         size = self.numbers(resolved, 'size', 3, (0.4, 0.4, 1.0), 'lll')
         origin = self.pose(resolved, 'origin')
         if parent_pose is None:
-            pose = (local[0], local[1], local[2], _normalize(local[3]))
+            pose = (local[0], local[1], local[2], normalize_angle(local[3]))
         else:
             pose = _compose4(parent_pose, local, parent_height)
         edges, z_range = self.model_shape(resolved, size)
@@ -491,7 +493,7 @@ class _Interpreter(object):
             elif sub.base != 'block':
                 self.unknown.append(child.kind)
         self.robots.append(RobotSpec(
-            name=name, pose=(pose[0], pose[1], _normalize(pose[3])), size=size,
+            name=name, pose=(pose[0], pose[1], normalize_angle(pose[3])), size=size,
             origin=(origin[0], origin[1], origin[3]), drive=drive,
             localization=_prop_string(resolved.props, 'localization', 'gps'),
             velocity_bounds=bounds, ranger=ranger, odom_error=odom_error))
@@ -535,7 +537,8 @@ _POSITION_KEYS = _COMMON_KEYS | frozenset((
 
 
 def _is_base_type(kind):
-    return kind in ('model', 'position', 'ranger', 'sensor', 'block') or kind in _SKIPPED_MODEL_TYPES
+    return kind in ('model', 'position', 'ranger', 'sensor', 'block') or \
+        kind in _SKIPPED_MODEL_TYPES
 
 
 def _prop_string(props, key, default):
@@ -546,21 +549,12 @@ def _prop_string(props, key, default):
     return value if isinstance(value, str) else default
 
 
-def _normalize(angle):
-    """Stage's normalize(): into [-pi, pi] by whole turns."""
-    while angle < -math.pi:
-        angle += 2.0 * math.pi
-    while angle > math.pi:
-        angle -= 2.0 * math.pi
-    return angle
-
-
 def _compose4(parent, local, parent_height):
     cosa, sina = math.cos(parent[3]), math.sin(parent[3])
     return (parent[0] + local[0] * cosa - local[1] * sina,
             parent[1] + local[0] * sina + local[1] * cosa,
             parent[2] + parent_height + local[2],
-            _normalize(parent[3] + local[3]))
+            normalize_angle(parent[3] + local[3]))
 
 
 def polygon_edges(points):
