@@ -14,9 +14,12 @@ import numpy as np
 
 from wall_follower.scan import wrap_angle
 
+# A hit this much (m) nearer than the end of a run hides what lies beyond it.
+OCCLUSION_STEP = 0.05
+
 
 class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
-                               'start', 'end', 'foot'])):
+                               'start', 'end', 'foot', 'start_open', 'end_open'])):
     """A straight piece of wall in the laser frame.
 
     distance: perpendicular distance from the laser to the wall's line (m).
@@ -24,18 +27,25 @@ class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
         from the laser (rad, 0 = ahead, -pi/2 = right).
     length: extent of the hits along the line (m); rms: their residual (m).
     count: number of hits. start, end, foot: positions along the line (m,
-        from the hits' mean) of the two outermost hits and of the foot of
-        the perpendicular from the laser.
+        from the hits' mean, increasing to the left seen from the laser) of
+        the two outermost hits and of the foot of the perpendicular from the
+        laser.
+    start_open, end_open: True when the hits stop at that end only because
+        something nearer hides the rest of the wall.
     """
 
     def foot_inside(self, margin=0.0):
         """True when the point of the wall straight across from the laser was seen,
-        with at least margin (m) of seen wall on either side of it.
+        with at least margin (m) of wall on either side of it.
 
         Driving along the normal then ends on wall that is known to be there,
-        not on wall merely extrapolated behind an obstacle or past a corner.
+        not on wall merely extrapolated behind an obstacle, nor just short
+        of a corner. At an open end the wall goes on out of sight, so the
+        margin is not asked for there.
         """
-        return self.start + margin <= self.foot <= self.end - margin
+        low = self.start if self.start_open else self.start + margin
+        high = self.end if self.end_open else self.end - margin
+        return self.start <= self.foot <= self.end and low <= self.foot <= high
 
     @property
     def normal(self):
@@ -74,14 +84,25 @@ def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,
             return []
         breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
     points = np.column_stack((ranges * np.cos(angles), ranges * np.sin(angles)))
+    count = len(points)
     walls = []
     for run in _runs(breaks, ranges):
         run_points = points[run]
-        for piece in _merge_collinear(_split(run_points, split_tolerance), run_points, max_rms):
-            wall = _fit(run_points[piece[0]:piece[1]])
-            if (wall is not None and wall.count >= min_points and wall.rms <= max_rms
-                    and wall.length >= min_length):
-                walls.append(wall)
+        for first, stop in _merge_collinear(_split(run_points, split_tolerance), run_points,
+                                            max_rms):
+            wall = _fit(run_points[first:stop])
+            if (wall is None or wall.count < min_points or wall.rms > max_rms
+                    or wall.length < min_length):
+                continue
+            # Only the ends of a run can be hidden: inside one, the hits go on.
+            before, after = (run[0] - 1) % count, (run[-1] + 1) % count
+            hidden_first = first == 0 and breaks[before] and \
+                ranges[before] < ranges[run[0]] - OCCLUSION_STEP
+            hidden_last = stop == len(run) and breaks[run[-1]] and \
+                ranges[after] < ranges[run[-1]] - OCCLUSION_STEP
+            # The hits run counter-clockwise, i.e. from the line's start to its end.
+            walls.append(wall._replace(start_open=bool(hidden_first),
+                                       end_open=bool(hidden_last)))
     walls.sort(key=lambda wall: wall.distance)
     return walls
 
@@ -164,10 +185,11 @@ def _fit(points):
         return None
     mean = points.mean(axis=0)
     _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
-    direction, normal = vt[0], vt[1]
+    normal = vt[1]
     distance = float(np.dot(mean, normal))
     if distance < 0.0:
         normal, distance = -normal, -distance
+    direction = np.array([-normal[1], normal[0]])
     along = (points - mean).dot(direction)
     across = (points - mean).dot(normal)
     return Wall(distance=distance,
@@ -177,7 +199,9 @@ def _fit(points):
                 count=len(points),
                 start=float(along.min()),
                 end=float(along.max()),
-                foot=float(-np.dot(mean, direction)))
+                foot=float(-np.dot(mean, direction)),
+                start_open=False,
+                end_open=False)
 
 
 def refine(view, wall, gate=0.05, min_points=6):
