@@ -24,6 +24,8 @@ class StepPacer(object):
     loop calls wait_turn() before each step.
     """
 
+    STOP_POLL = 0.1
+
     def __init__(self, period, robot_count=1, lockstep=False, grace=0.05, timeout=1.0,
                  clock=time.monotonic):
         self.period = max(0.0, period)
@@ -46,6 +48,12 @@ class StepPacer(object):
         with self._condition:
             self._stopped = True
             self._condition.notify_all()
+
+    def request_stop(self):
+        """stop() for a signal handler: it takes no lock, because the thread
+        it interrupts may hold one; a waiting wait_turn() notices within
+        STOP_POLL seconds."""
+        self._stopped = True
 
     def wait_turn(self, driving):
         """Blocks until the next step may start; False once stop() was called.
@@ -75,7 +83,7 @@ class StepPacer(object):
             remaining = deadline - self._clock()
             if remaining <= 0.0:
                 return
-            self._condition.wait(remaining)
+            self._condition.wait(min(remaining, self.STOP_POLL))
 
     def _schedule_next(self, start):
         """Keeps a steady schedule through small delays, but restarts it after

@@ -37,6 +37,7 @@ nodes already running.
 import argparse
 import math
 import os
+import signal
 import sys
 import threading
 
@@ -179,6 +180,13 @@ class StageSimNode(object):
         self._reset_service = rospy.Service('reset_positions', Empty, self._on_reset)
         rospy.on_shutdown(self._pacer.stop)
 
+    def request_stop(self, _signal=None, _frame=None):
+        """SIGINT/SIGTERM handler. rospy's own handler shuts rospy down right
+        where the signal lands, which deadlocks when that is inside a
+        publish; this one only asks the loop to end, and main() then shuts
+        rospy down from a clean state."""
+        self._pacer.request_stop()
+
     def _on_cmd_vel(self, msg, index):
         with self._lock:
             self._sim.set_command(index, msg.linear.x, msg.angular.z)
@@ -210,6 +218,7 @@ class StageSimNode(object):
         controller woken by the clock already has this step's scan."""
         stamp = stamp_of(frame.stamp)
         transforms = []
+        with_tf = self._tf.pub_tf.get_num_connections() > 0
         for topics, robot in zip(self._robots, frame.robots):
             if robot.scan is not None and topics.scan.get_num_connections():
                 topics.scan.publish(topics.scan_msg(stamp, robot.scan))
@@ -219,8 +228,9 @@ class StageSimNode(object):
                 topics.truth.publish(topics.odometry_msg(stamp, robot.ground_truth))
             if topics.stalled.get_num_connections():
                 topics.stalled.publish(Bool(robot.stalled))
-            transforms.extend(topics.transforms(stamp, robot))
-        if self._tf.pub_tf.get_num_connections():
+            if with_tf:
+                transforms.extend(topics.transforms(stamp, robot))
+        if with_tf:
             self._tf.sendTransform(transforms)
         self._clock.publish(Clock(clock=stamp))
 
@@ -270,7 +280,15 @@ def main(argv=None):
     except WorldFileError as error:
         sys.stderr.write('stage_sim: error: %s\n' % error)
         return 1
-    rospy.init_node('stage_sim', argv=argv)
+    try:
+        return run_node(world, argv)
+    except KeyboardInterrupt:   # Ctrl-C before our handler is in place
+        return 0
+
+
+def run_node(world, argv):
+    """Runs the simulator node on a loaded world; returns the exit status."""
+    rospy.init_node('stage_sim', argv=argv, disable_signals=True)
     params = private_params(DEFAULTS)
     if params['laser_profile'] not in PROFILES:
         rospy.logerr('~laser_profile %r is not one of %s', params['laser_profile'],
@@ -282,6 +300,8 @@ def main(argv=None):
     except ValueError as error:
         rospy.logerr('~%s', error)
         return 1
+    signal.signal(signal.SIGINT, node.request_stop)
+    signal.signal(signal.SIGTERM, node.request_stop)
     if not rospy.get_param('/use_sim_time', False):
         rospy.set_param('/use_sim_time', True)
         rospy.logwarn('/use_sim_time was not set: set it now, as stageros does; nodes that '
@@ -294,4 +314,8 @@ def main(argv=None):
     if world.unknown_keywords:
         rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
     node.run()
+    rospy.signal_shutdown('simulation ended')
     return 0
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,198 @@
+"""Simulator speed: free run, a held speed-up with a controller in the loop, raytrace time.
+
+Starts its own master on a free port and the stage_sim node as a separate
+process; this process plays the controller (a rospy node answering every
+scan with a cmd_vel), as the course nodes do. Every command carries a
+distinct angular speed, so a step whose odometry twist repeats the previous
+one ran without a fresh command: that is a missed control step.
+
+    /usr/bin/python3 -m wall_follower.benchmarks.sim [--world arena] [--seconds 5]
+"""
+import argparse
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import rosgraph
+import rospy
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+
+import wall_follower
+from wall_follower.benchmarks.launching import WORLDS, fmt, free_port, print_table
+from wall_follower.nodes.common import world_path
+from wall_follower.sim.engine import Simulation
+from wall_follower.sim.worldfile import load_world
+
+HELD_SPEEDUP = 20.0
+GOAL_FREE_RUN = 500.0
+GOAL_RAYTRACE_MS = 1.0
+START_LIMIT = 20.0
+
+
+class PrivateMaster(object):
+    """A roscore on a free port for the duration of a `with` block; this
+    process becomes a node of it, on wall time."""
+
+    def __init__(self):
+        self.port = free_port()
+        self.uri = 'http://localhost:%d' % self.port
+        self._processes = []
+
+    def __enter__(self):
+        os.environ['ROS_MASTER_URI'] = self.uri
+        self._start(['roscore', '-p', str(self.port)])
+        deadline = time.time() + START_LIMIT
+        while not rosgraph.is_master_online(self.uri):
+            if time.time() > deadline:
+                raise RuntimeError('roscore did not start on port %d' % self.port)
+            time.sleep(0.1)
+        rospy.init_node('sim_benchmark', disable_signals=True)
+        rospy.set_param('/use_sim_time', True)   # for the simulator, not for us
+        return self
+
+    def simulator(self, world, **params):
+        """Starts stage_sim on `world` with private parameters; returns its process."""
+        package_parent = os.path.dirname(os.path.dirname(wall_follower.__file__))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            [package_parent] + os.environ.get('PYTHONPATH', '').split(os.pathsep)))
+        command = [sys.executable, '-m', 'wall_follower.nodes.stage_sim', world,
+                   '__name:=simulator'] + ['_%s:=%s' % item for item in sorted(params.items())]
+        return self._start(command, env)
+
+    def stop(self, process):
+        os.killpg(process.pid, signal.SIGINT)
+        try:
+            process.wait(timeout=START_LIMIT)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+        self._processes.remove(process)
+
+    def _start(self, command, env=None):
+        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.DEVNULL, start_new_session=True)
+        self._processes.append(process)
+        return process
+
+    def __exit__(self, *_):
+        rospy.signal_shutdown('benchmark done')
+        for process in reversed(list(self._processes)):
+            self.stop(process)
+
+
+def clock_sample():
+    """(simulated time, wall time) of the next /clock message."""
+    msg = rospy.wait_for_message('/clock', Clock, timeout=START_LIMIT)
+    return msg.clock.to_sec(), time.time()
+
+
+def free_run_rate(master, world, seconds):
+    """Simulated seconds per wall second at speedup 0, with nobody subscribed
+    in between two one-message samples of /clock."""
+    process = master.simulator(world, speedup=0)
+    clock_sample()
+    start = clock_sample()
+    time.sleep(seconds)
+    end = clock_sample()
+    master.stop(process)
+    return (end[0] - start[0]) / (end[1] - start[1])
+
+
+class Controller(object):
+    """Answers every scan with a cmd_vel whose angular speed is new each time."""
+
+    def __init__(self):
+        self.answered = 0
+        self.twists = []   # (stamp, commanded wz) from odometry, one per step
+        self.recording = False
+        self._cmd = rospy.Publisher('cmd_vel', Twist, queue_size=1, tcp_nodelay=True)
+        self._subs = [
+            rospy.Subscriber('base_scan', LaserScan, self._on_scan, queue_size=1,
+                             tcp_nodelay=True),
+            rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=1000)]
+
+    def _on_scan(self, _scan):
+        self.answered += 1
+        twist = Twist()
+        twist.angular.z = 0.2 + 0.001 * (self.answered % 100)
+        self._cmd.publish(twist)
+
+    def _on_odom(self, odom):
+        if self.recording:
+            self.twists.append((odom.header.stamp.to_sec(), odom.twist.twist.angular.z))
+
+    def close(self):
+        for sub in self._subs:
+            sub.unregister()
+        self._cmd.unregister()
+
+
+def held_rate(master, world, speedup, seconds):
+    """(simulated s per wall s, steps, steps without a fresh command) with a
+    controller in the loop at a held speed-up."""
+    controller = Controller()
+    process = master.simulator(world, speedup=speedup)
+    deadline = time.time() + START_LIMIT
+    while controller.answered < 10 and time.time() < deadline:
+        time.sleep(0.05)
+    controller.recording = True
+    started = time.time()
+    time.sleep(seconds)
+    controller.recording = False
+    elapsed = time.time() - started
+    master.stop(process)
+    controller.close()
+    twists = controller.twists
+    if len(twists) < 2:
+        return float('nan'), 0, 0
+    missed = sum(1 for (_, a), (_, b) in zip(twists, twists[1:]) if a == b)
+    return (twists[-1][0] - twists[0][0]) / elapsed, len(twists) - 1, missed
+
+
+def raytrace_ms(world, repeats):
+    """Mean wall milliseconds a step spends on its 360-beam scan."""
+    sim = Simulation(load_world(world))
+    sim.set_command(0, 0.0, 0.3)   # turning in place, so every scan differs
+
+    def mean_step(with_scans):
+        start = time.perf_counter()
+        for _ in range(repeats):
+            sim.set_command(0, 0.0, 0.3)
+            sim.step(with_scans=with_scans)
+        return (time.perf_counter() - start) / repeats
+
+    mean_step(True)   # warm the engine's caches
+    return 1000.0 * (mean_step(True) - mean_step(False))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog='benchmark sim', description=__doc__.split('\n\n')[0])
+    parser.add_argument('--world', default='arena', help='world for the node runs (default arena)')
+    parser.add_argument('--seconds', type=float, default=5.0, help='wall seconds per run')
+    parser.add_argument('--repeats', type=int, default=200, help='scans per raytrace timing')
+    args = parser.parse_args(argv)
+    world = world_path(args.world)
+    with PrivateMaster() as master:
+        free_run = free_run_rate(master, world, args.seconds)
+        held, steps, missed = held_rate(master, world, HELD_SPEEDUP, args.seconds)
+    raytrace = dict((name, raytrace_ms(world_path(name), args.repeats)) for name in WORLDS)
+    rows = [
+        ['free run, no subscribers (%s)' % args.world, fmt(free_run, '.0f') + 'x real time',
+         '>= %.0fx' % GOAL_FREE_RUN],
+        ['speedup %.0f held, controller on scan -> cmd_vel (%s)' % (HELD_SPEEDUP, args.world),
+         fmt(held, '.1f') + 'x real time', '%.0fx' % HELD_SPEEDUP],
+        ['  steps without a fresh command', '%d of %d' % (missed, steps), '0'],
+    ]
+    rows += [['raytrace per 360-beam scan (%s)' % name, fmt(ms, '.2f') + ' ms',
+              '< %.0f ms' % GOAL_RAYTRACE_MS] for name, ms in sorted(raytrace.items())]
+    print_table(['measure', 'result', 'goal'], rows)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
