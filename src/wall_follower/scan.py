@@ -93,17 +93,7 @@ class ScanView(object):
         hits lie in the sector. Using many beams makes the heading estimate
         far steadier than the difference of two single rays.
         """
-        pts = self.points(center, half_width)
-        if len(pts) < min_points:
-            return None
-        mean = pts.mean(axis=0)
-        # Principal direction of the hits = the wall's direction.
-        _, _, vt = np.linalg.svd(pts - mean, full_matrices=False)
-        normal = vt[1]
-        distance = float(np.dot(mean, normal))
-        if distance < 0.0:
-            normal, distance = -normal, -distance
-        return distance, float(math.atan2(normal[1], normal[0]))
+        return fit_line(self.points(center, half_width), min_points)
 
     def nearest(self, half_width=math.radians(3.0), min_hits=3):
         """Direction and distance of the nearest obstacle, robust to lone beams.
@@ -132,6 +122,26 @@ class ScanView(object):
             return None
         best = int(np.nanargmin(smooth))
         return float(smooth[best]), float(angles[best])
+
+
+def fit_line(points, min_points=5):
+    """Total-least-squares line through (N, 2) points in the laser frame.
+
+    Returns (distance, angle): the perpendicular distance from the laser to
+    the line and the direction of that perpendicular; None for fewer than
+    min_points points. Shared by ScanView.fit_wall and by callers that pick
+    their own points (e.g. only those near an earlier fit).
+    """
+    if len(points) < min_points:
+        return None
+    mean = points.mean(axis=0)
+    # Principal direction of the hits = the wall's direction.
+    _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
+    normal = vt[1]
+    distance = float(np.dot(mean, normal))
+    if distance < 0.0:
+        normal, distance = -normal, -distance
+    return distance, float(math.atan2(normal[1], normal[0]))
 
 
 def _nanmedian_rows(windows):
