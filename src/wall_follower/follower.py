@@ -1,0 +1,355 @@
+"""Right-hand wall following as a plain state machine: a scan in, a command out.
+
+The course's rule is bang-bang on one ray (too far: turn right, too near:
+turn left, in the band: straight, wall ahead: turn left). Here the same
+behaviour comes from a PD law on the wall's distance and angle, fitted
+through many beams, which holds the band without the zig-zag of the
+bang-bang rule. Corners get their own states because a wall fit cannot
+see them coming: a wall ahead turns the robot left onto the next wall, and
+a wall that ends on the right (a convex corner) is rounded by circling its
+end at a fixed radius.
+
+Everything is in the laser frame (x ahead, y left, angles counter-clockwise,
+0 = ahead, -pi/2 = right) and read by angle through ScanView, so the
+laser's beam order and its way of writing "no return" do not matter.
+"""
+import math
+
+import numpy as np
+
+from wall_follower.motion import Command
+from wall_follower.scan import RIGHT, fit_line, wrap_angle
+
+FOLLOW = 'FOLLOW'
+WALL_AHEAD = 'WALL_AHEAD'
+OUTER_CORNER = 'OUTER_CORNER'
+SEARCH = 'SEARCH'
+STATES = (FOLLOW, WALL_AHEAD, OUTER_CORNER, SEARCH)
+
+#: Every tunable number of the controller: name -> (default, meaning).
+#: Distances in metres, speeds in m/s and rad/s, angles in degrees.
+PARAMETERS = {
+    'target_distance': (0.25, 'wanted laser-to-wall distance on the right'),
+    'range_bias': (0.008, 'how much longer than true the laser reads (Stage grid: ~0.008; real LDS-01: 0)'),
+    'cruise_speed': (0.19, 'forward speed on a straight wall'),
+    'max_turn_rate': (0.49, 'largest turn rate the controller asks for'),
+    'k_distance': (8.0, 'turn rate per metre of distance error (rad/s/m)'),
+    'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
+    'latency': (0.1, 'time from a scan to its command taking effect (s); the scan is judged that far ahead'),
+    'turn_slowdown': (0.3, 'share of cruise speed given up at the largest turn rate'),
+    'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
+    'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the wall fit'),
+    'wall_fit_range': (0.8, 'hits farther than this are not taken for the wall on the right'),
+    'wall_inlier_distance': (0.025, 'hits nearer than this to the seed line belong to the wall'),
+    'wall_min_points': (6, 'fewest hits that make a wall'),
+    'wall_max_residual': (0.025, 'RMS misfit above which the hits are no straight wall'),
+    'wall_seed_support': (0.6, 'share of the seed hits the final wall line must still pass through'),
+    'wall_lost_distance': (0.45, 'a wall farther than this is not followed (outer corner or none)'),
+    'corner_lead': (0.03, 'the right wall is taken to end when it reaches less than this ahead'),
+    'rejoin_ahead': (0.15, 'after a convex corner, the new wall must reach this far ahead ...'),
+    'rejoin_angle_deg': (25.0, '... and lie within this angle of the heading to be followed'),
+    'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
+    'inner_corner_radius': (0.23, 'radius of the left turn onto a wall ahead'),
+    'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
+    'closest_distance': (0.22, 'following, the robot slows so as to turn parallel no nearer than this'),
+    'turn_lead': (0.02, 'the left turn starts this much early, for the delay of scan and command'),
+    'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
+    'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply to turn for'),
+    'front_turn_distance': (0.35, 'anything nearer than this in the lane ahead starts the left turn'),
+    'front_stop_distance': (0.2, 'anything nearer than this in the lane ahead: turn on the spot'),
+    'outer_corner_radius': (0.22, 'radius of the arc around the end of a wall (convex corner)'),
+    'outer_corner_speed_share': (0.9, 'share of the speed of that arc at max_turn_rate, for turn headroom'),
+    'search_speed': (0.15, 'forward speed while no wall is near'),
+}
+
+
+class FollowerParams(object):
+    """The controller's parameters, defaults from PARAMETERS, overridable by name.
+
+    An unknown name is an error rather than silently ignored, so that a typo
+    in a YAML file shows up instead of leaving a default in force.
+    """
+
+    def __init__(self, **overrides):
+        unknown = set(overrides) - set(PARAMETERS)
+        if unknown:
+            raise ValueError('unknown follower parameter(s): %s' % ', '.join(sorted(unknown)))
+        for name, (default, _) in PARAMETERS.items():
+            setattr(self, name, type(default)(overrides.get(name, default)))
+
+    @staticmethod
+    def defaults():
+        """name -> default, e.g. for reading them as ROS private parameters."""
+        return dict((name, default) for name, (default, _) in PARAMETERS.items())
+
+
+class Observation(object):
+    """What one scan tells the controller, measured once per update.
+
+    wall: (distance, angle) of the straight wall on the right, angle > 0
+    when the robot heads into it, or None. wall_ahead: how far ahead of the
+    laser that wall is still seen. front: distance to the nearest hit in the
+    lane the robot is about to drive through. ahead: (distance, angle) of
+    the straight wall across that lane, angle measured like the right
+    wall's (pi/2 for a wall square ahead), or None. nearest: (distance,
+    bearing) of the closest hit on the right side, or None.
+    """
+
+    def __init__(self, view, params, motion=(0.0, 0.0)):
+        hits = ahead_in_time(unbiased(view.points(), params.range_bias),
+                             motion[0] * params.latency, motion[1] * params.latency)
+        off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
+        near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
+        sector = hits[(off_right <= math.radians(params.wall_sector_deg)) & near]
+        self.wall, self.wall_ahead = right_wall(sector, params)
+        front = hits[hits[:, 0] > 0.0]
+        lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
+        self.front = second_smallest(lane[:, 0])
+        self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
+        self.nearest = nearest_in(hits[off_right <= math.pi / 2])
+
+
+def unbiased(points, bias):
+    """Hits moved bias metres nearer the laser along their beams.
+
+    Stage raytraces in whole grid cells and so reads a wall long, by about
+    0.008 m on average at its default 0.02 m resolution; a laser that reads
+    true wants bias 0.
+    """
+    ranges = np.hypot(points[:, 0], points[:, 1])
+    scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)
+    return points * scale[:, None]
+
+
+def ahead_in_time(points, advance, turn):
+    """Hits as they will be seen after the laser has moved advance metres and turned turn rad.
+
+    A command takes effect a scan period or so after the scan it answers;
+    judging the scan where the robot will be by then, under the command
+    still running, keeps the loop from overshooting.
+    """
+    c, s = math.cos(turn), math.sin(turn)
+    x, y = points[:, 0] - advance, points[:, 1]
+    return np.column_stack((c * x + s * y, -s * x + c * y))
+
+
+def right_wall(points, params):
+    """((distance, angle), reach ahead) of the wall on the right, or (None, -inf).
+
+    Seeded by the hits straight to the right only, so that the other leg of
+    a corner, or an obstacle, in the wider sector is not averaged into it.
+    """
+    bearings = np.arctan2(points[:, 1], points[:, 0])
+    seed = points[np.abs(bearings - RIGHT) <= math.radians(params.wall_seed_deg)]
+    wall = wall_through(seed, points, params)
+    if wall is None or wall[0] > params.wall_lost_distance:
+        return None, -math.inf
+    line = (wall[0], wall[1] + RIGHT)
+    reach = points[np.abs(offsets_from(points, line)) < params.wall_inlier_distance, 0].max()
+    return wall, float(reach)
+
+
+def wall_through(seed, points, params):
+    """(distance, angle) of the straight wall through most of the seed hits, or None.
+
+    The line through most of the seed is refitted through
+    every hit of points that lies near it, and must then be straight (small
+    residual) and still pass through most of the seed. angle is that of the
+    wall's normal measured from the right: 0 for a wall parallel on the
+    right, > 0 when the robot heads into it.
+    """
+    first = consensus_line(seed, params.wall_inlier_distance, params.wall_min_points)
+    if first is None:
+        return None
+    inliers = points[np.abs(offsets_from(points, first)) < params.wall_inlier_distance]
+    fit = fit_line(inliers, params.wall_min_points)
+    if fit is None:
+        return None
+    residual = float(np.sqrt(np.mean(offsets_from(inliers, fit) ** 2)))
+    kept = np.abs(offsets_from(seed, fit)) < params.wall_inlier_distance
+    if residual > params.wall_max_residual or kept.mean() < params.wall_seed_support:
+        return None
+    return fit[0], float(wrap_angle(fit[1] - RIGHT))
+
+
+def consensus_line(points, tolerance, min_points, max_pairs_points=40):
+    """Line through points that the most of them lie near (within tolerance), or None.
+
+    Every line through two of the points is a candidate (of at most
+    max_pairs_points points spread evenly, to bound the work); the one with
+    the most points near it wins and is refitted through them. Unlike a
+    plain least-squares fit, a few stray hits (a beam grazing an obstacle's
+    side, the other leg of a corner) cannot tilt it.
+    """
+    if len(points) < max(2, min_points):
+        return None
+    step = max(1, int(math.ceil(len(points) / float(max_pairs_points))))
+    first, second = np.triu_indices(len(points[::step]), 1)
+    ends = points[::step]
+    along = ends[second] - ends[first]
+    length = np.hypot(along[:, 0], along[:, 1])
+    usable = length > 1e-9
+    normals = np.column_stack((-along[usable, 1], along[usable, 0])) / length[usable, None]
+    offsets = points.dot(normals.T) - np.sum(normals * ends[first][usable], axis=1)
+    near = np.abs(offsets) < tolerance
+    if not near.size:
+        return None
+    best = int(np.argmax(near.sum(axis=0)))
+    return fit_line(points[near[:, best]], min_points)
+
+
+def offsets_from(points, line):
+    """Signed distances of points from line = (distance, normal angle)."""
+    distance, angle = line
+    return points.dot((math.cos(angle), math.sin(angle))) - distance
+
+
+def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
+    """True when two (distance, angle) walls are one and the same, within fit error."""
+    return (abs(float(wrap_angle(first[1] - second[1]))) < max_angle
+            and abs(first[0] - second[0]) < max_distance)
+
+
+def second_smallest(values):
+    """The second-smallest value (inf if fewer than two).
+
+    The second, not the first, so that one spurious beam does not count.
+    """
+    if values.size < 2:
+        return math.inf
+    return float(np.partition(values, 1)[1])
+
+
+def nearest_in(points):
+    """(distance, bearing) of the second-closest hit, or None.
+
+    The second, so that one spurious beam cannot pull the robot off.
+    """
+    if len(points) < 2:
+        return None
+    dist = np.hypot(points[:, 0], points[:, 1])
+    x, y = points[np.argpartition(dist, 1)[1]]
+    return float(math.hypot(x, y)), float(math.atan2(y, x))
+
+
+class WallFollower(object):
+    """Follows the wall on the right; update() once per scan.
+
+    States: FOLLOW (PD on the fitted right wall), WALL_AHEAD (turn left,
+    still moving, until the lane ahead is clear), OUTER_CORNER (circle the
+    end of a wall that stopped on the right), SEARCH (no wall near: drive
+    straight until one appears ahead or on the right).
+    """
+
+    def __init__(self, params=None):
+        self.params = params or FollowerParams()
+        self.state = SEARCH
+        self.command = Command(0.0, 0.0)
+
+    def update(self, view):
+        """Advance the state machine on a ScanView; returns the next Command.
+
+        The command stays within cruise_speed and max_turn_rate; the node
+        still clamps it to the robot's limits.
+        """
+        p = self.params
+        obs = Observation(view, p, self.command)
+        self.state = self._next_state(obs)
+        speed, turn = getattr(self, '_cmd_' + self.state.lower())(obs)
+        self.command = Command(min(max(speed, 0.0), p.cruise_speed),
+                               min(max(turn, -p.max_turn_rate), p.max_turn_rate))
+        return self.command
+
+    def _next_state(self, obs):
+        p = self.params
+        if obs.front < p.front_turn_distance or self._turn_due(obs):
+            return WALL_AHEAD
+        if self.state in (WALL_AHEAD, OUTER_CORNER):
+            if self._rejoined(obs):
+                return FOLLOW
+            if self.state == WALL_AHEAD and obs.ahead is not None:
+                return WALL_AHEAD
+        elif obs.wall is not None and obs.wall_ahead > p.corner_lead:
+            return FOLLOW
+        near = obs.nearest is not None and obs.nearest[0] < p.wall_lost_distance
+        if near and self.state != SEARCH:
+            return OUTER_CORNER
+        if obs.wall is not None:
+            return FOLLOW
+        return SEARCH
+
+    def _turn_due(self, obs):
+        """True once an arc of inner_corner_radius would end on the wall ahead."""
+        p = self.params
+        if not self._blocking(obs):
+            return False
+        gap = obs.ahead[0] - p.turn_lead - p.inner_corner_distance
+        return self._arc_radius(gap, obs.ahead[1]) <= p.inner_corner_radius
+
+    def _blocking(self, obs):
+        """True when a wall lies across the way ahead (not the right wall seen ahead)."""
+        if obs.ahead is None or obs.ahead[1] < math.radians(self.params.ahead_min_angle_deg):
+            return False
+        return obs.wall is None or not same_line(obs.ahead, obs.wall)
+
+    @staticmethod
+    def _arc_radius(gap, angle):
+        """Radius of the left arc that turns parallel to a wall within gap of it.
+
+        Heading into a wall at angle needs a turn through angle; an arc of
+        radius r comes r * (1 - cos(angle)) nearer the wall meanwhile, hence
+        r = gap / (1 - cos(angle)).
+        """
+        return max(0.0, gap) / max(1.0 - math.cos(angle), 1e-6)
+
+    def _rejoined(self, obs):
+        """True when a corner is over: a straight wall on the right, nearly parallel."""
+        p = self.params
+        return (obs.wall is not None and obs.wall_ahead > p.rejoin_ahead
+                and abs(obs.wall[1]) < math.radians(p.rejoin_angle_deg))
+
+    def _steer(self, distance, angle, target):
+        """PD turn rate holding a wall at distance target and parallel."""
+        p = self.params
+        return -p.k_distance * (distance - target) + p.k_angle * angle
+
+    def _cmd_follow(self, obs):
+        p = self.params
+        distance, angle = obs.wall
+        turn = self._steer(distance, angle, p.target_distance)
+        speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
+        if angle > 0.0:
+            # Heading into the wall: no faster than the arc that still turns
+            # parallel before coming nearer than closest_distance.
+            radius = self._arc_radius(distance - p.closest_distance, angle)
+            speed = min(speed, radius * p.max_turn_rate)
+        return Command(speed, turn)
+
+    def _cmd_wall_ahead(self, obs):
+        """Turn left at full rate, on the arc that ends parallel to the wall ahead.
+
+        Closed loop on the wall ahead: the speed is set each update to the
+        radius still needed, so a late start slows the robot down instead of
+        carrying it too close, and a wall too near is turned from on the spot.
+        """
+        p = self.params
+        radius = p.inner_corner_radius
+        if obs.ahead is not None:
+            distance, angle = obs.ahead
+            radius = min(radius, self._arc_radius(distance - p.inner_corner_distance, angle))
+        if obs.front < p.front_stop_distance:
+            radius = 0.0
+        return Command(radius * p.max_turn_rate, p.max_turn_rate)
+
+    def _cmd_outer_corner(self, obs):
+        p = self.params
+        distance, bearing = obs.nearest
+        radius = p.outer_corner_radius
+        speed = min(p.cruise_speed, p.outer_corner_speed_share * radius * p.max_turn_rate)
+        # Circle the wall's end: the circle's curvature as a feed-forward,
+        # and the PD law on the end as if it were a wall tangent to the circle.
+        turn = -speed / radius + self._steer(distance, float(wrap_angle(bearing - RIGHT)), radius)
+        return Command(speed, turn)
+
+    def _cmd_search(self, obs):
+        return Command(self.params.search_speed, 0.0)
