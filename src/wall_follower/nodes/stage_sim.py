@@ -208,7 +208,12 @@ class StageSimNode(object):
             with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
             with self._lock:
                 frame = self._sim.step(with_scans=with_scans)
-            self._publish(frame)
+            try:
+                self._publish(frame)
+            except rospy.ROSException:
+                if rospy.is_shutdown():   # shut down from outside (rosnode kill) mid-publish
+                    return
+                raise
             if 0.0 < self._quit_time <= frame.stamp + 1e-9:
                 rospy.loginfo('quit_time %.1f s of simulated time reached', self._quit_time)
                 return
