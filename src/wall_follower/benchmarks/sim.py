@@ -191,6 +191,8 @@ def main(argv=None):
     rows += [['raytrace per 360-beam scan (%s)' % name, fmt(ms, '.2f') + ' ms',
               '< %.0f ms' % GOAL_RAYTRACE_MS] for name, ms in sorted(raytrace.items())]
     print_table(['measure', 'result', 'goal'], rows)
+    print('\nload average (1 min) at the end: %.2f on %d cores; the figures are wall-clock '
+          'bound, so a busy machine lowers them' % (os.getloadavg()[0], os.cpu_count()))
     return 0
 
 
