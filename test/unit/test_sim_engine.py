@@ -144,6 +144,19 @@ def test_reset_restores_start_poses_and_clears_command_and_stall():
     assert frame.odom.vx == 0.0
 
 
+def test_teleport_moves_at_once_keeps_the_command_and_clears_the_stall():
+    sim = Simulation(_room(), poses={0: (1.7, 0.0, 0.0)})
+    _drive(sim, 0.19, 0.0, 10)
+    assert sim.robots[0].stalled
+    sim.teleport(0, (0.0, 0.5, 3.5))
+    assert sim.robots[0].pose == pytest.approx((0.0, 0.5, 3.5 - 2 * math.pi))
+    assert not sim.robots[0].stalled
+    frame = _drive(sim, 0.19, 0.0, 2)[-1].robots[0]
+    # Heading about -160 deg from the new pose: moving toward -x, off the wall.
+    assert frame.ground_truth.x < 0.0
+    assert not frame.stalled
+
+
 def test_pose_override_replaces_the_world_start():
     sim = Simulation(_room(), poses={0: (0.2, -0.4, 4.0)})
     assert sim.robots[0].pose == pytest.approx((0.2, -0.4, 4.0 - 2 * math.pi))

@@ -115,6 +115,16 @@ class Simulation(object):
             robot.stalled = False
             robot.odom_pose = (0.0, 0.0, 0.0)
 
+    def teleport(self, index, pose):
+        """Put a robot at pose (x, y, yaw) at once, with no collision check.
+
+        As Stage's SetPose (stage_ros's cmd_pose): for tests and demos that
+        need many start poses in one run. The command is kept.
+        """
+        robot = self.robots[index]
+        robot.pose = (float(pose[0]), float(pose[1]), normalize_angle(float(pose[2])))
+        robot.stalled = False
+
     def step(self, with_scans=True):
         """Advance one world update and return its Frame (scans None if not with_scans)."""
         scans = [self._scan(i) if with_scans else None for i in range(len(self.robots))]
