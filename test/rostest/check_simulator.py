@@ -125,6 +125,14 @@ class SimulatorInterface(unittest.TestCase):
             for got, wanted in zip(pose_of(msg), START):
                 self.assertAlmostEqual(got, wanted, delta=1e-9)
 
+    def test_cmd_pose_teleports_the_robot(self):
+        target = (0.0, 0.5, math.pi / 2)
+        self.sim.teleport(*target)
+        self.sim.wait_for(lambda: all(abs(got - wanted) < 1e-9 for got, wanted
+                                      in zip(pose_of(self.sim.truths[-1]), target)),
+                          'ground truth at the cmd_pose target')
+        self.sim.reset()
+
     def test_several_robots_get_stageros_prefixed_names_and_their_own_commands(self):
         robots = [SimProbe('pair/', 'robot_%d/' % i, scan_topic='base_scan') for i in range(2)]
         for robot in robots:

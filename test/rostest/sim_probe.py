@@ -8,7 +8,7 @@ import math
 import threading
 
 import rospy
-from geometry_msgs.msg import Twist
+from geometry_msgs.msg import Pose, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
@@ -53,6 +53,7 @@ class SimProbe(object):
         self._plan = []
         self._plan_done = threading.Event()
         self._cmd = rospy.Publisher(topic + 'cmd_vel', Twist, queue_size=10)
+        self._pose = rospy.Publisher(topic + 'cmd_pose', Pose, queue_size=1)
         self._reset = rospy.ServiceProxy(namespace + 'reset_positions', Empty)
         self._subscribers = [
             rospy.Subscriber(namespace + 'clock' if namespace else '/clock', Clock,
@@ -99,7 +100,8 @@ class SimProbe(object):
 
     def wait_ready(self):
         """Waits until the simulator hears our cmd_vel and we hear its ground truth."""
-        self.wait_for(lambda: self._cmd.get_num_connections() > 0 and self.truths,
+        self.wait_for(lambda: self._cmd.get_num_connections() > 0 and
+                      self._pose.get_num_connections() > 0 and self.truths,
                       'the simulator to connect')
 
     def wait_ticks(self, count):
@@ -128,6 +130,12 @@ class SimProbe(object):
         twist.linear.x = v
         twist.angular.z = w
         self._cmd.publish(twist)
+
+    def teleport(self, x, y, yaw):
+        pose = Pose()
+        pose.position.x, pose.position.y = x, y
+        pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+        self._pose.publish(pose)
 
     def reset(self):
         """reset_positions, then waits until the reset pose is on ground truth."""

@@ -7,9 +7,10 @@ base_scan (frame base_laser_link), odom and base_pose_ground_truth (frame
 odom, empty child frame), /clock and tf odom -> base_footprint -> base_link
 -> base_laser_link, once per world step; subscribes cmd_vel; serves
 reset_positions. Several robots get stageros' names: robot_0/base_scan,
-robot_0/base_link, ... Beyond stageros it publishes `stalled` (std_msgs/Bool)
-and holds ~speedup headless. -g (headless) is accepted for compatibility:
-this simulator has no GUI anyway.
+robot_0/base_link, ... Beyond stageros it publishes `stalled` (std_msgs/Bool),
+holds ~speedup headless, and subscribes cmd_pose (geometry_msgs/Pose: a
+teleport with no collision check, as stage_ros' add_pose_sub branch). -g
+(headless) is accepted for compatibility: this simulator has no GUI anyway.
 
 --simulator stage or auto hands the process over to the real stageros when
 the stage_ros package is installed (exec, so that roslaunch keeps watching
@@ -44,7 +45,7 @@ import threading
 import rospkg
 import rospy
 import tf2_ros
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import Pose, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from roslib.packages import find_node
@@ -52,7 +53,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, EmptyResponse
 
-from wall_follower.nodes.common import private_params
+from wall_follower.nodes.common import private_params, yaw_of
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.worldfile import WorldFileError, load_world
@@ -173,10 +174,12 @@ class StageSimNode(object):
         self._robots = [RobotTopics(robot_prefix(index, count)) for index in range(count)]
         self._clock = rospy.Publisher('/clock', Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
-        self._command_subs = [
-            rospy.Subscriber(topics.prefix + 'cmd_vel', Twist, self._on_cmd_vel, index,
-                             queue_size=1)
-            for index, topics in enumerate(self._robots)]
+        self._command_subs = []
+        for index, topics in enumerate(self._robots):
+            self._command_subs.append(rospy.Subscriber(
+                topics.prefix + 'cmd_vel', Twist, self._on_cmd_vel, index, queue_size=1))
+            self._command_subs.append(rospy.Subscriber(
+                topics.prefix + 'cmd_pose', Pose, self._on_cmd_pose, index, queue_size=1))
         self._reset_service = rospy.Service('reset_positions', Empty, self._on_reset)
         rospy.on_shutdown(self._pacer.stop)
 
@@ -191,6 +194,13 @@ class StageSimNode(object):
         with self._lock:
             self._sim.set_command(index, msg.linear.x, msg.angular.z)
         self._pacer.command_arrived(index)
+
+    def _on_cmd_pose(self, msg, index):
+        yaw = yaw_of(msg.orientation)
+        with self._lock:
+            self._sim.teleport(index, (msg.position.x, msg.position.y, yaw))
+        rospy.loginfo('cmd_pose: robot %d teleported to (%.3f, %.3f, %.1f deg)', index,
+                      msg.position.x, msg.position.y, math.degrees(yaw))
 
     def _on_reset(self, _request):
         with self._lock:
