@@ -56,7 +56,9 @@ PARAMETERS = {
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply to turn for'),
     'front_turn_distance': (0.35, 'anything nearer than this in the lane ahead starts the left turn'),
+    'front_clear_distance': (0.6, 'the left turn goes on while anything in the lane ahead is nearer'),
     'front_stop_distance': (0.2, 'anything nearer than this in the lane ahead: turn on the spot'),
+    'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'outer_corner_radius': (0.22, 'radius of the arc around the end of a wall (convex corner)'),
     'outer_corner_speed_share': (0.9, 'share of the speed of that arc at max_turn_rate, for turn headroom'),
     'search_speed': (0.15, 'forward speed while no wall is near'),
@@ -262,21 +264,36 @@ class WallFollower(object):
 
     def _next_state(self, obs):
         p = self.params
+        near = obs.nearest is not None and obs.nearest[0] < p.wall_lost_distance
         if obs.front < p.front_turn_distance or self._turn_due(obs):
             return WALL_AHEAD
-        if self.state in (WALL_AHEAD, OUTER_CORNER):
+        if self.state == WALL_AHEAD:
+            # Turn on until the wall ahead has come round to the right. Only
+            # the end of a wall beside the robot (a short wall, a box) can
+            # end the turn otherwise: anything near behind it only means the
+            # turn is not over yet.
+            if self._rejoined(obs) and not self._blocking(obs):
+                return FOLLOW
+            if obs.ahead is not None or obs.front < p.front_clear_distance:
+                return WALL_AHEAD
+            if near and self._beside(obs.nearest):
+                return OUTER_CORNER
+            if near:
+                return WALL_AHEAD
+        elif self.state == OUTER_CORNER:
             if self._rejoined(obs):
                 return FOLLOW
-            if self.state == WALL_AHEAD and obs.ahead is not None:
-                return WALL_AHEAD
         elif obs.wall is not None and obs.wall_ahead > p.corner_lead:
             return FOLLOW
-        near = obs.nearest is not None and obs.nearest[0] < p.wall_lost_distance
         if near and self.state != SEARCH:
             return OUTER_CORNER
         if obs.wall is not None:
             return FOLLOW
         return SEARCH
+
+    def _beside(self, hit):
+        """True when a (distance, bearing) hit is within corner_bearing_deg of the right."""
+        return abs(float(wrap_angle(hit[1] - RIGHT))) <= math.radians(self.params.corner_bearing_deg)
 
     def _turn_due(self, obs):
         """True once an arc of inner_corner_radius would end on the wall ahead."""
@@ -288,8 +305,9 @@ class WallFollower(object):
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
-        if obs.ahead is None or obs.ahead[1] < math.radians(self.params.ahead_min_angle_deg):
-            return False
+        steep = math.radians(self.params.ahead_min_angle_deg)
+        if obs.ahead is None or not steep <= obs.ahead[1] <= math.pi - steep:
+            return False  # none, or one nearly along the way (beside the lane)
         return obs.wall is None or not same_line(obs.ahead, obs.wall)
 
     @staticmethod
@@ -298,9 +316,11 @@ class WallFollower(object):
 
         Heading into a wall at angle needs a turn through angle; an arc of
         radius r comes r * (1 - cos(angle)) nearer the wall meanwhile, hence
-        r = gap / (1 - cos(angle)).
+        r = gap / (1 - cos(angle)). Angles past a right angle, rare in
+        rooms but common in the estimate of a short wall's angle, count as
+        a right angle, so that noise does not start the turn early.
         """
-        return max(0.0, gap) / max(1.0 - math.cos(angle), 1e-6)
+        return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
     def _rejoined(self, obs):
         """True when a corner is over: a straight wall on the right, nearly parallel."""

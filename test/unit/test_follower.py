@@ -1,0 +1,310 @@
+"""The wall-following state machine on synthetic scans, in every laser convention.
+
+Poses here are the laser's own (x, y, yaw): the controller works in the
+laser frame, so the robot's body does not come into it.
+"""
+import math
+import os
+
+import numpy as np
+import pytest
+import yaml
+
+from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
+from wall_follower import follower
+from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
+                                    WallFollower, ahead_in_time, consensus_line, unbiased)
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp
+from wall_follower.scan import ScanView
+
+ALL = CONVENTIONS + [REVERSED]
+IDS = [c.name for c in ALL]
+# The geometry tests expect exact ranges, so the Stage-grid correction is off.
+EXACT = FollowerParams(range_bias=0.0)
+CONFIG = os.path.join(os.path.dirname(__file__), '..', '..', 'config', 'wall_following.yaml')
+
+
+def right_wall(distance, start=-5.0, end=5.0):
+    """A straight wall along x, distance to the right of the origin."""
+    return [((start, -distance), (end, -distance))]
+
+
+def update(world, pose=(0.0, 0.0, 0.0), convention=STAGE, controller=None):
+    controller = controller or WallFollower(EXACT)
+    command = controller.update(scan_view(world, pose, convention))
+    return controller, command
+
+
+def noisy_lds01(world, pose, seed):
+    """An LDS-01 scan with 1 cm range noise and 2 % of the beams dropped to 0.0."""
+    rng = np.random.RandomState(seed)
+    ranges = cast(world, pose, LDS01)
+    ranges = np.where(ranges > 0.0, ranges + rng.normal(0.0, 0.01, ranges.size), 0.0)
+    ranges[rng.random_sample(ranges.size) < 0.02] = 0.0
+    return ScanView(ranges, LDS01.angle_min, LDS01.increment, LDS01.range_min, LDS01.range_max)
+
+
+# --- following a straight wall ---------------------------------------------------------
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_parallel_at_target_goes_straight_at_cruise_speed(convention):
+    controller, command = update(right_wall(0.25), convention=convention)
+    assert controller.state == FOLLOW
+    assert abs(command.angular) < 0.01
+    assert command.linear == pytest.approx(EXACT.cruise_speed, abs=0.005)
+
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+@pytest.mark.parametrize('distance', [0.32, 0.36, 0.42])
+def test_too_far_turns_right_towards_the_wall(convention, distance):
+    controller, command = update(right_wall(distance), convention=convention)
+    assert controller.state == FOLLOW
+    assert command.angular < -0.3
+    assert command.linear > 0.1
+
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+@pytest.mark.parametrize('distance', [0.15, 0.18])
+def test_too_near_turns_left_away_from_the_wall(convention, distance):
+    controller, command = update(right_wall(distance), convention=convention)
+    assert controller.state == FOLLOW
+    assert command.angular > 0.3
+    assert command.linear > 0.1
+
+
+def test_inside_the_band_it_only_nudges():
+    """Inside 0.2-0.3 m the turn is gentle, outside it is strong (the course's band)."""
+    turns = dict((d, update(right_wall(d))[1].angular) for d in (0.17, 0.22, 0.25, 0.28, 0.33))
+    assert turns[0.17] > turns[0.22] > turns[0.25] > turns[0.28] > turns[0.33]
+    assert abs(turns[0.22]) < 0.25 and abs(turns[0.28]) < 0.25
+    assert turns[0.17] >= 0.4 and turns[0.33] <= -0.4
+
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_heading_matters_as_well_as_distance(convention):
+    # At the right distance, but heading 10 deg into the wall: turn away; and back.
+    _, into = update(right_wall(0.25), (0.0, 0.0, math.radians(-10.0)), convention)
+    _, away = update(right_wall(0.25), (0.0, 0.0, math.radians(10.0)), convention)
+    assert into.angular > 0.2
+    assert away.angular < -0.2
+
+
+def test_heading_into_the_wall_slows_down_to_turn_in_time():
+    _, steep = update(right_wall(0.25), (0.0, 0.0, math.radians(-25.0)))
+    _, gentle = update(right_wall(0.25), (0.0, 0.0, math.radians(-5.0)))
+    assert steep.linear < gentle.linear
+
+
+@pytest.mark.parametrize('seed', range(5))
+def test_lds01_noise_and_dropouts_do_not_shake_it(seed):
+    controller = WallFollower(EXACT)
+    command = controller.update(noisy_lds01(right_wall(0.25), (0.0, 0.0, 0.0), seed))
+    assert controller.state == FOLLOW
+    assert abs(command.angular) < 0.15
+
+
+def test_a_spurious_beam_on_the_right_does_not_move_the_wall():
+    ranges = cast(right_wall(0.25), (0.0, 0.0, 0.0), STAGE)
+    clean = WallFollower(EXACT).update(ScanView(ranges, STAGE.angle_min, STAGE.increment,
+                                                STAGE.range_min, STAGE.range_max))
+    ranges[90] = 0.13  # Stage layout: beam 90 points right
+    spiked = WallFollower(EXACT).update(ScanView(ranges, STAGE.angle_min, STAGE.increment,
+                                                 STAGE.range_min, STAGE.range_max))
+    assert spiked.angular == pytest.approx(clean.angular, abs=0.02)
+
+
+def test_an_obstacle_beside_the_wall_is_not_averaged_into_it():
+    # A small box on the right, 0.6 m behind and close to the wall line.
+    world = right_wall(0.25) + box(-0.75, -0.2, -0.6, -0.1)
+    _, command = update(world)
+    assert abs(command.angular) < 0.05
+
+
+# --- a wall ahead: inner corner --------------------------------------------------------
+
+def corridor_end(ahead, right=0.25):
+    """A right wall that meets a wall across the way, ahead metres in front."""
+    return [((-5.0, -right), (ahead, -right)), ((ahead, -right), (ahead, 3.0))]
+
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_wall_ahead_turns_left_fast_while_moving(convention):
+    controller, command = update(corridor_end(0.45), convention=convention)
+    assert controller.state == WALL_AHEAD
+    assert command.angular == pytest.approx(EXACT.max_turn_rate)
+    assert command.linear > 0.05
+
+
+@pytest.mark.parametrize('ahead', [0.3, 0.4, 0.48])
+def test_the_course_rule_turn_left_when_a_wall_is_within_half_a_metre(ahead):
+    controller, command = update(corridor_end(ahead))
+    assert controller.state == WALL_AHEAD
+    assert command.angular > 0.4 and command.linear > 0.0
+
+
+def test_a_distant_wall_ahead_is_not_turned_for_yet():
+    controller, command = update(corridor_end(1.5))
+    assert controller.state == FOLLOW
+    assert abs(command.angular) < 0.01
+
+
+def test_a_wall_right_in_front_is_turned_from_on_the_spot():
+    controller, command = update(corridor_end(0.15))
+    assert controller.state == WALL_AHEAD
+    assert command.linear == 0.0 and command.angular > 0.4
+
+
+def test_the_nearer_the_wall_ahead_the_tighter_the_turn():
+    speeds = [update(corridor_end(ahead))[1].linear for ahead in (0.45, 0.40, 0.36, 0.33)]
+    assert speeds == sorted(speeds, reverse=True) and speeds[0] > speeds[-1]
+
+
+def test_an_inner_corner_is_turned_onto_the_next_wall():
+    """Closed loop round a corner: ends following the new wall, inside the band, never stopped."""
+    world = corridor_end(1.2)
+    trail = drive(world, (0.0, 0.0, 0.0), steps=80)
+    states = [state for state, _, _ in trail]
+    assert WALL_AHEAD in states and states[-1] == FOLLOW
+    x, y, yaw = trail[-1][1]
+    assert yaw == pytest.approx(math.pi / 2, abs=math.radians(8.0))
+    assert 1.2 - x == pytest.approx(0.25, abs=0.04)
+    # The arc cuts the corner: at its middle both walls are a little over
+    # 0.3 m away, by design (a tighter arc would be slower), never more.
+    distances = [distance for _, _, distance in trail]
+    assert 0.22 < min(distances) and max(distances) < 0.33
+
+
+# --- the right wall ends: outer corner -------------------------------------------------
+
+def convex_corner(end_x, right=0.25):
+    """A right wall that stops end_x ahead of the origin and turns away to the right."""
+    return [((-5.0, -right), (end_x, -right)), ((end_x, -right), (end_x, -5.0))]
+
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
+    controller, command = update(convex_corner(1.0), convention=convention)
+    assert controller.state == FOLLOW and abs(command.angular) < 0.01
+    # The robot has come level with the wall's end.
+    controller, command = update(convex_corner(-0.02), convention=convention,
+                                 controller=controller)
+    assert controller.state == OUTER_CORNER
+    assert command.angular < -0.3 and command.linear > 0.05
+
+
+def test_an_outer_corner_is_rounded_onto_the_next_wall():
+    world = convex_corner(0.6)
+    trail = drive(world, (0.0, 0.0, 0.0), steps=90)
+    states = [state for state, _, _ in trail]
+    assert OUTER_CORNER in states and states[-1] == FOLLOW
+    x, y, yaw = trail[-1][1]
+    assert yaw == pytest.approx(-math.pi / 2, abs=math.radians(10.0))
+    assert x - 0.6 == pytest.approx(0.25, abs=0.05)
+    # All the way round, the wall's end stays near the target distance.
+    assert all(0.18 < distance < 0.32 for _, _, distance in trail)
+
+
+# --- no wall near ----------------------------------------------------------------------
+
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_with_no_wall_near_it_searches_straight_ahead(convention):
+    controller, command = update(box(-3.0, -3.0, 3.0, 3.0), convention=convention)
+    assert controller.state == SEARCH
+    assert command == (EXACT.search_speed, 0.0)
+
+
+def test_search_ends_when_a_wall_comes_up_on_the_right():
+    controller, _ = update(box(-3.0, -3.0, 3.0, 3.0))
+    controller, _ = update(right_wall(0.3), controller=controller)
+    assert controller.state == FOLLOW
+
+
+def test_search_turns_left_at_a_wall_ahead():
+    controller, command = update([((0.4, -2.0), (0.4, 2.0))])
+    assert controller.state == WALL_AHEAD and command.angular > 0.0
+
+
+# --- limits, parameters, helpers -------------------------------------------------------
+
+def test_commands_stay_within_the_robot_limits_anywhere():
+    rng = np.random.RandomState(3)
+    room = box(-1.5, -1.2, 1.5, 1.2) + box(0.2, -0.3, 0.5, 0.0)
+    controller = WallFollower()
+    for _ in range(200):
+        pose = (rng.uniform(-1.3, 1.3), rng.uniform(-1.0, 1.0), rng.uniform(-math.pi, math.pi))
+        command = controller.update(scan_view(room, pose, STAGE))
+        assert 0.0 <= command.linear <= MAX_LINEAR
+        assert abs(command.angular) <= MAX_ANGULAR
+        assert clamp(command) == command
+
+
+def test_clamp_limits_and_drops_nan():
+    assert clamp(Command(0.5, -2.0)) == (MAX_LINEAR, -MAX_ANGULAR)
+    assert clamp(Command(-0.5, 2.0)) == (-MAX_LINEAR, MAX_ANGULAR)
+    assert clamp(Command(float('nan'), 0.1)) == (0.0, 0.1)
+    assert clamp(Command(0.3, 0.3), max_linear=0.1, max_angular=0.2) == (0.1, 0.2)
+
+
+def test_parameters_default_override_and_reject_typos():
+    assert FollowerParams().target_distance == 0.25
+    assert FollowerParams(target_distance=0.3).target_distance == 0.3
+    assert isinstance(FollowerParams(wall_min_points=7.0).wall_min_points, int)
+    with pytest.raises(ValueError, match='target_distanse'):
+        FollowerParams(target_distanse=0.3)
+
+
+def test_the_config_file_holds_every_default():
+    with open(CONFIG) as stream:
+        config = yaml.safe_load(stream)
+    for name, value in FollowerParams.defaults().items():
+        assert config.get(name) == value, name
+
+
+def test_every_parameter_is_described():
+    for name, (default, meaning) in follower.PARAMETERS.items():
+        assert isinstance(default, (int, float)) and len(meaning) > 10, name
+
+
+def test_look_ahead_moves_hits_against_the_motion():
+    points = np.array([[1.0, 0.0], [0.0, -0.25]])
+    moved = ahead_in_time(points, 0.1, math.pi / 2)
+    # Forward 0.1 m, then a quarter turn left: what was ahead is now on the right.
+    assert moved[0] == pytest.approx([0.0, -0.9])
+    assert moved[1] == pytest.approx([-0.25, 0.1])
+
+
+def test_range_bias_pulls_hits_in_along_their_beams():
+    points = np.array([[0.3, 0.4], [0.0, -0.25]])
+    assert unbiased(points, 0.05) == pytest.approx(np.array([[0.27, 0.36], [0.0, -0.2]]))
+
+
+def test_consensus_line_ignores_stray_hits_that_would_tilt_a_fit():
+    wall = np.array([[0.69, y] for y in np.linspace(0.05, 0.13, 7)])
+    stray = np.array([[0.82, 0.05]])
+    distance, angle = consensus_line(np.vstack((stray, wall)), 0.025, 6)
+    assert distance == pytest.approx(0.69) and angle == pytest.approx(0.0, abs=1e-9)
+
+
+# --- a small kinematic loop ------------------------------------------------------------
+
+def drive(world, pose, steps, dt=0.1):
+    """Laser pose stepped by the commands, one step late as in Stage.
+
+    Returns (state, pose, distance to the nearest wall point on the right)
+    for every step; the distance is measured exactly over +-30 deg of the
+    right, as the benchmark scores it.
+    """
+    controller = WallFollower(EXACT)
+    x, y, yaw = pose
+    command = Command(0.0, 0.0)
+    trail = []
+    for _ in range(steps):
+        view = scan_view(world, (x, y, yaw), STAGE)
+        x += command.linear * dt * math.cos(yaw)
+        y += command.linear * dt * math.sin(yaw)
+        yaw += command.angular * dt
+        command = clamp(controller.update(view))
+        sector = scan_view(world, (x, y, yaw), STAGE)
+        trail.append((controller.state, (x, y, yaw),
+                      sector.min_range(-math.pi / 2, math.radians(30.0))))
+    return trail

@@ -1,0 +1,48 @@
+"""One lap of room.world in pure Python: simulator -> ScanView -> controller -> clamp -> simulator.
+
+The same loop the node runs, minus ROS, scored from ground truth and the
+map as the benchmark scores it. A few seconds, so it runs with every test.
+"""
+import os
+
+from wall_follower.follower import WallFollower
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, clamp
+from wall_follower.scan import ScanView
+from wall_follower.scoring import CourseMap, RunScore
+from wall_follower.sim.engine import Simulation
+from wall_follower.sim.worldfile import load_world
+
+ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
+
+
+def lap(world_path, profile, seed=0, time_limit=120.0):
+    """Follow from the world's start pose until the lap closes; the run's figures."""
+    simulation = Simulation(load_world(world_path), laser_profile=profile, seed=seed)
+    score = RunScore(CourseMap(world_path))
+    controller = WallFollower()
+    states = set()
+    while simulation.time < time_limit and not score.lap.closed:
+        robot = simulation.step().robots[0]
+        truth = robot.ground_truth
+        score.add_pose(simulation.time, (truth.x, truth.y, truth.yaw))
+        score.add_stall(robot.stalled)
+        scan = robot.scan
+        command = clamp(controller.update(ScanView(
+            scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max)))
+        score.add_command(*command)
+        states.add(controller.state)
+        simulation.set_command(0, *command)
+    return score.summary(), states
+
+
+def test_a_lap_of_the_room_in_band_without_contact():
+    # The LDS-01 profile: range noise and 0.0 dropouts on top of Stage's grid.
+    figures, states = lap(ROOM, 'lds01')
+    assert figures['lap_closed']
+    assert not figures['contact'], figures['min_clearance']
+    assert figures['time_in_band'] >= 0.97
+    assert figures['rms_error'] <= 0.02
+    assert figures['max_linear'] <= MAX_LINEAR and figures['max_angular'] <= MAX_ANGULAR
+    # Fast on the straights: not much slower than the speed limit allows.
+    assert figures['lap_time_ratio'] <= 1.25
+    assert 'WALL_AHEAD' in states
