@@ -34,13 +34,26 @@ def test_unpaced_steps_do_not_wait():
     assert run_steps(pacer, 1000) < 5.0
 
 
+def send_later(pacer, index, delay=0.05):
+    """Start a timer that delivers robot index's command; returns its arrival times."""
+    arrivals = []
+
+    def send():
+        arrivals.append(time.monotonic())
+        pacer.command_arrived(index)
+    sender = threading.Timer(delay, send)
+    sender.start()
+    return sender, arrivals
+
+
 def test_lockstep_waits_for_the_driven_robot_and_no_longer():
     pacer = StepPacer(period=0.0, lockstep=True, timeout=30.0)
-    sender = threading.Timer(0.05, pacer.command_arrived, args=(0,))
-    sender.start()
+    sender, arrivals = send_later(pacer, 0)
     elapsed = run_steps(pacer, 1, driving=[True])
+    stepped = time.monotonic()
     sender.join()
-    assert 0.05 <= elapsed < 20.0
+    assert stepped >= arrivals[0]
+    assert elapsed < 20.0
 
 
 def test_lockstep_steps_at_once_when_the_command_is_already_there():
@@ -63,11 +76,11 @@ def test_lockstep_waits_only_the_grace_when_nobody_drives():
 def test_lockstep_waits_for_every_driven_robot():
     pacer = StepPacer(period=0.0, robot_count=2, lockstep=True, timeout=30.0)
     pacer.command_arrived(0)
-    sender = threading.Timer(0.05, pacer.command_arrived, args=(1,))
-    sender.start()
-    elapsed = run_steps(pacer, 1, driving=[True, True])
+    sender, arrivals = send_later(pacer, 1)
+    run_steps(pacer, 1, driving=[True, True])
+    stepped = time.monotonic()
     sender.join()
-    assert elapsed >= 0.05
+    assert stepped >= arrivals[0]
 
 
 def test_stop_releases_a_waiting_step():
