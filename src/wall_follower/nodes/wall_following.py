@@ -1,0 +1,155 @@
+"""The wall_following node: find_wall, then record_odom, then follow the right wall.
+
+The control loop runs at ~rate on ROS time (simulated time in simulation),
+so that the robot's cmd_vel watchdog always sees a fresh command. The
+controller is stepped once per new scan; between scans the last command is
+repeated. With no scan for ~scan_timeout the robot is stopped until scans
+come back. Every command leaves through VelocityCommander, which clamps it
+to ~max_linear and ~max_angular and stops the robot on shutdown.
+
+Exit status: 0 after a recorded lap (with ~stop_after_lap) or a plain
+shutdown; 1 when find_wall or record_odom is missing, or find_wall fails.
+"""
+import threading
+import time
+
+import actionlib
+import rospy
+from actionlib_msgs.msg import GoalStatus
+
+from wall_follower.follower import FollowerParams, WallFollower
+from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.srv import FindWall
+
+NODE_DEFAULTS = {
+    'rate': 20.0,
+    'scan_timeout': 0.5,
+    'find_wall': True,
+    'record_odom': True,
+    'stop_after_lap': True,
+    'service_wait': 30.0,
+    'feedback_period': 5.0,
+}
+"""Parameters of the node itself (the controller's are follower.PARAMETERS).
+
+rate: control loop frequency (Hz of ROS time).
+scan_timeout: stop the robot when the newest scan is older than this (ROS s).
+find_wall: call the find_wall service before following; do not follow if it fails.
+record_odom: send a goal to the record_odom action before following.
+stop_after_lap: when record_odom reports the lap, stop and end the node.
+service_wait: how long to wait for find_wall and record_odom to appear (wall s).
+feedback_period: log record_odom's distance so far at most this often (ROS s).
+"""
+
+
+class WallFollowingNode(object):
+    """The follower's ROS wiring: scan in, clamped cmd_vel out, plus the two clients."""
+
+    def __init__(self):
+        params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
+        self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
+        self.controller = WallFollower(FollowerParams(**params))
+        self.commander = VelocityCommander('cmd_vel')
+        self.scan = LatestScan('scan')
+        self.lap_done = threading.Event()
+        self._recorder = None
+        self._distance = 0.0
+
+    def find_wall(self):
+        """Call find_wall and wait for its answer; True when the wall is on the right."""
+        name = rospy.resolve_name('find_wall')
+        rospy.loginfo('wall_following: waiting for the %s service', name)
+        try:
+            rospy.wait_for_service(name, timeout=self.node['service_wait'])
+        except rospy.ROSException:
+            rospy.logerr('wall_following: no %s service after %.0f s; is wall_finder running?',
+                         name, self.node['service_wait'])
+            return False
+        try:
+            found = rospy.ServiceProxy(name, FindWall)().wallfound
+        except rospy.ServiceException as error:
+            rospy.logerr('wall_following: %s failed: %s', name, error)
+            return False
+        if not found:
+            rospy.logerr('wall_following: %s found no wall; not following', name)
+        return found
+
+    def start_recording(self):
+        """Send the record_odom goal; False when the action server never appears."""
+        name = rospy.resolve_name('record_odom')
+        self._recorder = actionlib.SimpleActionClient(name, OdomRecordAction)
+        rospy.loginfo('wall_following: waiting for the %s action server', name)
+        if not self._wait_for_recorder():
+            rospy.logerr('wall_following: no %s action server after %.0f s; '
+                         'is odom_recorder running?', name, self.node['service_wait'])
+            return False
+        self._recorder.send_goal(OdomRecordGoal(), done_cb=self._on_recorded,
+                                 feedback_cb=self._on_feedback)
+        rospy.loginfo('wall_following: recording odometry on %s', name)
+        return True
+
+    def _wait_for_recorder(self):
+        """Wait up to service_wait seconds of wall time, whatever the ROS clock does."""
+        deadline = time.monotonic() + self.node['service_wait']
+        while not rospy.is_shutdown() and time.monotonic() < deadline:
+            if self._recorder.wait_for_server(rospy.Duration(0.1)):
+                return True
+        return False
+
+    def _on_feedback(self, feedback):
+        self._distance = feedback.current_total
+        rospy.loginfo_throttle(self.node['feedback_period'],
+                               'wall_following: %.2f m travelled' % feedback.current_total)
+
+    def _on_recorded(self, state, result):
+        if state != GoalStatus.SUCCEEDED:
+            rospy.logwarn('wall_following: record_odom ended without a lap (%s); '
+                          'following on', GoalStatus.to_string(state))
+            return
+        points = len(result.list_of_odoms) if result is not None else 0
+        rospy.loginfo('wall_following: lap recorded: %d points, %.2f m', points, self._distance)
+        if self.node['stop_after_lap']:
+            self.lap_done.set()
+
+    def follow(self):
+        """Run the control loop until shutdown or, with stop_after_lap, the recorded lap."""
+        rate = rospy.Rate(self.node['rate'])
+        last_view = None
+        state = None
+        while not rospy.is_shutdown() and not self.lap_done.is_set():
+            view = self.scan.fresh(self.node['scan_timeout'])
+            if view is None:
+                self.commander.stop()
+                rospy.logwarn_throttle(5.0, 'wall_following: no scan on %s for %.1f s; stopped'
+                                       % (rospy.resolve_name('scan'), self.node['scan_timeout']))
+            elif view is last_view:
+                self.commander.send(self.commander.last)
+            else:
+                last_view = view
+                self.commander.send(self.controller.update(view))
+                if self.controller.state != state:
+                    rospy.loginfo('wall_following: %s -> %s', state, self.controller.state)
+                    state = self.controller.state
+            try:
+                rate.sleep()
+            except rospy.ROSTimeMovedBackwardsException:
+                pass
+        self.commander.stop()
+
+
+def main():
+    rospy.init_node('wall_following')
+    node = WallFollowingNode()
+    try:
+        if node.node['find_wall'] and not node.find_wall():
+            return 1
+        if node.node['record_odom'] and not node.start_recording():
+            return 1
+        rospy.loginfo('wall_following: following the wall on the right')
+        node.follow()
+    except rospy.ROSInterruptException:
+        pass
+    if node.lap_done.is_set():
+        rospy.signal_shutdown('lap recorded')
+    return 0
