@@ -69,8 +69,10 @@ linear_gain, angular_gain: speed per unit of error still to go (1/s):
     the robot slows down as it nears its target. Commands act a scan or two
     late, so a higher gain overshoots and hunts around the target.
 distance_tolerance, heading_tolerance: how close (m, rad: 1 deg) counts as
-    there. Stage's 2 cm grid moves the measured distance in steps of up
-    to 2 cm, so a tolerance under 1 cm would hunt for ever.
+    there. Turns and the approach aim for half the tolerance (what the robot
+    still moves after a stop command then keeps it within the tolerance);
+    the approach accepts the whole band once it has crossed the target, as
+    Stage's 2 cm grid moves the measured distance in steps of up to 2 cm.
 approach_heading: the approach starts once the wall is this close (rad:
     20 deg) to straight ahead; the heading is corrected while driving.
 settle_updates: scans in a row that must show the robot stopped and
@@ -111,6 +113,7 @@ class WallFinder(object):
         self.failure_reason = None
         self.wall = None
         self._last = STOP
+        self._remaining = None
         self._lost = 0
         self._reacquired = 0
         self._settled = 0
@@ -165,7 +168,13 @@ class WallFinder(object):
             return self._on_lost()
         heading_error = self._heading_error(0.0)
         remaining = self.wall.distance - (p['wall_distance'] - p['laser_x'])
-        if abs(remaining) <= p['distance_tolerance']:
+        crossed = self._remaining is not None and remaining * self._remaining <= 0.0
+        self._remaining = remaining
+        # Aim for the middle of the tolerance band; but a coarse laser (Stage
+        # measures in 2 cm steps) may jump right over the middle, and then
+        # having crossed the target inside the band has to do.
+        if abs(remaining) <= p['distance_tolerance'] / 2.0 or (
+                crossed and abs(remaining) <= p['distance_tolerance']):
             self.state = ALIGN
             return self._align(view, tracked=True)
         linear = _speed(remaining, p['max_linear'], p['linear_gain'], p['min_linear'])
@@ -228,8 +237,9 @@ class WallFinder(object):
         return float(wrap_angle(self.wall.angle - target))
 
     def _turn(self, heading_error):
+        """Turn rate that brings heading_error to the middle of the tolerance band."""
         p = self.params
-        if abs(heading_error) <= p['heading_tolerance']:
+        if abs(heading_error) <= p['heading_tolerance'] / 2.0:
             return 0.0
         return _speed(heading_error, p['max_angular'], p['angular_gain'], p['min_angular'])
 
