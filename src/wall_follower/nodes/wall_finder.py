@@ -57,8 +57,12 @@ class WallFinderNode(object):
         rospy.loginfo('find_wall: ready (rate %.0f Hz, timeout %.0f s)', self.rate, self.timeout)
 
     def handle(self, _request):
+        """One call, one search. rospy serves each caller in its own thread,
+        so a second caller is turned away at once rather than queued behind
+        (or worse, steering against) the search that is running."""
         if not self._busy.acquire(False):
-            rospy.logwarn('find_wall: refused: a search is already running; call again when it ends')
+            rospy.logwarn('find_wall: refused: a search is already running; '
+                          'call again when it has ended')
             return FindWallResponse(wallfound=False)
         try:
             return FindWallResponse(wallfound=self._search())
