@@ -2,12 +2,20 @@
 
 The course's rule is bang-bang on one ray (too far: turn right, too near:
 turn left, in the band: straight, wall ahead: turn left). Here the same
-behaviour comes from a PD law on the wall's distance and angle, fitted
-through many beams, which holds the band without the zig-zag of the
-bang-bang rule. Corners get their own states because a wall fit cannot
-see them coming: a wall ahead turns the robot left onto the next wall, and
-a wall that ends on the right (a convex corner) is rounded by circling its
-end at a fixed radius.
+behaviour comes from a PD law on the wall's distance and angle, the wall
+being a line fitted through many beams, which holds the band without the
+zig-zag of the bang-bang rule. Corners get their own states because a wall
+fit cannot see them coming:
+
+- a wall ahead (inner corner) is turned onto at the full turn rate, on the
+  arc that ends parallel to it; the speed is re-planned from the wall ahead
+  at every scan, so the turn is closed-loop, not timed;
+- a wall that ends on the right (outer, convex corner) is rounded by
+  circling its end at a fixed radius.
+
+The turn rate, not the speed, is what limits a lap: a 90 degree corner
+takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
+largest radius that keeps the wall in the band.
 
 Everything is in the laser frame (x ahead, y left, angles counter-clockwise,
 0 = ahead, -pi/2 = right) and read by angle through ScanView, so the
@@ -24,43 +32,47 @@ FOLLOW = 'FOLLOW'
 WALL_AHEAD = 'WALL_AHEAD'
 OUTER_CORNER = 'OUTER_CORNER'
 SEARCH = 'SEARCH'
-STATES = (FOLLOW, WALL_AHEAD, OUTER_CORNER, SEARCH)
 
 #: Every tunable number of the controller: name -> (default, meaning).
-#: Distances in metres, speeds in m/s and rad/s, angles in degrees.
+#: Distances from the laser in metres, speeds in m/s and rad/s, angles in degrees.
 PARAMETERS = {
-    'target_distance': (0.25, 'wanted laser-to-wall distance on the right'),
-    'range_bias': (0.008, 'how much longer than true the laser reads (Stage grid: ~0.008; real LDS-01: 0)'),
+    # Following a straight wall
+    'target_distance': (0.25, 'wanted distance to the wall on the right'),
+    'range_bias': (0.008, 'how much longer than true the laser reads (Stage ~0.008, LDS-01 0)'),
     'cruise_speed': (0.19, 'forward speed on a straight wall'),
     'max_turn_rate': (0.49, 'largest turn rate the controller asks for'),
     'k_distance': (8.0, 'turn rate per metre of distance error (rad/s/m)'),
     'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
-    'latency': (0.1, 'time from a scan to its command taking effect (s); the scan is judged that far ahead'),
+    'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
     'turn_slowdown': (0.3, 'share of cruise speed given up at the largest turn rate'),
+    'closest_distance': (0.22, 'heading into the wall, slow so as to turn parallel no nearer'),
+    # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
-    'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the wall fit'),
+    'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the fit'),
     'wall_fit_range': (0.8, 'hits farther than this are not taken for the wall on the right'),
-    'wall_inlier_distance': (0.025, 'hits nearer than this to the seed line belong to the wall'),
+    'wall_inlier_distance': (0.025, 'hits this near the seed line belong to the wall'),
     'wall_min_points': (6, 'fewest hits that make a wall'),
     'wall_max_residual': (0.025, 'RMS misfit above which the hits are no straight wall'),
-    'wall_seed_support': (0.6, 'share of the seed hits the final wall line must still pass through'),
-    'wall_lost_distance': (0.45, 'a wall farther than this is not followed (outer corner or none)'),
-    'corner_lead': (0.03, 'the right wall is taken to end when it reaches less than this ahead'),
-    'rejoin_ahead': (0.15, 'after a convex corner, the new wall must reach this far ahead ...'),
-    'rejoin_angle_deg': (25.0, '... and lie within this angle of the heading to be followed'),
+    'wall_seed_support': (0.6, 'share of the seed hits the wall line must still pass through'),
+    'wall_lost_distance': (0.45, 'a wall farther than this is not followed'),
+    # Inner corners: a wall ahead
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
-    'inner_corner_radius': (0.23, 'radius of the left turn onto a wall ahead'),
-    'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
-    'closest_distance': (0.22, 'following, the robot slows so as to turn parallel no nearer than this'),
-    'turn_lead': (0.02, 'the left turn starts this much early, for the delay of scan and command'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
-    'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply to turn for'),
-    'front_turn_distance': (0.35, 'anything nearer than this in the lane ahead starts the left turn'),
-    'front_clear_distance': (0.6, 'the left turn goes on while anything in the lane ahead is nearer'),
-    'front_stop_distance': (0.2, 'anything nearer than this in the lane ahead: turn on the spot'),
+    'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
+    'inner_corner_radius': (0.23, 'radius of the left turn onto the wall ahead'),
+    'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
+    'turn_lead': (0.02, 'start the turn this much early, for the scan and command delay'),
+    'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
+    'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
+    'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
+    # Outer corners: the right wall ends
+    'corner_lead': (0.03, 'the right wall has ended when seen less than this far ahead'),
+    'outer_corner_radius': (0.22, 'radius of the arc around the end of the wall'),
+    'outer_corner_speed_share': (0.9, 'share of the arc speed at max_turn_rate (turn headroom)'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
-    'outer_corner_radius': (0.22, 'radius of the arc around the end of a wall (convex corner)'),
-    'outer_corner_speed_share': (0.9, 'share of the speed of that arc at max_turn_rate, for turn headroom'),
+    'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
+    'rejoin_angle_deg': (25.0, '... and within this angle of the heading'),
+    # No wall near
     'search_speed': (0.15, 'forward speed while no wall is near'),
 }
 
@@ -154,11 +166,11 @@ def right_wall(points, params):
 def wall_through(seed, points, params):
     """(distance, angle) of the straight wall through most of the seed hits, or None.
 
-    The line through most of the seed is refitted through
-    every hit of points that lies near it, and must then be straight (small
-    residual) and still pass through most of the seed. angle is that of the
-    wall's normal measured from the right: 0 for a wall parallel on the
-    right, > 0 when the robot heads into it.
+    The line through most of the seed is refitted through every hit of
+    points that lies near it, and must then be straight (small residual)
+    and still pass through most of the seed. angle is that of the wall's
+    normal measured from the right: 0 for a wall parallel on the right,
+    > 0 when the robot heads into it.
     """
     first = consensus_line(seed, params.wall_inlier_distance, params.wall_min_points)
     if first is None:
@@ -238,9 +250,11 @@ class WallFollower(object):
     """Follows the wall on the right; update() once per scan.
 
     States: FOLLOW (PD on the fitted right wall), WALL_AHEAD (turn left,
-    still moving, until the lane ahead is clear), OUTER_CORNER (circle the
-    end of a wall that stopped on the right), SEARCH (no wall near: drive
-    straight until one appears ahead or on the right).
+    still moving, until the wall ahead has come round to the right),
+    OUTER_CORNER (circle the end of a wall that stopped on the right),
+    SEARCH (no wall near: drive straight until one appears ahead or on the
+    right). The last command is kept, to judge the next scan where the
+    robot will be when that command takes effect.
     """
 
     def __init__(self, params=None):
@@ -293,7 +307,8 @@ class WallFollower(object):
 
     def _beside(self, hit):
         """True when a (distance, bearing) hit is within corner_bearing_deg of the right."""
-        return abs(float(wrap_angle(hit[1] - RIGHT))) <= math.radians(self.params.corner_bearing_deg)
+        off_right = abs(float(wrap_angle(hit[1] - RIGHT)))
+        return off_right <= math.radians(self.params.corner_bearing_deg)
 
     def _turn_due(self, obs):
         """True once an arc of inner_corner_radius would end on the wall ahead."""
