@@ -1,0 +1,82 @@
+"""Straight walls extracted from synthetic scans."""
+import math
+
+import numpy as np
+import pytest
+
+from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
+from wall_follower.scan import ScanView
+from wall_follower.walls import closest_match, extract_walls, path_is_clear, refine
+
+ROOM = box(-2.0, -1.5, 2.0, 1.5)
+
+
+def degrees(wall):
+    return math.degrees(wall.angle)
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=[c.name for c in CONVENTIONS])
+def test_the_four_walls_of_a_room_nearest_first(convention):
+    walls = extract_walls(scan_view(ROOM, (0.5, 0.3, 0.0), convention), min_length=0.5)
+    assert [round(w.distance, 2) for w in walls] == [1.2, 1.5, 1.8, 2.5]
+    assert [round(degrees(w)) for w in walls] == [90, 0, -90, 180]
+    assert all(w.rms < 0.005 and w.foot_inside(0.5) for w in walls)
+
+
+def test_a_turned_laser_sees_the_walls_turned_the_other_way():
+    walls = extract_walls(scan_view(ROOM, (0.5, 0.3, 0.5), STAGE), min_length=0.5)
+    assert degrees(walls[0]) == pytest.approx(90.0 - math.degrees(0.5), abs=0.5)
+
+
+def test_a_lone_spurious_beam_neither_makes_a_wall_nor_cuts_one():
+    ranges = cast(ROOM, (1.0, 0.0, 0.0), STAGE)
+    ahead = int(np.argmin(np.abs(STAGE.angle_min + STAGE.increment * np.arange(360))))
+    ranges[ahead] = 0.3
+    view = ScanView(ranges, STAGE.angle_min, STAGE.increment, STAGE.range_min, STAGE.range_max)
+    walls = extract_walls(view)
+    assert walls[0].distance == pytest.approx(1.0, abs=0.005)
+    assert walls[0].foot_inside(0.5)
+
+
+def test_a_noisy_wall_stays_one_piece_or_is_gathered_by_refine():
+    rng = np.random.RandomState(0)
+    ranges = cast(ROOM, (1.7, 0.0, 0.0), STAGE) + rng.normal(0.0, 0.01, 360)
+    view = ScanView(ranges, STAGE.angle_min, STAGE.increment, STAGE.range_min, STAGE.range_max)
+    pieces = [w for w in extract_walls(view) if abs(degrees(w)) < 10.0 and w.distance < 0.4]
+    assert pieces
+    wall = refine(view, pieces[0])
+    assert wall.distance == pytest.approx(0.3, abs=0.005)
+    assert degrees(wall) == pytest.approx(0.0, abs=1.0)
+    assert wall.length > 1.5
+
+
+def test_hidden_ends_are_open_and_corners_are_not():
+    # A box 0.3 m in front of the bottom wall hides part of it.
+    world = ROOM + box(0.3, -1.0, 0.6, -0.7)
+    walls = extract_walls(scan_view(world, (0.0, 0.0, 0.0), STAGE), min_length=0.5)
+    bottom = [w for w in walls if abs(degrees(w) + 90.0) < 2.0]
+    assert len(bottom) == 2
+    # Counter-clockwise from the left corner to the box's shadow, then on
+    # from the shadow to the right corner.
+    left, right = sorted(bottom, key=lambda w: w.foot, reverse=True)
+    assert (left.start_open, left.end_open) == (False, True)
+    assert (right.start_open, right.end_open) == (True, False)
+
+
+def test_path_to_a_wall_is_blocked_by_a_box_in_the_way():
+    world = ROOM + box(-0.1, -1.0, 0.1, -0.8)
+    view = scan_view(world, (0.0, 0.0, 0.0), STAGE)
+    bottom = [w for w in extract_walls(view, min_length=0.5) if abs(degrees(w) + 90.0) < 2.0]
+    top = [w for w in extract_walls(view, min_length=0.5) if abs(degrees(w) - 90.0) < 2.0]
+    assert not any(path_is_clear(view, w, 0.15) for w in bottom)
+    assert path_is_clear(view, top[0], 0.15)
+
+
+def test_closest_match_keeps_the_same_wall_and_ignores_the_next_one():
+    before = extract_walls(scan_view(ROOM, (1.0, 1.0, 0.0), STAGE))
+    after = extract_walls(scan_view(ROOM, (1.0, 1.0, 0.05), STAGE))
+    tracked = before[0]  # the top wall, 0.5 m to the left
+    match = closest_match(after, tracked, math.radians(25.0), 0.2)
+    assert match.distance == pytest.approx(0.5, abs=0.005)
+    assert degrees(match) == pytest.approx(90.0 - math.degrees(0.05), abs=0.5)
+    assert closest_match(after, tracked._replace(angle=0.0), math.radians(25.0), 0.05) is None
