@@ -1,5 +1,6 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
+import threading
 
 import rospkg
 import rospy
@@ -69,11 +70,25 @@ class LatestScan(object):
     def __init__(self, topic='scan'):
         self.view = None
         self.stamp = None
+        self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
 
     def _on_scan(self, msg):
         self.view = ScanView.from_msg(msg)
         self.stamp = rospy.Time.now()
+        with self._arrived:
+            self._arrived.notify_all()
+
+    def wait_for_newer(self, view, timeout):
+        """Wait until the latest scan is not `view`, at most timeout wall seconds.
+
+        Lets a controller answer each scan as soon as it arrives instead of
+        at its next timer tick: in lockstep simulation a command that merely
+        repeats the last one would let the world step on a stale decision.
+        """
+        with self._arrived:
+            if self.view is view:
+                self._arrived.wait(timeout)
 
     def fresh(self, timeout):
         """The latest scan if it is younger than timeout seconds, else None."""

@@ -1,7 +1,7 @@
 """The find_wall service node: on each call, drive to the nearest wall and put it on the right.
 
-The handler runs the WallFinder state machine at ~rate (ROS time) while the
-scan subscriber keeps delivering scans in its own thread. Whatever happens
+The handler steps the WallFinder state machine once for each new scan, which
+the scan subscriber keeps delivering in its own thread. Whatever happens
 (success, failure, time-out, shutdown), the robot is left standing still.
 Only one search runs at a time: a call that arrives while another is in
 progress is refused at once with wallfound false.
@@ -18,13 +18,18 @@ from wall_follower.srv import FindWall, FindWallResponse
 
 NODE_DEFAULTS = {
     'rate': 20.0,
+    'keepalive': 0.15,
     'timeout': 60.0,
     'scan_timeout': 1.0,
 }
 """Parameters of the node itself (the finder's own are finder.DEFAULTS).
 
-rate: control loop frequency (Hz of ROS time); commands are re-sent at
-    this rate so that a velocity watchdog never stops the robot mid-turn.
+rate: how often (Hz) the loop looks at the clock while it waits for scans.
+    Each new scan is answered at once with a new command.
+keepalive: when no new scan has come for this long (ROS s), the last
+    command is sent again, so that a velocity watchdog (stageros stops the
+    robot after 0.2 s without one) does not stop the robot mid-turn. Longer
+    than a scan period, so that a repeat never stands in for an answer.
 timeout: a call that has not succeeded after this long (ROS s) answers false.
 scan_timeout: a call answers false when no scan younger than this (ROS s)
     is available this long after it started, or at any point later on.
@@ -44,6 +49,7 @@ class WallFinderNode(object):
         defaults.update(NODE_DEFAULTS)
         params = private_params(defaults)
         self.rate = params.pop('rate')
+        self.keepalive = params.pop('keepalive')
         self.timeout = params.pop('timeout')
         self.scan_timeout = params.pop('scan_timeout')
         self.finder_params = params
@@ -54,7 +60,7 @@ class WallFinderNode(object):
         self.scan = LatestScan('scan')
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
-        rospy.loginfo('find_wall: ready (rate %.0f Hz, timeout %.0f s)', self.rate, self.timeout)
+        rospy.loginfo('find_wall: ready (timeout %.0f s)', self.timeout)
 
     def handle(self, _request):
         """One call, one search. rospy serves each caller in its own thread,
@@ -66,8 +72,6 @@ class WallFinderNode(object):
             return FindWallResponse(wallfound=False)
         try:
             return FindWallResponse(wallfound=self._search())
-        except rospy.ROSInterruptException:
-            return FindWallResponse(wallfound=False)
         finally:
             self.commander.stop()
             self._busy.release()
@@ -77,12 +81,12 @@ class WallFinderNode(object):
         finder = WallFinder(**self.finder_params)
         finder.start()
         rospy.loginfo('find_wall: searching for the nearest wall')
-        started = rospy.get_time()
+        started = sent = rospy.get_time()
         state = finder.state
         last_view = None
-        rate = rospy.Rate(self.rate)
         while not rospy.is_shutdown():
-            elapsed = rospy.get_time() - started
+            now = rospy.get_time()
+            elapsed = now - started
             if elapsed > self.timeout:
                 rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
                               elapsed, finder.state)
@@ -94,18 +98,19 @@ class WallFinderNode(object):
                                   rospy.resolve_name('scan'), self.scan_timeout)
                     return False
                 self.commander.stop()
-            elif view is last_view:
-                # No new scan yet: repeat the last command to keep the robot going.
-                self.commander.send(self.commander.last)
-            else:
+            elif view is not last_view:
                 last_view = view
                 self.commander.send(finder.update(view))
+                sent = now
                 if finder.state != state:
                     rospy.loginfo('find_wall: %s -> %s%s', state, finder.state, _describe(finder))
                     state = finder.state
                 if finder.done:
                     return self._report(finder, rospy.get_time() - started)
-            rate.sleep()
+            elif now - sent >= self.keepalive:
+                self.commander.send(self.commander.last)
+                sent = now
+            self.scan.wait_for_newer(last_view, 1.0 / self.rate)
         return False
 
     @staticmethod
