@@ -10,28 +10,58 @@ import sys
 import xml.etree.ElementTree as ET
 
 
+def _cases(path):
+    """The testcase elements of a JUnit file; None if it cannot be read."""
+    try:
+        return list(ET.parse(path).getroot().iter('testcase'))
+    except ET.ParseError:
+        return None
+
+
+def _problem(case):
+    bad = case.find('failure')
+    if bad is None:
+        bad = case.find('error')
+    if bad is None:
+        return None
+    return (bad.get('message') or bad.text or '').strip()[:400]
+
+
 def count_results(results_dir):
-    """Return (passed, failed, failures) over every JUnit file below results_dir."""
+    """Return (passed, failed, failures) over the JUnit files below results_dir.
+
+    Each rostest writes a wrapper file (rostest-*.xml, one case per <test>)
+    and the test node's own file (rosunit-<test-name>.xml). The real cases
+    are counted from the latter; a wrapper counts only when it failed, or
+    when its test node left no cases at all (rostest reports SUCCESS when a
+    required node dies before the test runs).
+    """
     passed, failed, failures = 0, 0, []
-    for path in sorted(glob.glob(os.path.join(results_dir, '**', '*.xml'), recursive=True)):
-        try:
-            root = ET.parse(path).getroot()
-        except ET.ParseError as err:
+    files = sorted(glob.glob(os.path.join(results_dir, '**', '*.xml'), recursive=True))
+    for path in files:
+        name = os.path.basename(path)
+        cases = _cases(path)
+        if cases is None:
             failed += 1
-            failures.append('%s: unreadable result file (%s)' % (path, err))
+            failures.append('%s: unreadable result file' % path)
             continue
-        cases = root.iter('testcase')
+        wrapper = name.startswith('rostest-')
         for case in cases:
-            bad = case.find('failure')
-            if bad is None:
-                bad = case.find('error')
-            if bad is not None:
+            problem = _problem(case)
+            if problem is not None:
                 failed += 1
-                failures.append('%s :: %s.%s: %s' % (
-                    os.path.basename(path), case.get('classname'), case.get('name'),
-                    (bad.get('message') or bad.text or '').strip()[:400]))
-            elif case.find('skipped') is None:
-                passed += 1
+                failures.append('%s :: %s.%s: %s' % (name, case.get('classname'),
+                                                     case.get('name'), problem))
+                continue
+            if not wrapper:
+                if case.find('skipped') is None:
+                    passed += 1
+                continue
+            test_name = case.get('name')[len('test'):]
+            inner = _cases(os.path.join(os.path.dirname(path), 'rosunit-%s.xml' % test_name))
+            if not inner:
+                failed += 1
+                failures.append('%s :: %s: the test node ran no test' % (name, test_name))
     return passed, failed, failures
 
 
