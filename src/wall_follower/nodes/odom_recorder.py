@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry, Path
 
 from wall_follower.lap import LapRecorder
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
-from wall_follower.nodes.common import private_params
+from wall_follower.nodes.common import pose_of, private_params
 
 DEFAULTS = {
     'sample_period': 1.0,
@@ -45,12 +45,6 @@ rate: how often (Hz, ROS time) the goal loop checks for new points, the
 LAP_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_error')
 
 
-def yaw_of(orientation):
-    """Yaw (rad) of a geometry_msgs/Quaternion."""
-    q = orientation
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
 class OdomRecorderNode(object):
     """Serves record_odom: one recording per goal, fed from the odom topic."""
 
@@ -69,60 +63,61 @@ class OdomRecorderNode(object):
 
     def _on_odom(self, msg):
         stamp = msg.header.stamp.to_sec() or rospy.get_time()
-        pose = msg.pose.pose
         with self._lock:
             self._last_odom_time = rospy.get_time()
             self._frame_id = msg.header.frame_id
             if self._recording is not None:
-                self._recording.add(stamp, pose.position.x, pose.position.y,
-                                    yaw_of(pose.orientation))
+                self._recording.add(stamp, *pose_of(msg))
 
     def _execute(self, _goal):
         recording = LapRecorder(self.params['sample_period'],
                                 **{name: self.params[name] for name in LAP_PARAMS})
-        started = rospy.get_time()
         with self._lock:
             self._recording = recording
         rospy.loginfo('record_odom: recording started')
-        published = 0
-        rate = rospy.Rate(self.params['rate'])
         try:
-            while not rospy.is_shutdown():
-                with self._lock:
-                    points = list(recording.points)
-                    total = recording.total_distance
-                    closed = recording.closed
-                    last_odom = self._last_odom_time
-                    frame_id = self._frame_id
-                if len(points) > published:
-                    published = len(points)
-                    self.server.publish_feedback(OdomRecordFeedback(current_total=total))
-                    self.path_pub.publish(_path(points, frame_id))
-                if closed:
-                    rospy.loginfo('record_odom: lap complete: %d points, %.2f m',
-                                  len(points), total)
-                    self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
-                    return
-                if self.server.is_preempt_requested():
-                    rospy.loginfo('record_odom: cancelled after %d points, %.2f m',
-                                  len(points), total)
-                    self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
-                    return
-                silent_since = started if last_odom is None or last_odom < started else last_odom
-                if rospy.get_time() - silent_since > self.params['timeout']:
-                    text = 'no odometry on %s for %.1f s' % (
-                        rospy.resolve_name('odom'), self.params['timeout'])
-                    rospy.logerr('record_odom: aborted: %s', text)
-                    self.server.set_aborted(_result(points), text)
-                    return
-                rate.sleep()
+            self._serve(recording)
         except rospy.ROSInterruptException:
-            pass
+            with self._lock:
+                points = list(recording.points)
+            self.server.set_aborted(_result(points), 'shutting down')
         finally:
             with self._lock:
                 self._recording = None
-        if self.server.is_active():
-            self.server.set_aborted(OdomRecordResult(), 'shutting down')
+
+    def _serve(self, recording):
+        """Publish progress until the goal ends, and end it the way it ended."""
+        started = rospy.get_time()
+        published = 0
+        rate = rospy.Rate(self.params['rate'])
+        while True:
+            with self._lock:
+                points = list(recording.points)
+                total = recording.total_distance
+                closed = recording.closed
+                last_odom = self._last_odom_time
+                frame_id = self._frame_id
+            if len(points) > published:
+                published = len(points)
+                self.server.publish_feedback(OdomRecordFeedback(current_total=total))
+                self.path_pub.publish(_path(points, frame_id))
+            if closed:
+                rospy.loginfo('record_odom: lap complete: %d points, %.2f m', len(points), total)
+                self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
+                return
+            if self.server.is_preempt_requested():
+                rospy.loginfo('record_odom: cancelled after %d points, %.2f m',
+                              len(points), total)
+                self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
+                return
+            silent_since = started if last_odom is None or last_odom < started else last_odom
+            if rospy.get_time() - silent_since > self.params['timeout']:
+                text = 'no odometry on %s for %.1f s' % (
+                    rospy.resolve_name('odom'), self.params['timeout'])
+                rospy.logerr('record_odom: aborted: %s', text)
+                self.server.set_aborted(_result(points), text)
+                return
+            rate.sleep()
 
 
 def _result(points):
