@@ -11,10 +11,10 @@ import xml.etree.ElementTree as ET
 
 
 def _cases(path):
-    """The testcase elements of a JUnit file; None if it cannot be read."""
+    """The testcase elements of a JUnit file; None if it is missing or unreadable."""
     try:
         return list(ET.parse(path).getroot().iter('testcase'))
-    except ET.ParseError:
+    except (ET.ParseError, EnvironmentError):
         return None
 
 
