@@ -45,7 +45,7 @@ class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
         """
         low = self.start if self.start_open else self.start + margin
         high = self.end if self.end_open else self.end - margin
-        return self.start <= self.foot <= self.end and low <= self.foot <= high
+        return low <= self.foot <= high
 
     @property
     def normal(self):
