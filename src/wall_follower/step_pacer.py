@@ -49,6 +49,10 @@ class StepPacer(object):
             self._stopped = True
             self._condition.notify_all()
 
+    @property
+    def stopped(self):
+        return self._stopped
+
     def request_stop(self):
         """stop() for a signal handler: it takes no lock, because the thread
         it interrupts may hold one; a waiting wait_turn() notices within

@@ -5,14 +5,18 @@ Judged from ground truth: where find_wall left the robot, whether the
 feedback rose steadily and matched the true distance, and whether the lap
 was declared where the robot really came back to its start. The follower
 keeps following after the lap (stop_after_lap false) so that the true
-return to the start is seen even if the recorder declared early.
+return to the start is seen even if the recorder declared early. The
+simulator starts paused and this check unpauses it once it is listening,
+so no run can outpace it.
 """
 import math
 import sys
+import time
 import unittest
 
 import rospy
 import rostest
+from std_srvs.srv import Empty
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
@@ -20,6 +24,8 @@ from wall_follower.scoring import CourseMap, true_lap_length
 
 # Ground truth is kept this long after the result, to see the true return.
 AFTER_RESULT = 10.0
+# Wall seconds allowed for the monitor's subscriptions to connect.
+CONNECT_LIMIT = 30.0
 
 
 class Course(unittest.TestCase):
@@ -29,6 +35,13 @@ class Course(unittest.TestCase):
         cls.world = rospy.get_param('~world')
         cls.tolerance = rospy.get_param('/odom_recorder/close_tolerance', 0.3)
         cls.monitor = CourseMonitor(CourseMap(world_path(cls.world)), start_on_goal=True)
+        # The simulator starts paused: nothing moves until the monitor hears everything.
+        deadline = time.monotonic() + CONNECT_LIMIT
+        while not cls.monitor.connected():
+            assert time.monotonic() < deadline, 'the monitor could not connect'
+            time.sleep(0.05)
+        rospy.wait_for_service('unpause_physics', timeout=CONNECT_LIMIT)
+        rospy.ServiceProxy('unpause_physics', Empty)()
         assert cls.monitor.wait(), 'shut down before the lap was recorded'
         rospy.sleep(AFTER_RESULT)
 

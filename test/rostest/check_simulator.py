@@ -7,11 +7,13 @@ second simulator in /pair with two robots.
 """
 import math
 import sys
+import time
 import unittest
 
 import numpy as np
 import rospy
 import rostest
+from std_srvs.srv import Empty
 
 from sim_probe import SimProbe, pose_of, yaw_of
 
@@ -20,7 +22,11 @@ START = (0.8, 0.0, 0.0)
 WALL_X = 1.5
 BODY_FRONT = -0.032 + 0.138 / 2   # front face of the footprint, ahead of base_link
 LASER_MOUNT = (-0.032, 0.0, 0.192)
-EXACT = 1e-6                      # float32 twists and 7-digit reasoning need no more
+EXACT = 1e-6
+# Wall seconds: for a step already under way when pause_physics returns to
+# publish, then a window in which a paused world must publish nothing.
+PAUSE_SETTLE = 0.2
+PAUSE_WATCH = 0.5                      # float32 twists and 7-digit reasoning need no more
 
 
 def moves(truths):
@@ -132,6 +138,17 @@ class SimulatorInterface(unittest.TestCase):
                                       in zip(pose_of(self.sim.truths[-1]), target)),
                           'ground truth at the cmd_pose target')
         self.sim.reset()
+
+    def test_pause_physics_holds_every_step_until_unpaused(self):
+        pause = rospy.ServiceProxy('pause_physics', Empty)
+        unpause = rospy.ServiceProxy('unpause_physics', Empty)
+        pause()
+        time.sleep(PAUSE_SETTLE)         # a step already under way may still publish
+        held = len(self.sim.clock)
+        time.sleep(PAUSE_WATCH)
+        self.assertEqual(len(self.sim.clock), held, 'the clock moved while paused')
+        unpause()
+        self.sim.wait_ticks(2)
 
     def test_several_robots_get_stageros_prefixed_names_and_their_own_commands(self):
         robots = [SimProbe('pair/', 'robot_%d/' % i, scan_topic='base_scan') for i in range(2)]

@@ -16,18 +16,9 @@ from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
+from wall_follower.nodes.common import pose_of, yaw_of  # noqa: F401 (re-exported for the checks)
+
 WAIT_LIMIT = 20.0
-
-
-def yaw_of(quaternion):
-    return math.atan2(2.0 * (quaternion.w * quaternion.z + quaternion.x * quaternion.y),
-                      1.0 - 2.0 * (quaternion.y ** 2 + quaternion.z ** 2))
-
-
-def pose_of(odometry):
-    """(x, y, yaw) of an Odometry message."""
-    position = odometry.pose.pose.position
-    return position.x, position.y, yaw_of(odometry.pose.pose.orientation)
 
 
 class SimProbe(object):

@@ -12,6 +12,8 @@ from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
 
 from wall_follower.lap import PathLength
+from actionlib_msgs.msg import GoalStatusArray
+
 from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
 from wall_follower.scoring import RunScore
@@ -22,6 +24,10 @@ class CourseMonitor(object):
 
     With start_on_goal, scoring starts when a record_odom goal is sent (the
     course: the lap begins after find_wall); otherwise at the first pose.
+    The goal's send time comes from whichever of the goal, status, feedback
+    or result messages is seen first (each carries the goal's stamp), and
+    ground truth is kept until then, so a monitor that missed the goal
+    message itself still scores the lap from its true start.
     """
 
     def __init__(self, course_map, start_on_goal=True, **lap_params):
@@ -38,6 +44,7 @@ class CourseMonitor(object):
         self.truth_length = PathLength()
         self.truth_at_result = None
         self.trail = []
+        self._backlog = []
         self._subs = [
             rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=50),
             rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=50),
@@ -47,6 +54,7 @@ class CourseMonitor(object):
                              self._on_feedback, queue_size=50),
             rospy.Subscriber('record_odom/result', OdomRecordActionResult, self._on_result,
                              queue_size=5),
+            rospy.Subscriber('record_odom/status', GoalStatusArray, self._on_status, queue_size=5),
         ]
 
     @property
@@ -58,14 +66,30 @@ class CourseMonitor(object):
         stamp = msg.header.stamp.to_sec()
         with self.lock:
             self.pose = pose
-            if not self.scoring:
+            if self.scoring:
+                self._score(stamp, pose)
+            else:
+                self._backlog.append((stamp, pose))
+
+    def _score(self, stamp, pose):
+        self.trail.append(pose[:2])
+        if self.result is None:
+            self.truth_length.add(pose[0], pose[1])
+        self.score.add_pose(stamp, pose)
+        if not self.start_on_goal and self.score.lap.closed:
+            self.done.set()
+
+    def _goal_sent(self, goal_id):
+        """Start scoring from the goal's send time, replaying the truth kept since."""
+        with self.lock:
+            if self.goal_time is not None:
                 return
-            self.trail.append(pose[:2])
-            if self.result is None:
-                self.truth_length.add(pose[0], pose[1])
-            self.score.add_pose(stamp, pose)
-            if not self.start_on_goal and self.score.lap.closed:
-                self.done.set()
+            self.goal_time = goal_id.stamp.to_sec()
+            since = [(stamp, pose) for stamp, pose in self._backlog if stamp >= self.goal_time]
+            self._backlog = []
+            self.goal_pose = since[0][1] if since else self.pose
+            for stamp, pose in since:
+                self._score(stamp, pose)
 
     def _on_command(self, msg):
         with self.lock:
@@ -76,19 +100,22 @@ class CourseMonitor(object):
             self.score.add_stall(msg.data)
 
     def _on_goal(self, msg):
-        with self.lock:
-            if self.goal_time is None:
-                self.goal_time = rospy.Time.now().to_sec()
-                self.goal_pose = self.pose
+        self._goal_sent(msg.goal_id)
+
+    def _on_status(self, msg):
+        if msg.status_list:
+            self._goal_sent(msg.status_list[0].goal_id)
 
     def _on_feedback(self, msg):
+        self._goal_sent(msg.status.goal_id)
         with self.lock:
             self.feedback.append(msg.feedback.current_total)
 
     def _on_result(self, msg):
+        self._goal_sent(msg.status.goal_id)
         with self.lock:
             self.result = [(p.x, p.y, p.z) for p in msg.result.list_of_odoms]
-            self.result_time = rospy.Time.now().to_sec()
+            self.result_time = msg.header.stamp.to_sec()
             self.truth_at_result = self.truth_length.total
         if self.start_on_goal:
             self.done.set()
@@ -103,6 +130,12 @@ class CourseMonitor(object):
             if self.done.wait(0.1):
                 return True
         return False
+
+    def connected(self):
+        """Whether every topic that the simulator or the recorder publishes is connected."""
+        return all(sub.get_num_connections() > 0 for sub in self._subs
+                   if sub.name.rsplit('/', 1)[-1] in ('base_pose_ground_truth', 'stalled',
+                                                       'feedback', 'result', 'status'))
 
     def close(self):
         for sub in self._subs:

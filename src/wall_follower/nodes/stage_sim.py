@@ -30,6 +30,10 @@ Private parameters:
   ~lockstep_grace (0.05)  lockstep: wall seconds to wait when no robot is moving
   ~lockstep_timeout (1.0) lockstep: longest wall wait for a moving robot's command
   ~quit_time (the world's quit_time) exit after this many simulated seconds; 0 = never
+  ~paused (the world's paused) start without stepping until unpause_physics is
+                          called, e.g. so that a monitor can connect first
+Services beyond stageros, named as Gazebo's: pause_physics and unpause_physics
+(std_srvs/Empty) stop and resume the world steps; nothing is published while paused.
 
 /use_sim_time must be true before any node starts, which is the launch
 file's job; like stageros, this node sets it if nobody did, too late for the
@@ -155,7 +159,10 @@ class StageSimNode(object):
     rospy's threads and reach the simulation under one lock.
     """
 
-    def __init__(self, world, params, quit_time):
+    # Wall seconds between checks for a stop request while paused.
+    PAUSE_POLL = 0.1
+
+    def __init__(self, world, params, quit_time, paused):
         poses = {}
         start = parse_pose(params['pose'])
         if start is not None:
@@ -180,7 +187,14 @@ class StageSimNode(object):
                 topics.prefix + 'cmd_vel', Twist, self._on_cmd_vel, index, queue_size=1))
             self._command_subs.append(rospy.Subscriber(
                 topics.prefix + 'cmd_pose', Pose, self._on_cmd_pose, index, queue_size=1))
-        self._reset_service = rospy.Service('reset_positions', Empty, self._on_reset)
+        self._running = threading.Event()
+        if not paused:
+            self._running.set()
+        self._services = [
+            rospy.Service('reset_positions', Empty, self._on_reset),
+            rospy.Service('pause_physics', Empty, self._on_pause),
+            rospy.Service('unpause_physics', Empty, self._on_unpause),
+        ]
         rospy.on_shutdown(self._pacer.stop)
 
     def request_stop(self, _signal=None, _frame=None):
@@ -208,9 +222,25 @@ class StageSimNode(object):
         rospy.loginfo('reset_positions: robots back at their start poses')
         return EmptyResponse()
 
+    @property
+    def running(self):
+        return self._running.is_set()
+
+    def _on_pause(self, _request):
+        self._running.clear()
+        rospy.loginfo('pause_physics: world steps stopped')
+        return EmptyResponse()
+
+    def _on_unpause(self, _request):
+        self._running.set()
+        rospy.loginfo('unpause_physics: world steps resumed')
+        return EmptyResponse()
+
     def run(self):
         """Steps until shutdown or quit_time."""
-        while not rospy.is_shutdown():
+        while not rospy.is_shutdown() and not self._pacer.stopped:
+            if not self._running.wait(self.PAUSE_POLL):
+                continue
             with self._lock:
                 moving = [robot.command != (0.0, 0.0) for robot in self._sim.robots]
             if not self._pacer.wait_turn(moving):
@@ -313,7 +343,8 @@ def run_node(world, argv):
         return 1
     try:
         node = StageSimNode(world, params,
-                            float(rospy.get_param('~quit_time', world.quit_time)))
+                            float(rospy.get_param('~quit_time', world.quit_time)),
+                            bool(rospy.get_param('~paused', bool(world.paused))))
     except ValueError as error:
         rospy.logerr('~%s', error)
         return 1
@@ -328,6 +359,8 @@ def run_node(world, argv):
                   world.resolution, world.interval_sim,
                   params['speedup'] if params['speedup'] > 0 else 'unlimited',
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
+    if not node.running:
+        rospy.loginfo('paused: call unpause_physics to start the world')
     if world.unknown_keywords:
         rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
     node.run()
