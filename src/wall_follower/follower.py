@@ -67,7 +67,7 @@ PARAMETERS = {
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
     'corner_lead': (0.03, 'the right wall has ended when seen less than this far ahead'),
-    'outer_corner_radius': (0.22, 'radius of the arc around the end of the wall'),
+    'outer_corner_radius': (0.21, 'radius of the arc around the end of the wall'),
     'outer_corner_speed_share': (0.9, 'share of the arc speed at max_turn_rate (turn headroom)'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
