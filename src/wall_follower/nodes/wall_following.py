@@ -1,11 +1,13 @@
 """The wall_following node: find_wall, then record_odom, then follow the right wall.
 
-The control loop runs at ~rate on ROS time (simulated time in simulation),
-so that the robot's cmd_vel watchdog always sees a fresh command. The
-controller is stepped once per new scan; between scans the last command is
-repeated. With no scan for ~scan_timeout the robot is stopped until scans
-come back. Every command leaves through VelocityCommander, which clamps it
-to ~max_linear and ~max_angular and stops the robot on shutdown.
+The controller answers each scan as soon as it arrives, so that in
+lockstep simulation every world step acts on a decision about the latest
+scan. When scans pause for ~keepalive (ROS time, simulated in simulation)
+the last command is sent again, so that the robot's cmd_vel watchdog
+(stageros: 0.2 s) never stops it mid-turn; with no scan for ~scan_timeout
+the robot is stopped until scans come back. Every command leaves through
+VelocityCommander, which clamps it to ~max_linear and ~max_angular and
+stops the robot on shutdown.
 
 Exit status: 0 after a recorded lap (with ~stop_after_lap) or a plain
 shutdown; 1 when find_wall or record_odom is missing, or find_wall fails.
@@ -24,6 +26,7 @@ from wall_follower.srv import FindWall
 
 NODE_DEFAULTS = {
     'rate': 20.0,
+    'keepalive': 0.15,
     'scan_timeout': 0.5,
     'find_wall': True,
     'record_odom': True,
@@ -33,7 +36,9 @@ NODE_DEFAULTS = {
 }
 """Parameters of the node itself (the controller's are follower.PARAMETERS).
 
-rate: control loop frequency (Hz of ROS time).
+rate: how often (Hz) the loop looks at the clock while it waits for scans.
+keepalive: with no new scan for this long (ROS s), send the last command
+    again; longer than a scan period, so a repeat never stands in for an answer.
 scan_timeout: stop the robot when the newest scan is older than this (ROS s).
 find_wall: call the find_wall service before following; do not follow if it fails.
 record_odom: send a goal to the record_odom action before following.
@@ -113,28 +118,29 @@ class WallFollowingNode(object):
             self.lap_done.set()
 
     def follow(self):
-        """Run the control loop until shutdown or, with stop_after_lap, the recorded lap."""
-        rate = rospy.Rate(self.node['rate'])
+        """Answer each scan until shutdown or, with stop_after_lap, the recorded lap."""
         last_view = None
         state = None
+        sent = rospy.get_time()
         while not rospy.is_shutdown() and not self.lap_done.is_set():
+            now = rospy.get_time()
             view = self.scan.fresh(self.node['scan_timeout'])
             if view is None:
                 self.commander.stop()
+                sent = now
                 rospy.logwarn_throttle(5.0, 'wall_following: no scan on %s for %.1f s; stopped'
                                        % (rospy.resolve_name('scan'), self.node['scan_timeout']))
-            elif view is last_view:
-                self.commander.send(self.commander.last)
-            else:
+            elif view is not last_view:
                 last_view = view
                 self.commander.send(self.controller.update(view))
+                sent = now
                 if self.controller.state != state:
                     rospy.loginfo('wall_following: %s -> %s', state, self.controller.state)
                     state = self.controller.state
-            try:
-                rate.sleep()
-            except rospy.ROSTimeMovedBackwardsException:
-                pass
+            elif now - sent >= self.node['keepalive']:
+                self.commander.send(self.commander.last)
+                sent = now
+            self.scan.wait_for_newer(last_view, 1.0 / self.node['rate'])
         self.commander.stop()
 
 
