@@ -124,23 +124,33 @@ class ScanView(object):
         return float(smooth[best]), float(angles[best])
 
 
-def fit_line(points, min_points=5):
-    """Total-least-squares line through (N, 2) points in the laser frame.
+def line_through(points):
+    """Total-least-squares line through (N >= 2, 2) points in the laser frame.
 
-    Returns (distance, angle): the perpendicular distance from the laser to
-    the line and the direction of that perpendicular; None for fewer than
-    min_points points. Shared by ScanView.fit_wall and by callers that pick
-    their own points (e.g. only those near an earlier fit).
+    Returns (mean, normal, distance): the points' centroid, the unit normal
+    pointing away from the laser, and the laser's perpendicular distance to
+    the line. The principal direction of the points is the line's direction,
+    which, unlike a least-squares y(x), does not care how the wall is turned.
     """
-    if len(points) < min_points:
-        return None
     mean = points.mean(axis=0)
-    # Principal direction of the hits = the wall's direction.
     _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
     normal = vt[1]
     distance = float(np.dot(mean, normal))
     if distance < 0.0:
         normal, distance = -normal, -distance
+    return mean, normal, distance
+
+
+def fit_line(points, min_points=5):
+    """The wall through (N, 2) points as (distance, angle), or None below min_points.
+
+    distance is the laser's perpendicular distance to the line, angle the
+    direction of that perpendicular. Shared by ScanView.fit_wall and by
+    callers that pick their own points (e.g. only those near an earlier fit).
+    """
+    if len(points) < min_points:
+        return None
+    _, normal, distance = line_through(points)
     return distance, float(math.atan2(normal[1], normal[0]))
 
 

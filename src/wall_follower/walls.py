@@ -12,7 +12,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.scan import wrap_angle
+from wall_follower.scan import line_through, wrap_angle
 
 # A hit this much (m) nearer than the end of a run hides what lies beyond it.
 OCCLUSION_STEP = 0.05
@@ -183,12 +183,7 @@ def _fit(points):
     """Total-least-squares line through points, as a Wall (None for fewer than 2)."""
     if len(points) < 2:
         return None
-    mean = points.mean(axis=0)
-    _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
-    normal = vt[1]
-    distance = float(np.dot(mean, normal))
-    if distance < 0.0:
-        normal, distance = -normal, -distance
+    mean, normal, distance = line_through(points)
     direction = np.array([-normal[1], normal[0]])
     along = (points - mean).dot(direction)
     across = (points - mean).dot(normal)
