@@ -83,8 +83,9 @@ class RunScore(object):
     """Accumulates a run, sample by sample, into the figures of the benchmark.
 
     Ground-truth poses give the right-wall distance, clearance and path
-    length; commands give the highest speeds sent; the lap ends by the same
-    rule the recorder uses, applied to ground truth.
+    length; commands give the highest speeds sent. The lap ends by the same
+    rule the recorder uses, applied to ground truth, or where finish() says
+    (the recorder's own verdict), whichever comes first.
     """
 
     def __init__(self, course_map, band=BAND, target=TARGET, **lap_params):
@@ -102,10 +103,13 @@ class RunScore(object):
         self.max_angular = 0.0
         self.stalled = False
         self._last = None
+        self._end = None
 
     def add_pose(self, stamp, pose):
         """Feed the ground-truth pose (x, y, yaw) at time stamp (s); ignored once the lap is over."""
         if self.lap.closed or (self._last is not None and stamp <= self._last):
+            return
+        if self._end is not None and stamp > self._end:
             return
         if self.start_time is None:
             self.start_time = stamp
@@ -117,6 +121,17 @@ class RunScore(object):
         self.lap.add(stamp, *pose)
         if self.lap.closed:
             self.lap_time = stamp - self.start_time
+
+    def finish(self, stamp):
+        """End the lap at time stamp (s); poses stamped up to it still count when they come."""
+        if self._end is None and not self.lap.closed:
+            self._end = stamp
+            if self.start_time is not None:
+                self.lap_time = stamp - self.start_time
+
+    @property
+    def finished(self):
+        return self.lap.closed or self._end is not None
 
     def add_command(self, linear, angular):
         self.max_linear = max(self.max_linear, abs(linear))
@@ -146,7 +161,7 @@ class RunScore(object):
         bound = self.path_length / MAX_LINEAR if self.path_length > 0.0 else float('nan')
         return {
             'duration': (self.end_time - self.start_time) if self.start_time is not None else 0.0,
-            'lap_closed': self.lap.closed,
+            'lap_closed': self.finished,
             'lap_time': lap_time,
             'path_length': self.path_length,
             'lap_time_ratio': lap_time / bound if bound == bound and bound > 0 else float('nan'),

@@ -106,3 +106,18 @@ def test_clearance_is_zero_when_the_footprint_overlaps_or_encloses():
     assert polygon_clearance(square, inside) == 0.0
     assert polygon_clearance(square, crossing) == 0.0
     assert polygon_clearance(square, apart) == pytest.approx(0.5)
+
+
+def test_finish_ends_the_lap_where_the_recorder_said(room):
+    score = RunScore(room)
+    for k in range(11):
+        score.add_pose(k * 0.1, (-0.8 + 0.019 * k, -0.95, 0.0))
+    score.finish(1.2)
+    score.add_pose(1.1, (-0.8 + 0.019 * 11, -0.95, 0.0))   # late, but before the end
+    score.add_pose(1.2, (-0.8 + 0.019 * 12, -0.95, 0.0))
+    score.add_pose(1.3, (-0.8 + 0.019 * 13, -0.95, 0.0))   # after the end: ignored
+    figures = score.summary()
+    assert figures['lap_closed']
+    assert figures['lap_time'] == pytest.approx(1.2)
+    assert figures['path_length'] == pytest.approx(12 * 0.019)
+    assert figures['time_in_band'] == pytest.approx(1.0)

@@ -42,7 +42,6 @@ class CourseMonitor(object):
         self.result = None
         self.result_time = None
         self.truth_length = PathLength()
-        self.truth_at_result = None
         self.trail = []
         self._backlog = []
         self._subs = [
@@ -56,6 +55,11 @@ class CourseMonitor(object):
                              queue_size=5),
             rospy.Subscriber('record_odom/status', GoalStatusArray, self._on_status, queue_size=5),
         ]
+
+    @property
+    def truth_at_result(self):
+        """True distance travelled from the goal to the result (None before the result)."""
+        return self.truth_length.total if self.result is not None else None
 
     @property
     def scoring(self):
@@ -73,7 +77,7 @@ class CourseMonitor(object):
 
     def _score(self, stamp, pose):
         self.trail.append(pose[:2])
-        if self.result is None:
+        if self.result_time is None or stamp <= self.result_time:
             self.truth_length.add(pose[0], pose[1])
         self.score.add_pose(stamp, pose)
         if not self.start_on_goal and self.score.lap.closed:
@@ -116,7 +120,7 @@ class CourseMonitor(object):
         with self.lock:
             self.result = [(p.x, p.y, p.z) for p in msg.result.list_of_odoms]
             self.result_time = msg.header.stamp.to_sec()
-            self.truth_at_result = self.truth_length.total
+            self.score.finish(self.result_time)
         if self.start_on_goal:
             self.done.set()
 
