@@ -97,8 +97,8 @@ class RunScore(object):
         self.end_time = None
         self.lap_time = None
         self.weights = []
-        self.distances = []
-        self.min_clearance = math.inf
+        self.poses = []
+        self._measured = []
         self.max_linear = 0.0
         self.max_angular = 0.0
         self.stalled = False
@@ -106,7 +106,12 @@ class RunScore(object):
         self._end = None
 
     def add_pose(self, stamp, pose):
-        """Feed the ground-truth pose (x, y, yaw) at time stamp (s); ignored once the lap is over."""
+        """Feed the ground-truth pose (x, y, yaw) at time stamp (s); ignored once the lap is over.
+
+        Cheap on purpose: a monitor calls it for every simulated step, at
+        whatever pace the simulator runs; distances and clearances are cast
+        later, by summary().
+        """
         if self.lap.closed or (self._last is not None and stamp <= self._last):
             return
         if self._end is not None and stamp > self._end:
@@ -116,8 +121,7 @@ class RunScore(object):
         weight = 0.0 if self._last is None else stamp - self._last
         self._last = self.end_time = stamp
         self.weights.append(weight)
-        self.distances.append(self.map.right_wall_distance(pose))
-        self.min_clearance = min(self.min_clearance, self.map.clearance(pose))
+        self.poses.append(pose)
         self.lap.add(stamp, *pose)
         if self.lap.closed:
             self.lap_time = stamp - self.start_time
@@ -144,10 +148,18 @@ class RunScore(object):
     def path_length(self):
         return self.lap.total_distance
 
+    def _measure(self):
+        """(right-wall distance, clearance) of every pose so far, cast once each."""
+        for pose in self.poses[len(self._measured):]:
+            self._measured.append((self.map.right_wall_distance(pose), self.map.clearance(pose)))
+        return self._measured
+
     def summary(self):
         """The run's figures as a dict (NaN where there is nothing to measure)."""
+        measured = self._measure()
+        min_clearance = min((c for _, c in measured), default=math.inf)
         weights = np.asarray(self.weights[1:], dtype=float)
-        distances = np.asarray(self.distances[1:], dtype=float)
+        distances = np.asarray([d for d, _ in measured[1:]], dtype=float)
         total = weights.sum()
         if total > 0.0:
             low, high = self.band
@@ -167,8 +179,8 @@ class RunScore(object):
             'lap_time_ratio': lap_time / bound if bound == bound and bound > 0 else float('nan'),
             'time_in_band': in_band,
             'rms_error': rms,
-            'min_clearance': self.min_clearance,
-            'contact': self.stalled or self.min_clearance <= 0.0,
+            'min_clearance': min_clearance,
+            'contact': self.stalled or min_clearance <= 0.0,
             'max_linear': self.max_linear,
             'max_angular': self.max_angular,
         }

@@ -18,6 +18,10 @@ from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, Od
 from wall_follower.nodes.common import pose_of
 from wall_follower.scoring import RunScore
 
+# Every simulated step matters to a score, and in lockstep the simulator runs
+# as fast as the controllers answer: queues long enough never to drop one.
+QUEUE = 10000
+
 
 class CourseMonitor(object):
     """Scores a run from ground truth while the nodes under test drive.
@@ -45,12 +49,13 @@ class CourseMonitor(object):
         self.trail = []
         self._backlog = []
         self._subs = [
-            rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=50),
-            rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=50),
-            rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=50),
+            rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
+                             queue_size=QUEUE),
+            rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=QUEUE),
+            rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=QUEUE),
             rospy.Subscriber('record_odom/goal', OdomRecordActionGoal, self._on_goal, queue_size=5),
             rospy.Subscriber('record_odom/feedback', OdomRecordActionFeedback,
-                             self._on_feedback, queue_size=50),
+                             self._on_feedback, queue_size=QUEUE),
             rospy.Subscriber('record_odom/result', OdomRecordActionResult, self._on_result,
                              queue_size=5),
             rospy.Subscriber('record_odom/status', GoalStatusArray, self._on_status, queue_size=5),
