@@ -11,12 +11,10 @@ so no run can outpace it.
 """
 import math
 import sys
-import time
 import unittest
 
 import rospy
 import rostest
-from std_srvs.srv import Empty
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
@@ -36,12 +34,7 @@ class Course(unittest.TestCase):
         cls.tolerance = rospy.get_param('/odom_recorder/close_tolerance', 0.3)
         cls.monitor = CourseMonitor(CourseMap(world_path(cls.world)), start_on_goal=True)
         # The simulator starts paused: nothing moves until the monitor hears everything.
-        deadline = time.monotonic() + CONNECT_LIMIT
-        while not cls.monitor.connected():
-            assert time.monotonic() < deadline, 'the monitor could not connect'
-            time.sleep(0.05)
-        rospy.wait_for_service('unpause_physics', timeout=CONNECT_LIMIT)
-        rospy.ServiceProxy('unpause_physics', Empty)()
+        assert cls.monitor.start_world(CONNECT_LIMIT), 'the monitor could not connect'
         assert cls.monitor.wait(), 'shut down before the lap was recorded'
         rospy.sleep(AFTER_RESULT)
 

@@ -5,11 +5,13 @@ truth, stalls) and to what the nodes say (cmd_vel, the record_odom action's
 goal, feedback and result), and scores the run with wall_follower.scoring.
 """
 import threading
+import time
 
 import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
+from std_srvs.srv import Empty
 
 from wall_follower.lap import PathLength
 from actionlib_msgs.msg import GoalStatusArray
@@ -145,6 +147,28 @@ class CourseMonitor(object):
         return all(sub.get_num_connections() > 0 for sub in self._subs
                    if sub.name.rsplit('/', 1)[-1] in ('base_pose_ground_truth', 'stalled',
                                                        'feedback', 'result', 'status'))
+
+    def start_world(self, limit=30.0):
+        """Once every subscription is connected, unpause a simulator started paused.
+
+        A monitor that starts listening late misses the start of the run;
+        so the launch starts the simulator paused and the monitor lets it go
+        only when it hears everything. A simulator without pause_physics
+        (real stageros) is left as it is. False if the monitor could not
+        connect within limit wall seconds.
+        """
+        deadline = time.monotonic() + limit
+        while not self.connected():
+            if rospy.is_shutdown() or time.monotonic() > deadline:
+                return False
+            time.sleep(0.05)
+        try:
+            rospy.wait_for_service('unpause_physics', timeout=min(5.0, limit))
+        except rospy.ROSException:
+            rospy.loginfo('no unpause_physics service: the simulator was not paused')
+            return True
+        rospy.ServiceProxy('unpause_physics', Empty)()
+        return True
 
     def close(self):
         for sub in self._subs:

@@ -71,6 +71,9 @@ def main():
         rospy.logerr('course_report: cannot read world %s: %s', world, err)
         return 1
     monitor = CourseMonitor(course_map, start_on_goal=True)
+    if not monitor.start_world():
+        rospy.logerr('course_report: could not connect to the simulator and record_odom')
+        return 1
     rospy.loginfo('course_report: waiting for the lap to be recorded')
     if not monitor.wait():
         return 0
