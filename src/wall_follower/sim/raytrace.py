@@ -1,37 +1,57 @@
-"""Laser raytracing on an OccupancyGrid, vectorised over beams.
+"""Laser ranges on an OccupancyGrid, as real Stage measures them, for all beams at once.
 
-`stage_ranges` reproduces real Stage's World::Raytrace, whose quirks show in
-every scan and are what the reference recordings measure:
+What Stage does to a beam (measured against the recordings in
+test/data/stage_reference, whose every beam `stage_ranges` reproduces):
 
-* A beam walks whole cells from the exact laser position: each step moves one
-  cell along x or along y, chosen by an integer error term of the truncated
-  cell deltas (ax, ay) of the full-range ray. That walk is a fixed lattice
-  path, so the state after m steps has a closed form (see stage_walk), which is
-  what lets all beams be handled at once instead of cell by cell.
-* The range of a hit is the travelled distance along the major axis divided
-  by the cosine, so a beam along an axis reads a whole number of cells.
-* The walk runs through cells only inside 32x32-cell "regions" that hold
-  some block; an empty region is skipped by jumping to where the exact ray
-  crosses its border. A jump re-anchors the walk on the ray, which shifts the
-  later quantisation: ignoring it puts 3-6% of beams more than 2 cm off.
-* The budget is the Manhattan cell distance ax + ay, decremented by each step
-  and each jump's Manhattan length, so walls just inside range_max can read
-  range_max.
-* Cell lookups truncate towards zero (C's double -> int), not floor.
+* Cell path. The beam is followed cell by cell along a stage_walk path that
+  starts at the laser's exact position, in cell units, and heads for the cell
+  range_max away. The cell looked at is that position truncated towards zero
+  (C's double-to-int), not floored.
+* Range. A hit reads the distance travelled along the path's major axis,
+  divided by the direction cosine of that axis: a beam along an axis reads a
+  whole number of cells, and hits lie up to about a cell behind the surface.
+* Regions. The world is tiled into 32x32-cell regions and only the regions
+  something was drawn into (obstacles, robot bodies) are followed cell by
+  cell. Across an empty region the beam flies: from its current position,
+  along a line parallel to the beam, to where that line enters the next
+  region, and its cell path goes on from that point. These restarts shift the
+  later quantisation; ignoring them puts 3-6 % of beams more than 2 cm off.
+* Budget. A beam may spend (cells along x + cells along y) of range_max: one
+  per cell step, and each flight's Manhattan length, rounded up. A wall just
+  inside range_max can be out of reach, and then reads as a miss does:
+  range_max exactly, intensity 0.
+* Crossing x = 0 or y = 0 inside a region, the followed cell and the
+  truncated position part by one until the next region border, where the cell
+  is taken from the position again.
+
+How it is computed here: every beam alternates flights and walks. A flight
+(over empty regions) is repeated crossing by crossing for all flying beams
+together. A walk covers several populated regions at once: the region
+borders ahead come from closed forms of the cell path, and inside each region
+only the part of the path within the bounding box of the region's visible
+cells is searched, one table lookup per line of the path's minor axis. A scan
+takes a handful of these rounds, whatever the number of beams.
 
 `exact_ranges` is plain geometry: the distance to the boundary of the first
 occupied cell along the exact ray, for scoring.
 """
 import math
-
 import numpy as np
 
-from .stage_walk import Walks
+from .stage_walk import NEVER, CellPaths
 
 __all__ = ['stage_ranges', 'exact_ranges', 'stage_beam_angles', 'REGION_WIDTH']
 
 REGION_BITS = 5
 REGION_WIDTH = 1 << REGION_BITS
+# Region borders looked ahead along each axis by one walk, and the ring of empty
+# regions around the grid's tables that this needs.
+_BORDERS_AHEAD = 4
+_RING = _BORDERS_AHEAD + 1
+# Signed cell coordinate of the box of a region without visible cells: beyond any walk.
+_NO_BOX = 1 << 40
+# Directions of travel, indexing the per-direction tables.
+_PLUS_X, _MINUS_X, _PLUS_Y, _MINUS_Y = range(4)
 
 
 def stage_beam_angles(start, increment, samples):
@@ -45,54 +65,124 @@ def stage_beam_angles(start, increment, samples):
     return np.cumsum(steps, dtype=np.float32).astype(np.float64)
 
 
-class _RegionMap(object):
-    """What the walk needs to know about the grid, on arrays padded to whole regions.
+def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), other_cells=()):
+    """Ranges and intensities of beams from (x, y) at world `angles`, as Stage computes them.
 
-    populated[region row, region col]: the region holds some block (so it is walked).
-    visible / returns [cell row, cell col]: cells a beam can hit, and what it reads there.
-    next_visible: for each cell, the nearest visible cell at or beyond it along its row
-    (+x, -x) and along its column (+y, -y), flattened into one array so that a beam
-    looks up its own direction's table by offset and stride.
+    height: beam height above the ground for Stage's block height test (None: every
+        visible cell counts).
+    robot_cells: [(xs, ys)] Stage cells of robot bodies; this laser never hits them but,
+        as in Stage, they make their regions followed cell by cell.
+    other_cells: [(xs, ys, intensity)] cells of other robots, which the laser does hit.
+    A beam that hits nothing reads range_max exactly with intensity 0.
+    """
+    angles = np.asarray(angles, dtype=np.float64)
+    bodies = [c for c in robot_cells if len(c[0])]
+    others = [c for c in other_cells if len(c[0])]
+    tables = None
+    if not others:
+        static = _static_tables(grid, height)
+        tables = static.with_bodies(bodies) if bodies else static
+    if tables is None:
+        visible = _visible(grid, height).copy()
+        returns = grid.ranger_return.copy()
+        nrows, ncols = visible.shape
+        for cells_x, cells_y, intensity in others:
+            rows = np.asarray(cells_y, dtype=np.int64) - grid.iy0
+            cols = np.asarray(cells_x, dtype=np.int64) - grid.ix0
+            inside = (rows >= 0) & (cols >= 0) & (rows < nrows) & (cols < ncols)
+            visible[rows[inside], cols[inside]] = True
+            returns[rows[inside], cols[inside]] = intensity
+        bodies = bodies + [(c[0], c[1]) for c in others]
+        tables = _GridTables.build(grid, visible, returns, bodies)
+    return _Scan(tables, grid.ppm, float(x), float(y), angles, float(range_max)).run()
+
+
+def _visible(grid, height):
+    return grid.visible(height) if height is not None else ~np.isnan(grid.ranger_return)
+
+
+def _static_tables(grid, height):
+    """The tables of the grid alone, cached on the grid per beam height."""
+    key = ('stage_ranges', None if height is None else round(float(height), 9))
+    tables = grid.cache.get(key)
+    if tables is None:
+        tables = _GridTables.build(grid, _visible(grid, height), grid.ranger_return, [])
+        grid.cache[key] = tables
+    return tables
+
+
+class _GridTables(object):
+    """Lookup tables of one grid, on cell arrays padded to whole regions.
+
+    Per-region tables cover the regions of the grid plus a ring of _RING empty regions
+    all round (further regions are clamped onto the ring where needed); region (rx, ry)
+    is entry (ry - ry0 + _RING) * region_stride + (rx - rx0 + _RING).
+    populated[region]: something was drawn into the region (its cells are followed).
+    has_visible[region]: the region holds a cell the laser can hit.
+    box_near / box_far [direction * regions + region]: bounding box of the region's
+        visible cells along a direction of travel, in signed coordinates (see `ahead`).
+    ahead[direction * cells + cell]: for every cell and direction (+x, -x along its row,
+        +y, -y along its column), the nearest visible cell at or beyond it, as its
+        coordinate times the direction's sign, so that along every direction "no further
+        than c" reads `ahead <= c`; NEVER if there is none. The column tables are stored
+        transposed, so that a walk along y reads consecutive entries too.
+    returns[cell]: intensity of a visible cell; cells are (y - cy0) * width + (x - cx0).
     """
 
     def __init__(self, populated, rx0, ry0, visible, returns):
-        self.populated = populated
         self.rx0, self.ry0 = rx0, ry0
-        self.cx0 = rx0 * REGION_WIDTH
-        self.cy0 = ry0 * REGION_WIDTH
-        self.visible = visible
-        self.returns = returns
-        height, width = visible.shape
-        blocks = visible.reshape(populated.shape[0], REGION_WIDTH, populated.shape[1],
-                                 REGION_WIDTH)
-        self.has_visible = blocks.any(axis=(1, 3))
-        self.has_visible_flags = self.flags(self.has_visible)
-        self.populated_flags = self.flags(populated)
-        # bounding box of each region's visible cells, in cells of the padded arrays
-        in_cols = blocks.any(axis=1)   # [region row, region col, cell col within]
-        in_rows = blocks.any(axis=3)   # [region row, cell row within, region col]
-        col_base = (np.arange(populated.shape[1]) * REGION_WIDTH)[None, :]
-        row_base = (np.arange(populated.shape[0]) * REGION_WIDTH)[:, None]
-        self.box_x_lo = col_base + np.argmax(in_cols, axis=2)
-        self.box_x_hi = col_base + REGION_WIDTH - 1 - np.argmax(in_cols[:, :, ::-1], axis=2)
-        self.box_y_lo = row_base + np.argmax(in_rows, axis=1)
-        self.box_y_hi = row_base + REGION_WIDTH - 1 - np.argmax(in_rows[:, ::-1, :], axis=1)
-        far = np.int64(1 << 40)
-        cols = np.where(visible, np.arange(width)[None, :], far)
-        rows = np.where(visible, np.arange(height)[:, None], far)
-        plus_x = np.minimum.accumulate(cols[:, ::-1], axis=1)[:, ::-1]
-        minus_x = np.maximum.accumulate(np.where(visible, cols, -far), axis=1)
-        plus_y = np.minimum.accumulate(rows[::-1, :], axis=0)[::-1, :]
-        minus_y = np.maximum.accumulate(np.where(visible, rows, -far), axis=0)
-        # row tables are indexed [y, x]; column tables transposed to [x, y]
-        self.next_visible = np.concatenate([plus_x.ravel(), minus_x.ravel(),
-                                            plus_y.T.ravel(), minus_y.T.ravel()])
-        self.table_size = height * width
-        self.height, self.width = height, width
+        rows, cols = populated.shape
+        self.region_rows, self.region_cols = rows, cols
+        self.region_stride = cols + 2 * _RING
+        self.region_origin = -((ry0 - _RING) * self.region_stride + (rx0 - _RING))
+        self.cx0, self.cy0 = rx0 * REGION_WIDTH, ry0 * REGION_WIDTH
+        self.height, self.width = visible.shape
+        self.cells = self.height * self.width
+        self.populated_lo = np.array([rx0, ry0])
+        self.populated_hi = np.array([rx0 + cols - 1, ry0 + rows - 1])
+        self.region_lo = np.array([rx0 - _RING, ry0 - _RING])
+        self.region_hi = np.array([rx0 + cols + _RING - 1, ry0 + rows + _RING - 1])
+        self.origin_cell = np.array([self.cx0, self.cy0])
+        self.returns_origin = -(self.cy0 * self.width + self.cx0)
+        self._set_populated(populated)
+        self.returns = returns.ravel()
+        blocks = visible.reshape(rows, REGION_WIDTH, cols, REGION_WIDTH)
+        self.has_visible = _with_ring(blocks.any(axis=(1, 3)))
+        self._build_boxes(blocks)
+        self._build_ahead(visible)
+
+    def _build_boxes(self, blocks):
+        by_col = blocks.any(axis=1)   # [region row, region col, column within]
+        by_row = blocks.any(axis=3)   # [region row, row within, region col]
+        col_base = self.cx0 + REGION_WIDTH * np.arange(self.region_cols)[None, :]
+        row_base = self.cy0 + REGION_WIDTH * np.arange(self.region_rows)[:, None]
+        x_lo = col_base + np.argmax(by_col, axis=2)
+        x_hi = col_base + REGION_WIDTH - 1 - np.argmax(by_col[:, :, ::-1], axis=2)
+        y_lo = row_base + np.argmax(by_row, axis=1)
+        y_hi = row_base + REGION_WIDTH - 1 - np.argmax(by_row[:, ::-1, :], axis=1)
+        # a region without visible cells gets a box no walk can enter
+        empty = ~blocks.any(axis=(1, 3))
+        self.box_near = np.concatenate([_with_ring(np.where(empty, _NO_BOX, b), _NO_BOX)
+                                        for b in (x_lo, -x_hi, y_lo, -y_hi)])
+        self.box_far = np.concatenate([_with_ring(np.where(empty, -_NO_BOX, b), -_NO_BOX)
+                                       for b in (x_hi, -x_lo, y_hi, -y_lo)])
+
+    def _build_ahead(self, visible):
+        xs = self.cx0 + np.arange(self.width)[None, :]
+        ys = self.cy0 + np.arange(self.height)[:, None]
+        plus_x = np.where(visible, xs, NEVER)
+        minus_x = np.where(visible, -xs, NEVER)
+        plus_y = np.where(visible, ys, NEVER)
+        minus_y = np.where(visible, -ys, NEVER)
+        self.ahead = np.concatenate([
+            np.minimum.accumulate(plus_x[:, ::-1], axis=1)[:, ::-1].ravel(),
+            np.minimum.accumulate(minus_x, axis=1).ravel(),
+            np.minimum.accumulate(plus_y[::-1, :], axis=0)[::-1, :].T.ravel(),
+            np.minimum.accumulate(minus_y, axis=0).T.ravel()])
 
     @classmethod
     def build(cls, grid, visible, ranger_return, extra_cells):
-        """Regions of the grid's drawn cells plus `extra_cells` [(xs, ys)] (robot bodies)."""
+        """Tables of the grid's drawn cells plus `extra_cells` [(xs, ys)] (robot bodies)."""
         rows, cols = np.nonzero(grid.drawn)
         xs = [cols + grid.ix0] + [np.asarray(c[0], dtype=np.int64) for c in extra_cells]
         ys = [rows + grid.iy0] + [np.asarray(c[1], dtype=np.int64) for c in extra_cells]
@@ -109,353 +199,396 @@ class _RegionMap(object):
         padded_visible = np.zeros(shape, dtype=bool)
         padded_returns = np.zeros(shape)
         vr, vc = np.nonzero(visible)
-        vx, vy = vc + grid.ix0 - rx0 * REGION_WIDTH, vr + grid.iy0 - ry0 * REGION_WIDTH
+        vx = vc + grid.ix0 - rx0 * REGION_WIDTH
+        vy = vr + grid.iy0 - ry0 * REGION_WIDTH
         padded_visible[vy, vx] = True
         padded_returns[vy, vx] = ranger_return[vr, vc]
         return cls(populated, rx0, ry0, padded_visible, padded_returns)
 
-    def with_cells(self, extra_cells):
-        """This map with the regions of `extra_cells` marked populated (None if outside)."""
-        xs = np.concatenate([np.asarray(c[0], dtype=np.int64) for c in extra_cells])
-        ys = np.concatenate([np.asarray(c[1], dtype=np.int64) for c in extra_cells])
+    def with_bodies(self, bodies):
+        """These tables with the regions of `bodies` [(xs, ys)] populated (None if outside)."""
+        xs = np.concatenate([np.asarray(c[0], dtype=np.int64) for c in bodies])
+        ys = np.concatenate([np.asarray(c[1], dtype=np.int64) for c in bodies])
         r = (ys >> REGION_BITS) - self.ry0
         c = (xs >> REGION_BITS) - self.rx0
-        if r.min() < 0 or c.min() < 0 or r.max() >= self.populated.shape[0] or \
-                c.max() >= self.populated.shape[1]:
+        if r.min() < 0 or c.min() < 0 or r.max() >= self.region_rows or \
+                c.max() >= self.region_cols:
             return None
-        out = _RegionMap.__new__(_RegionMap)
+        out = _GridTables.__new__(_GridTables)
         out.__dict__.update(self.__dict__)
-        out.populated = self.populated.copy()
-        out.populated[r, c] = True
-        out.populated_flags = out.flags(out.populated)
+        populated = self.populated_core.copy()
+        populated[r, c] = True
+        out._set_populated(populated)
         return out
 
-    def region_ids(self, rx, ry):
-        """Index of regions (rx, ry) into the flat flag tables; outside ones hit the border."""
-        rows, cols = self.populated.shape
-        r = np.minimum(np.maximum(ry - (self.ry0 - 1), 0), rows + 1)
-        c = np.minimum(np.maximum(rx - (self.rx0 - 1), 0), cols + 1)
-        return r * (cols + 2) + c
+    def _set_populated(self, populated):
+        self.populated_core = populated
+        self.populated = _with_ring(populated)
 
-    def flags(self, table):
-        """`table` flattened with a border of False regions, for region_ids()."""
-        return np.pad(table, 1, mode='constant', constant_values=False).ravel()
-
-
-def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), other_cells=()):
-    """Ranges and intensities of beams from (x, y) at world `angles`, as Stage computes them.
-
-    height: beam height above the ground for Stage's block height test (None: every
-        visible cell counts).
-    robot_cells: [(xs, ys)] Stage cells of robot bodies; this laser never hits them but,
-        as in Stage, they make their regions walked cell by cell.
-    other_cells: [(xs, ys, intensity)] cells of other robots, which the laser does hit.
-    A beam that hits nothing reads range_max exactly with intensity 0.
-    """
-    angles = np.asarray(angles, dtype=np.float64)
-    bodies = [c for c in robot_cells if len(c[0])]
-    others = [c for c in other_cells if len(c[0])]
-    regions = None
-    if not others:
-        static = _static_regions(grid, height)
-        regions = static.with_cells(bodies) if bodies else static
-    if regions is None:
-        visible = _visible(grid, height).copy()
-        returns = grid.ranger_return.copy()
-        nrows, ncols = visible.shape
-        for cells_x, cells_y, intensity in others:
-            rows = np.asarray(cells_y, dtype=np.int64) - grid.iy0
-            cols = np.asarray(cells_x, dtype=np.int64) - grid.ix0
-            ok = (rows >= 0) & (cols >= 0) & (rows < nrows) & (cols < ncols)
-            visible[rows[ok], cols[ok]] = True
-            returns[rows[ok], cols[ok]] = intensity
-        bodies = bodies + [(c[0], c[1]) for c in others]
-        regions = _RegionMap.build(grid, visible, returns, bodies)
-    return _StageTrace(regions, grid.ppm, float(x), float(y), angles, float(range_max)).run()
+    def populated_at(self, point):
+        """Is the region of `point` [x; y] (cell units) populated?"""
+        region = np.minimum(np.maximum(np.asarray(point).astype(np.int64) >> REGION_BITS,
+                                       self.region_lo), self.region_hi)
+        return bool(self.populated[region[1] * self.region_stride + region[0] +
+                                   self.region_origin])
 
 
-def _visible(grid, height):
-    return grid.visible(height) if height is not None else ~np.isnan(grid.ranger_return)
+# Rows of _Scan.frame: per beam, [major axis; minor axis] pairs, then single rows.
+_SIGN = slice(0, 2)             # +1 or -1: direction of travel
+_BACK = slice(2, 4)             # 1 when travelling down the axis, else 0
+_REGION_STRIDE = slice(4, 6)    # region entry step per region along the axis
+_RETURNS_STRIDE = slice(6, 8)   # `returns` step per cell along the axis
+_BOX = slice(8, 10)             # offset of the direction's box tables
+_AHEAD_BASE = 10                # `ahead` entry of cell (major 0, minor 0)
+_AHEAD_LINE = 11                # `ahead` step per signed minor cell
+# Borders looked ahead along an axis: the first, second, ...: steps beyond the first.
+_FURTHER = REGION_WIDTH * np.arange(_BORDERS_AHEAD, dtype=np.float64)[:, None]
+_FURTHER_CELLS = _FURTHER.astype(np.int64)
+_BORDER_NUMBER = np.arange(1, _BORDERS_AHEAD + 1)[:, None]
+# Rows of _Scan.flight: per beam, what a flight needs.
+_HOPS = slice(0, 4)             # how the crossing of an x border, of a y border move on: x, y
+_HOP_LENGTH = slice(4, 6)       # their Manhattan lengths
+_FLIGHT_AHEAD = slice(6, 8)     # the next border along x, y: a region up or 0 going down
+_FLIGHT_BACK = slice(8, 10)     # and 1 cell back when going down
+_FLIGHT_TANA = 10
+_FLIGHT_START = slice(11, 13)   # (filled in per flight) the position flown from
+# Crossings along each axis tried first.
+_FIRST_CROSSINGS = 3
 
+class _Scan(object):
+    """One scan: per-beam constants, then rounds of flights and walks until all beams end.
 
-def _static_regions(grid, height):
-    """The region map of the grid alone, cached on the grid per beam height."""
-    key = ('stage_regions', None if height is None else round(float(height), 9))
-    regions = grid.cache.get(key)
-    if regions is None:
-        regions = _RegionMap.build(grid, _visible(grid, height), grid.ranger_return, [])
-        grid.cache[key] = regions
-    return regions
-
-
-class _StageTrace(object):
-    """All beams of one scan walked together, region by region, as World::Raytrace does.
-
-    Per beam the walk state is (i, j), the x and y steps made, the floating position
-    `glob` in cell units (re-anchored on the ray by every jump) and Stage's budget n.
-    Beams in empty regions jump until they reach a populated one; then every live beam
-    walks its populated region to a hit, out of the region, or out of budget. The
-    arithmetic runs masked over all beams, because numpy's per-call cost, not the
-    element count, dominates at a few hundred beams.
+    A traced beam's state is its position g in cell units, the steps its cell path has
+    made and the budget n left, the first two as [major axis; minor axis] of the beam's
+    own frame, in which signed cells (cell times the direction's sign) grow along the
+    path.
     """
 
-    def __init__(self, regions, ppm, x, y, angles, range_max):
-        self.regions = regions
+    def __init__(self, tables, ppm, x, y, angles, range_max):
+        self.tables = tables
         self.ppm = ppm
-        angle = np.where(angles == 0.0, 1e-12, angles)
-        self.sina = np.sin(angle)
-        self.cosa = np.cos(angle)
-        self.tana = self.sina / self.cosa
-        dx = ppm * range_max * self.cosa
-        dy = ppm * range_max * self.sina
-        self.forward_x = dx >= 0
-        self.forward_y = dy >= 0
-        self.sx = np.where(self.forward_x, 1, -1)
-        self.sy = np.where(self.forward_y, 1, -1)
-        ax = np.abs(dx).astype(np.int64)
-        ay = np.abs(dy).astype(np.int64)
-        self.ax, self.ay = ax, ay
-        self.x_major = ax > ay
-        self.walks = Walks(ax, ay)
-        # steps to leave a region from cell offset c within it: 32 - c ahead, c + 1 back
-        self.exit_base_x = np.where(self.forward_x, REGION_WIDTH, 1)
-        self.exit_base_y = np.where(self.forward_y, REGION_WIDTH, 1)
-        self.startx, self.starty = x * ppm, y * ppm
-        self.xjumpx = self.sx * float(REGION_WIDTH)
-        self.xjumpy = self.sx * REGION_WIDTH * self.tana
-        self.yjumpx = self.sy * REGION_WIDTH / self.tana
-        self.yjumpy = self.sy * float(REGION_WIDTH)
-        self.xjumpdist = np.abs(self.xjumpx) + np.abs(self.xjumpy)
-        self.yjumpdist = np.abs(self.yjumpx) + np.abs(self.yjumpy)
+        self.start = np.array([x * ppm, y * ppm])
         count = len(angles)
+        every = np.arange(count)
+        # Stage nudges a beam at exactly 0 rad, whose slope would otherwise be 0.
+        angle = np.where(angles == 0.0, 1e-12, angles)
+        trig = np.empty((2, count))
+        np.cos(angle, out=trig[0])
+        np.sin(angle, out=trig[1])
+        self.tana = trig[1] / trig[0]
+        reach = (ppm * range_max) * trig
+        up = reach >= 0
+        self.paths = CellPaths(*np.abs(reach).astype(np.int64))
+        self.budget = self.paths.long + self.paths.short
+        # frame axis f is axis swap[f] of [x; y], and the other way round
+        self.swap = np.empty((2, count), dtype=np.int64)
+        self.swap[0] = self.paths.major_is_x == 0
+        self.swap[1] = 1 - self.swap[0]
+        sign_xy = 2 * up - 1
+        sign = sign_xy[self.swap, every]
+        direction = (np.array([[_PLUS_X], [_PLUS_Y]]) + ~up)[self.swap, every]
+        # per x/y axis: region step, returns step, `ahead` line stride when it is major
+        per_axis = np.array([[1, 1, tables.width],
+                             [tables.region_stride, tables.width, tables.height]])[self.swap]
+        stride = per_axis[0, :, 2]
+        self.frame = np.empty((12, count), dtype=np.int64)
+        self.frame[_SIGN] = sign
+        self.frame[_BACK] = sign < 0
+        self.frame[_REGION_STRIDE] = per_axis[:, :, 0]
+        self.frame[_RETURNS_STRIDE] = per_axis[:, :, 1]
+        self.frame[_BOX] = direction * len(tables.populated)
+        self.frame[_AHEAD_BASE] = direction[0] * tables.cells - (
+            stride * tables.origin_cell[self.swap[1]] + tables.origin_cell[self.swap[0]])
+        self.frame[_AHEAD_LINE] = stride * sign[1]
+        self.major_trig = trig[self.swap[0], every]
+        self.major_start = self.start[self.swap[0]]
+        # flights: aim at the region border ahead, one cell past it going down
+        self.flight = np.empty((13, count))
+        hops = self.flight[_HOPS]
+        hops[0] = sign_xy[0] * float(REGION_WIDTH)
+        hops[1] = hops[0] * self.tana
+        hops[3] = sign_xy[1] * float(REGION_WIDTH)
+        hops[2] = hops[3] / self.tana
+        self.flight[4] = np.abs(hops[0]) + np.abs(hops[1])
+        self.flight[5] = np.abs(hops[2]) + np.abs(hops[3])
+        self.flight[_FLIGHT_AHEAD] = REGION_WIDTH * up
+        self.flight[_FLIGHT_BACK] = 1.0 - up
+        self.flight[_FLIGHT_TANA] = self.tana
         self.ranges = np.full(count, range_max)
         self.intensities = np.zeros(count)
-        self.i = np.zeros(count, dtype=np.int64)
-        self.j = np.zeros(count, dtype=np.int64)
-        self.n = ax + ay
-        self.live = self.n > 0
-        self.globx = np.full(count, self.startx)
-        self.globy = np.full(count, self.starty)
-        self.recalc = np.ones(count, dtype=bool)
-        # next region crossing along x (point, Manhattan distance) and along y
-        self.xcx = np.zeros(count)
-        self.xcy = np.zeros(count)
-        self.ycx = np.zeros(count)
-        self.ycy = np.zeros(count)
-        self.dist_x = np.zeros(count)
-        self.dist_y = np.zeros(count)
-        self.reg_lo = (regions.rx0, regions.ry0)
-        self.reg_hi = (regions.rx0 + regions.populated.shape[1] - 1,
-                       regions.ry0 + regions.populated.shape[0] - 1)
 
-    # -- rounds --------------------------------------------------------------------------
     def run(self):
-        regions = self.regions
-        while True:
-            # jump the beams in empty regions until each reaches a populated one
-            while True:
-                cell_x = self.globx.astype(np.int64)   # C's truncation towards zero
-                cell_y = self.globy.astype(np.int64)
-                reg_x = cell_x >> REGION_BITS
-                reg_y = cell_y >> REGION_BITS
-                region = regions.region_ids(reg_x, reg_y)
-                populated = regions.populated_flags[region]
-                jumping = self.live & ~populated
-                if not jumping.any():
-                    break
-                self._jump(jumping)
-            walking = self.live & populated
-            if not walking.any():
-                return self.ranges, self.intensities
-            self._walk_regions(walking, cell_x, cell_y, reg_x, reg_y,
-                               regions.has_visible_flags[region])
+        beam = np.nonzero(self.budget > 0)[0]
+        g = self.start[self.swap[:, beam]]
+        steps = np.zeros((2, len(beam)))
+        n = self.budget[beam]
+        flying = np.full(len(beam), not self.tables.populated_at(self.start))
+        while len(beam):
+            if flying.any():
+                fly = np.nonzero(flying)[0]
+                landed, g[:, fly], n[fly] = self._fly(beam[fly], g[:, fly], n[fly])
+                if not landed.all():
+                    keep = np.ones(len(beam), dtype=bool)
+                    keep[fly[~landed]] = False
+                    beam, g, steps, n = beam[keep], g[:, keep], steps[:, keep], n[keep]
+            if len(beam):
+                beam, g, steps, n, flying = self._walk(beam, g, steps, n)
+        return self.ranges, self.intensities
 
-    def _walk_regions(self, walking, cell_x, cell_y, reg_x, reg_y, has_visible):
-        """Walk the `walking` beams through their current region."""
-        i0, j0 = self.i, self.j
-        m0 = i0 + j0
-        left_x = self.exit_base_x - self.sx * (cell_x - (reg_x << REGION_BITS))
-        left_y = self.exit_base_y - self.sy * (cell_y - (reg_y << REGION_BITS))
-        walks = self.walks
-        exit_x = walks.steps_until_x(i0 + left_x)
-        exit_y = walks.steps_until_y(j0 + left_y)
-        exit_m = np.minimum(exit_x, exit_y)
-        budget_m = m0 + self.n
-        end_m = np.minimum(exit_m, budget_m)   # the states m0 .. end_m-1 are tested
-        hit = np.zeros(len(walking), dtype=bool)
-        look = np.nonzero(walking & has_visible & (end_m > m0))[0]
-        if len(look):
-            start, stop = self._box_window(look, m0[look], end_m[look], cell_x[look],
-                                           cell_y[look], reg_x[look], reg_y[look])
-            keep = start < stop
-            look, start, stop = look[keep], start[keep], stop[keep]
-        if len(look):
-            found, hit_i, hit_j = self._first_hit(look, start, stop, cell_x[look],
-                                                  cell_y[look])
-            hits = look[found]
+    # -- flights -------------------------------------------------------------------------
+    def _fly(self, beam, g, n):
+        """Fly beams out of empty regions, over the region borders ahead, until each lands.
+
+        Stage aims at the region border ahead along x and along y (one cell past it when
+        going down), flies to the nearer of the two crossings, and from then on moves
+        the crossing it used one region further, paying each flight's Manhattan length,
+        rounded up, from the budget. A flight lands at the first crossing into a
+        populated region, unless its budget runs out first. g: frame positions.
+        Returns (landed, g, n): whether each beam landed with budget left, and where,
+        with what budget.
+        """
+        count = len(beam)
+        every = np.arange(count)
+        swap = self.swap.take(beam, axis=1)
+        flight = self.flight.take(beam, axis=1)
+        flight[_FLIGHT_START] = g[swap, every]
+        # Most flights land within a few crossings: try those first, then all that
+        # are needed for the rest.
+        landed, out, left = self._crossings(flight, n, _FIRST_CROSSINGS)
+        again = np.nonzero(landed < 0)[0]
+        if len(again):
+            landed[again], out[:, again], left[again] = self._crossings(
+                flight.take(again, axis=1), n.take(again), None)
+        return landed > 0, out[swap, every], left
+
+    def _crossings(self, flight, n, hops):
+        """Flights of `hops` crossings along each axis (None: as many as needed).
+
+        The crossings along an axis are the same repeated additions as Stage's; merged
+        in the order of their distance (a tie goes to the y crossing, as in Stage), the
+        first that lands or runs out of budget ends the flight. Returns (landed, x y,
+        n), landed 1, 0, or -1 where `hops` did not reach far enough to tell.
+        """
+        tables = self.tables
+        count = flight.shape[1]
+        every = np.arange(count)
+        pos = flight[_FLIGHT_START]
+        up = flight[_FLIGHT_AHEAD] > 0
+        to = ((pos.astype(np.int64) & -REGION_WIDTH) + flight[_FLIGHT_AHEAD] - pos) - \
+            flight[_FLIGHT_BACK]
+        tana = flight[_FLIGHT_TANA]
+        rise = to[0] * tana
+        run = to[1] / tana
+        # crossings needed along each axis to leave the populated regions behind
+        region = pos.astype(np.int64) >> REGION_BITS
+        needed = np.where(up, tables.populated_hi[:, None] - region,
+                          region - tables.populated_lo[:, None]).max(axis=0) + 2
+        if hops is None:
+            hops = max(int(needed.max()), 1)
+        # [axis of the border crossed, crossing number, x / y, beam]
+        crossing = np.empty((2, hops, 2, count))
+        crossing[0, 0, 0] = pos[0] + to[0]
+        crossing[0, 0, 1] = pos[1] + rise
+        crossing[1, 0, 0] = pos[0] + run
+        crossing[1, 0, 1] = pos[1] + to[1]
+        crossing[:, 1:] = flight[_HOPS].reshape(2, 1, 2, count)
+        np.cumsum(crossing, axis=1, out=crossing)
+        # their Manhattan distances along the flight, in flight order (y crossings first,
+        # so that a stable sort puts them first in a tie)
+        length = flight[_HOP_LENGTH].reshape(2, 1, count)
+        distance = np.empty((2, 1, count))
+        distance[1, 0] = np.abs(to[0]) + np.abs(rise)
+        distance[0, 0] = np.abs(run) + np.abs(to[1])
+        distance = (distance + length[::-1] * np.arange(hops)[:, None]).reshape(2 * hops, count)
+        horizon = np.minimum(distance[hops - 1], distance[-1])
+        order = np.argsort(distance, axis=0, kind='stable')
+        on_x = order >= hops
+        flat = order * count + every
+        distance = distance.take(flat)
+        # each flight pays its length rounded up: after a flight along the same axis the
+        # full hop, otherwise what is left of the distance to the crossing
+        paid = np.empty((2 * hops, count))
+        paid[0] = distance[0]
+        np.subtract(distance[1:], distance[:-1], out=paid[1:])
+        np.copyto(paid[1:], np.where(on_x[1:], length[0], length[1]),
+                  where=on_x[1:] == on_x[:-1])
+        budget = n - np.cumsum(np.ceil(paid), axis=0)
+        points = crossing[::-1].reshape(2 * hops, 2, count)
+        land_x = points[:, 0].take(flat)
+        land_y = points[:, 1].take(flat)
+        regions = np.minimum(np.maximum(land_x.astype(np.int64) >> REGION_BITS,
+                                        tables.region_lo[0]), tables.region_hi[0]) + \
+            np.minimum(np.maximum(land_y.astype(np.int64) >> REGION_BITS, tables.region_lo[1]),
+                       tables.region_hi[1]) * tables.region_stride + tables.region_origin
+        alive = budget > 0
+        landed = tables.populated.take(regions) & alive
+        ends = np.where(landed | ~alive, np.arange(2 * hops)[:, None], 2 * hops).min(axis=0)
+        at = np.minimum(ends, 2 * hops - 1) * count + every
+        out = np.empty((2, count))
+        out[0] = land_x.take(at)
+        out[1] = land_y.take(at)
+        outcome = (landed.take(at) & (ends < 2 * hops)).astype(np.int64)
+        outcome[(needed > hops) & ~((ends < 2 * hops) & (distance.take(at) <= horizon))] = -1
+        return outcome, out, budget.take(at)
+
+    # -- walks ---------------------------------------------------------------------------
+    def _walk(self, beam, g, steps, n):
+        """Walk beams from populated regions on through the populated regions that follow.
+
+        A walk ends at a hit, at the end of its budget, or at a region border where it
+        has to stop: into an empty region, at the last border looked ahead, or where
+        Stage's cell, taken from the position again at every border, is not the cell
+        the walk followed. Returns the state (beam, g, steps, n) of the walks that go
+        on, and whether each flies next.
+        """
+        tables = self.tables
+        count = len(beam)
+        frame = self.frame.take(beam, axis=1)
+        paths = self.paths.select(beam)
+        sign = frame[_SIGN]
+        region_stride = frame[_REGION_STRIDE]
+        cell = g.astype(np.int64)          # truncated, as Stage does
+        m0 = steps[0] + steps[1]
+        budget_end = m0 + n
+        # The region borders ahead along each axis (one kind of border per axis), as
+        # states of the path, and the regions entered there.
+        to_border = REGION_WIDTH - ((sign * cell - frame[_BACK]) & (REGION_WIDTH - 1))
+        counts = (steps + to_border)[:, None, :] + _FURTHER
+        states = paths.state_after(counts)
+        own_shift = sign[:, None, :] * (to_border[:, None, :] + _FURTHER_CELLS)
+        across_shift = sign[::-1, None, :] * (states - counts - steps[::-1, None, :]).astype(
+            np.int64)
+        across = cell[::-1, None, :] + across_shift
+        region = (cell >> REGION_BITS) * region_stride
+        here = region[0] + region[1] + tables.region_origin
+        entered = ((cell >> REGION_BITS)[:, None, :] + sign[:, None, :] * _BORDER_NUMBER) * \
+            region_stride[:, None, :] + (across >> REGION_BITS) * region_stride[::-1, None, :] + \
+            tables.region_origin
+        # Stage takes the cell from the position again at every border; a walk goes on
+        # only where that is the cell it followed (it is not after passing zero, or when
+        # rounding moves a position within rounding of a cell border across it).
+        goes_on = tables.populated.take(entered, mode='clip')
+        goes_on &= (g[:, None, :] + own_shift).astype(np.int64) == cell[:, None, :] + own_shift
+        goes_on &= (g[::-1, None, :] + across_shift).astype(np.int64) == across
+        goes_on[:, -1] = False
+        states = states.reshape(2 * _BORDERS_AHEAD, count)
+        end = np.minimum(np.where(goes_on.reshape(2 * _BORDERS_AHEAD, count), NEVER,
+                                  states).min(axis=0), budget_end)
+        # The walk's stretch in each region it enters, narrowed to the bounding box of the
+        # region's visible cells; the first such window along the walk is where it hits,
+        # if anywhere before its end (when it passes the window without a hit, later).
+        visits = 2 * _BORDERS_AHEAD + 1
+        regions = np.empty((visits, count), dtype=np.int64)
+        regions[0] = here
+        regions[1:] = entered.reshape(visits - 1, count)
+        entry = np.empty((visits, count))
+        entry[0] = m0
+        entry[1:] = states
+        shift = sign * cell - steps    # signed cell = shift + steps made, per axis
+        box = frame[_BOX][:, None, :] + regions
+        into = paths.state_after(tables.box_near.take(box, mode='clip') - shift[:, None, :])
+        beyond = paths.state_after(tables.box_far.take(box, mode='clip') - shift[:, None, :] + 1)
+        start = np.maximum(np.maximum(entry, into[0]), into[1])
+        stop = np.minimum(np.minimum(end, beyond[0]), beyond[1])
+        start[start >= stop] = NEVER
+        first = start.min(axis=0)
+        b = np.nonzero(first < NEVER)[0]
+        hit = np.zeros(count, dtype=bool)
+        if len(b):
+            first = first.take(b)
+            stop = stop.take(b, axis=1)
+            until = np.where(start.take(b, axis=1) == first, stop, NEVER).min(axis=0)
+            found, majors, state = self._first_hit(b, first, until, paths, frame, shift)
+            hits = b[found]
             hit[hits] = True
-            self._record_hits(hits, hit_i[found], hit_j[found], cell_x[hits], cell_y[hits])
-        leaving = walking & ~hit & (exit_m < budget_m)
-        self.live &= ~walking | leaving
-        by_x = exit_x < exit_y
-        new_i = np.where(by_x, i0 + left_x, walks.x_before_y(j0 + left_y - 1))
-        new_j = np.where(by_x, walks.y_before_x(new_i - 1), j0 + left_y)
-        moved_i = (new_i - i0) * leaving
-        moved_j = (new_j - j0) * leaving
-        self.globx = self.globx + self.sx * moved_i
-        self.globy = self.globy + self.sy * moved_j
-        self.n = self.n - (moved_i + moved_j)
-        self.i = i0 + moved_i
-        self.j = j0 + moved_j
-        self.recalc |= leaving
+            moved = np.empty((2, len(hits)))
+            moved[0] = majors - steps[0].take(hits)
+            moved[1] = state - majors - steps[1].take(hits)
+            self._record(beam[hits], g[0].take(hits), cell.take(hits, axis=1),
+                         frame.take(hits, axis=1), moved)
+            # A walk that passes its window without a hit goes on from the border that
+            # ends the window's region, if that comes before its end.
+            passed = np.ones(len(b), dtype=bool)
+            passed[found] = False
+            missed = b[passed]
+            after = states.take(missed, axis=1)
+            after = np.where(after >= until[passed], after, NEVER).min(axis=0)
+            end[missed] = np.minimum(end[missed], after)
+        going_on = np.nonzero(~hit & (end < budget_end))[0]
+        end = end.take(going_on)
+        done = np.empty((2, len(going_on)))
+        done[1] = paths.select(going_on).minors_within(end)
+        done[0] = end - done[1]
+        g = g.take(going_on, axis=1) + sign.take(going_on, axis=1) * (
+            done - steps.take(going_on, axis=1))
+        # Stage goes on from the cell of the position, which need not be the one entered
+        region = (g.astype(np.int64) >> REGION_BITS) * region_stride.take(going_on, axis=1)
+        flies = ~tables.populated.take(region[0] + region[1] + tables.region_origin,
+                                       mode='clip')
+        return beam.take(going_on), g, done, budget_end.take(going_on) - end, flies
 
-    def _box_window(self, b, m0, end_m, cell_x, cell_y, reg_x, reg_y):
-        """Steps [start, stop) of the walk that lie in the box around the region's targets.
+    def _first_hit(self, b, start, stop, paths, frame, shift):
+        """First visible cell of walks b among their states start .. stop-1.
 
-        Only there can the walk hit anything, and for a region crossed by a straight wall
-        that box is one cell wide, which keeps the hit search short.
+        The states lie on lines of the minor axis, each a run along the major axis, and
+        one `ahead` lookup per run says whether and where it meets a visible cell. Most
+        walks hit on their first line or two; those are searched for every walk, the
+        rest only for walks without a hit there. Returns (hit, majors, state): which
+        walks hit (indices into b), and for those the major steps made and the state.
         """
-        regions = self.regions
-        r = reg_y - regions.ry0
-        c = reg_x - regions.rx0
-        box_x = (regions.box_x_lo[r, c] + regions.cx0, regions.box_x_hi[r, c] + regions.cx0)
-        box_y = (regions.box_y_lo[r, c] + regions.cy0, regions.box_y_hi[r, c] + regions.cy0)
-        walks = self.walks.subset(b)
-        i0, j0 = self.i[b], self.j[b]
-        forward_x, forward_y = self.forward_x[b], self.forward_y[b]
-        # steps along each axis to reach the box and to pass beyond it
-        into_x = np.maximum(np.where(forward_x, box_x[0] - cell_x, cell_x - box_x[1]), 0)
-        past_x = np.where(forward_x, box_x[1] - cell_x, cell_x - box_x[0]) + 1
-        into_y = np.maximum(np.where(forward_y, box_y[0] - cell_y, cell_y - box_y[1]), 0)
-        past_y = np.where(forward_y, box_y[1] - cell_y, cell_y - box_y[0]) + 1
-        start = np.maximum(np.where(into_x > 0, walks.steps_until_x(i0 + into_x), m0),
-                           np.where(into_y > 0, walks.steps_until_y(j0 + into_y), m0))
-        stop = np.minimum(np.minimum(walks.steps_until_x(i0 + np.maximum(past_x, 1)),
-                                     walks.steps_until_y(j0 + np.maximum(past_y, 1))), end_m)
-        stop = np.where((past_x <= 0) | (past_y <= 0), start, stop)
-        return start, stop
+        path = paths.select(b)
+        sign = frame[_SIGN][0].take(b)
+        step = frame[_AHEAD_LINE].take(b)
+        shift_major = shift[0].take(b)
+        base = frame[_AHEAD_BASE].take(b) + step * shift[1].take(b) + sign * shift_major
+        first = path.minors_within(start)
+        last = path.minors_within(stop - 1)
+        hit, majors, state = self._lines(path, first, np.minimum(last, first + 1), start, stop,
+                                         base, step, sign, shift_major)
+        rest = np.nonzero(~hit & (last > first + 1))[0]
+        if len(rest):
+            rest_hit, rest_majors, rest_state = self._lines(
+                path.select(rest), first.take(rest) + 2, last.take(rest), start.take(rest),
+                stop.take(rest), base.take(rest), step.take(rest), sign.take(rest),
+                shift_major.take(rest))
+            found = rest[rest_hit]
+            hit[found] = True
+            majors[found] = rest_majors[rest_hit]
+            state[found] = rest_state[rest_hit]
+        found = np.nonzero(hit)[0]
+        return found, majors.take(found), state.take(found)
 
-    def _first_hit(self, b, start, stop, cell_x, cell_y):
-        """First visible cell among the walk's states start .. stop-1.
+    def _lines(self, path, first, last, start, stop, base, step, sign, shift_major):
+        """Search lines first .. last of each window [start, stop) for a visible cell."""
+        offsets = np.arange(-1, int((last - first).max()) + 1)[:, None]
+        bounds = path.majors_before_minor(first + offsets)
+        line = first + offsets[1:]
+        lo = np.maximum(bounds[:-1], start - line)
+        hi = np.minimum(bounds[1:], stop - 1 - line)
+        nearest = self.tables.ahead.take((base + step * line + sign * lo).astype(np.int64),
+                                         mode='clip')
+        hits = (line <= last) & (lo <= hi) & (nearest <= hi + shift_major)
+        rows = len(line)
+        row = np.where(hits, np.arange(rows)[:, None], rows).min(axis=0)
+        hit = row < rows
+        row = np.minimum(row, rows - 1) * len(first) + np.arange(len(first))
+        majors = nearest.take(row) - shift_major
+        return hit, majors, majors + line.take(row)
 
-        (cell_x, cell_y) is the cell of the beams' current state (i, j). The states form
-        runs along the beam's major axis, one per minor-axis line; the next-visible
-        table answers each run with one lookup. Returns (found, i, j) of the hit state.
-        """
-        regions = self.regions
-        x_major = self.x_major[b]
-        sx, sy = self.sx[b], self.sy[b]
-        i0, j0 = self.i[b], self.j[b]
-        major0 = np.where(x_major, i0, j0)
-        minor0 = np.where(x_major, j0, i0)
-        s_major = np.where(x_major, sx, sy)
-        cell_major0 = np.where(x_major, cell_x - regions.cx0, cell_y - regions.cy0)
-        cell_minor0 = np.where(x_major, cell_y - regions.cy0, cell_x - regions.cx0)
-        last = stop - 1
-        walks = self.walks.subset(b)
-        x_first = walks.x_count(start)
-        x_last = walks.x_count(last)
-        minor_first = np.where(x_major, start - x_first, x_first)
-        minor_last = np.where(x_major, last - x_last, x_last)
-        width = int((minor_last - minor_first).max()) + 1
-        k = minor_first[:, None] + np.arange(-1, width)[None, :]
-        bounds = _major_before_minor(walks.column(), x_major[:, None], k)
-        k = k[:, 1:]
-        lo = np.maximum(bounds[:, :-1], start[:, None] - k)
-        hi = np.minimum(bounds[:, 1:], last[:, None] - k)
-        usable = (k <= minor_last[:, None]) & (lo <= hi)
-        minor_cell = cell_minor0[:, None] + np.where(x_major, sy, sx)[:, None] * (
-            k - minor0[:, None])
-        lo_cell = cell_major0[:, None] + s_major[:, None] * (lo - major0[:, None])
-        hi_cell = cell_major0[:, None] + s_major[:, None] * (hi - major0[:, None])
-        table = np.where(x_major, np.where(sx > 0, 0, 1), np.where(sy > 0, 2, 3)) * \
-            regions.table_size
-        stride = np.where(x_major, regions.width, regions.height)
-        index = table[:, None] + np.where(usable, minor_cell * stride[:, None] + lo_cell, 0)
-        nearest = regions.next_visible[index]
-        hits = usable & np.where(s_major[:, None] > 0, nearest <= hi_cell, nearest >= hi_cell)
-        found = hits.any(axis=1)
-        line = np.argmax(hits, axis=1)
-        rows = np.arange(len(b))
-        hit_major = major0 + s_major * (nearest[rows, line] - cell_major0)
-        hit_minor = k[rows, line]
-        return (found, np.where(x_major, hit_major, hit_minor),
-                np.where(x_major, hit_minor, hit_major))
-
-    def _record_hits(self, b, hit_i, hit_j, cell_x, cell_y):
-        i0, j0 = self.i[b], self.j[b]
-        sx, sy = self.sx[b], self.sy[b]
-        gx = self.globx[b] + sx * (hit_i - i0)
-        gy = self.globy[b] + sy * (hit_j - j0)
-        along_x = np.abs((gx - self.startx) / self.cosa[b]) / self.ppm
-        along_y = np.abs((gy - self.starty) / self.sina[b]) / self.ppm
-        self.ranges[b] = np.where(self.x_major[b], along_x, along_y)
-        regions = self.regions
-        self.intensities[b] = regions.returns[cell_y + sy * (hit_j - j0) - regions.cy0,
-                                              cell_x + sx * (hit_i - i0) - regions.cx0]
-
-    def _jump(self, jumping):
-        """Jump the `jumping` beams over one empty region each."""
-        fresh = jumping & self.recalc
-        if fresh.any():
-            self._region_crossings(fresh)
-            self.recalc &= ~fresh
-        by_x = self.dist_x < self.dist_y
-        jump_x = jumping & by_x
-        jump_y = jumping & ~by_x
-        self.globx = np.where(jump_x, self.xcx, np.where(jump_y, self.ycx, self.globx))
-        self.globy = np.where(jump_x, self.xcy, np.where(jump_y, self.ycy, self.globy))
-        travelled = np.where(by_x, self.dist_x, self.dist_y)
-        self.n = np.where(jumping, (self.n - travelled).astype(np.int64), self.n)
-        self.xcx = self.xcx + self.xjumpx * jump_x
-        self.xcy = self.xcy + self.xjumpy * jump_x
-        self.ycx = self.ycx + self.yjumpx * jump_y
-        self.ycy = self.ycy + self.yjumpy * jump_y
-        self.dist_x, self.dist_y = (
-            np.where(jump_x, self.xjumpdist, self.dist_x - travelled * jump_y),
-            np.where(jump_y, self.yjumpdist, self.dist_y - travelled * jump_x))
-        # a beam beyond every populated region, heading away, will never hit anything
-        reg_x = self.globx.astype(np.int64) >> REGION_BITS
-        reg_y = self.globy.astype(np.int64) >> REGION_BITS
-        gone = (((reg_x > self.reg_hi[0]) & self.forward_x) |
-                ((reg_x < self.reg_lo[0]) & ~self.forward_x) |
-                ((reg_y > self.reg_hi[1]) & self.forward_y) |
-                ((reg_y < self.reg_lo[1]) & ~self.forward_y))
-        self.live &= ~(jumping & ((self.n <= 0) | gone))
-
-    def _region_crossings(self, fresh):
-        """Where the ray from each `fresh` beam's point leaves its region along x and y.
-
-        Stage aims one cell past the border when going left or down.
-        """
-        gx, gy = self.globx, self.globy
-        ix = gx.astype(np.int64)
-        iy = gy.astype(np.int64)
-        # C's integer division truncates; Stage then floors it off a border when negative
-        region_x = ((np.abs(ix) >> REGION_BITS) * np.sign(ix)) << REGION_BITS
-        region_y = ((np.abs(iy) >> REGION_BITS) * np.sign(iy)) << REGION_BITS
-        region_x = region_x - np.where((gx < 0) & (ix != region_x), REGION_WIDTH, 0)
-        region_y = region_y - np.where((gy < 0) & (iy != region_y), REGION_WIDTH, 0)
-        xdx = np.where(self.sx < 0, region_x - gx - 1.0, region_x + REGION_WIDTH - gx)
-        xdy = xdx * self.tana
-        ydy = np.where(self.sy < 0, region_y - gy - 1.0, region_y + REGION_WIDTH - gy)
-        ydx = ydy / self.tana
-        self.xcx = np.where(fresh, gx + xdx, self.xcx)
-        self.xcy = np.where(fresh, gy + xdy, self.xcy)
-        self.ycx = np.where(fresh, gx + ydx, self.ycx)
-        self.ycy = np.where(fresh, gy + ydy, self.ycy)
-        self.dist_x = np.where(fresh, np.abs(xdx) + np.abs(xdy), self.dist_x)
-        self.dist_y = np.where(fresh, np.abs(ydx) + np.abs(ydy), self.dist_y)
+    def _record(self, beam, g_major, cell, frame, moved):
+        """Range and intensity of beams that hit after `moved` [major; minor] steps."""
+        sign = frame[_SIGN]
+        self.ranges[beam] = np.abs((g_major + sign[0] * moved[0] - self.major_start[beam]) /
+                                   self.major_trig[beam]) / self.ppm
+        tables = self.tables
+        hit_cell = (cell + sign * moved.astype(np.int64)) * frame[_RETURNS_STRIDE]
+        self.intensities[beam] = tables.returns.take(hit_cell[0] + hit_cell[1] +
+                                                     tables.returns_origin)
 
 
-def _major_before_minor(walks, x_major, k):
-    """Major-axis steps made before minor step k (all of them when there is no step k)."""
-    after_start = k >= 0
-    # a walk along an axis has a single minor line holding every major step
-    along_x = np.where(walks.ay == 0, walks.ax * after_start, walks.x_before_y(k))
-    along_y = np.where(walks.ax == 0, walks.ay * after_start,
-                       np.minimum(np.maximum(walks.y_before_x(k), 0), walks.ay))
-    return np.where(x_major, along_x, along_y)
+def _with_ring(table, empty=False):
+    """`table` [region row, region col] with _RING empty regions all round, flattened."""
+    return np.pad(table, _RING, mode='constant', constant_values=empty).ravel()
 
 
 def exact_ranges(grid, x, y, angles, range_max):

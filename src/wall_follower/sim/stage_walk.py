@@ -1,72 +1,123 @@
-"""Stage's integer cell walk, in closed form.
+"""The cell path Stage takes between two cells, in closed form.
 
-Stage draws polygon edges (World::MapPoly) and casts rays (World::Raytrace)
-with the same walk: from a start cell towards a cell (ax, ay) away, one unit
-step at a time, an x step when the error term (2i+1)*ay - (2j+1)*ax is
-negative (i, j: x and y steps made so far) and a y step otherwise, so ties go
-to y. The walk is a fixed lattice path, so the state after any number of
-steps can be computed directly, for many walks at once with numpy.
+Stage rasterises polygon edges and casts laser beams along the same kind of
+path: from a start cell towards a cell `a` columns and `b` rows away, one
+unit step at a time, each step along x or along y. The path steps along x
+while (2i+1)*b < (2j+1)*a, where i and j count the x and y steps taken so
+far, and along y otherwise: it takes whichever step keeps it closer to the
+straight line, and a tie goes to y.
+
+Seen from the longer ("major") axis, the steps along the shorter ("minor")
+axis are spread evenly among the major ones, so how many steps of one kind
+come before a given step of the other kind is a single floor division. A
+path can therefore be looked at anywhere without stepping along it, for many
+paths at once with numpy.
 """
 import numpy as np
 
-__all__ = ['Walks', 'line_cells', 'NEVER']
+__all__ = ['CellPaths', 'line_cells', 'NEVER', 'MAJOR', 'MINOR']
 
-NEVER = np.iinfo(np.int64).max
+# A state beyond any path.
+NEVER = float(1 << 40)
+# The kinds of step, indexing the first dimension of stacked queries.
+MAJOR, MINOR = 0, 1
 
 
-class Walks(object):
-    """Many walks at once: arrays ax, ay >= 0 of cell distances along x and y."""
+class CellPaths(object):
+    """Many paths at once, given arrays a, b >= 0 of their x and y cell distances.
 
-    def __init__(self, ax, ay):
-        self.ax = np.asarray(ax, dtype=np.int64)
-        self.ay = np.asarray(ay, dtype=np.int64)
-        self._two_ax = 2 * self.ax
-        self._two_ay = 2 * self.ay
-        self._div_x = 2 * np.maximum(self.ax, 1)
-        self._div_y = 2 * np.maximum(self.ay, 1)
-        self._ax_plus_ay = self.ax + self.ay
-        self._ay_minus_ax = self.ay - self.ax
-        self._slope = self.ay / np.maximum(self.ax, 1)
+    long / short: the number of major / minor steps (major is x when a > b, else y).
+    State m of a path is the cell after its first m steps, 0 <= m <= long + short.
+    Step counts and states are float64 holding whole numbers (exact far beyond any
+    path), because numpy divides floats several times faster than integers; each
+    floor division below is exact, as its quotient is a fraction with a small
+    denominator, far from the rounding error. Queries that take `kind` accept MAJOR,
+    MINOR, or None for arrays stacked as [major queries, minor queries] along their
+    first dimension.
+    """
 
-    def subset(self, index):
-        """The walks selected by `index`."""
-        return Walks(self.ax[index], self.ay[index])
+    def __init__(self, a, b):
+        a = np.asarray(a, dtype=np.int64)
+        b = np.asarray(b, dtype=np.int64)
+        long = np.maximum(a, b)
+        short = np.minimum(a, b)
+        # The x-before-y rule is strict: seen from a major x axis a minor step waits
+        # for a tie, seen from a major y axis it does not.
+        tie = (a > b).astype(np.int64)
+        own = np.stack([long, short])
+        other = own[::-1]
+        twice_own = 2 * np.maximum(own, 1)
+        # Steps of the other kind taken before step number c (0-based) of one kind:
+        #   ceil(((2c+1) * other + offset) / twice_own)
+        #   = floor((c * 2 other + other + offset + twice_own - 1) / twice_own),
+        # where the offset carries the tie rule (and, for a path without minor steps,
+        # puts them all after its end).
+        offset = np.stack([tie - long, np.where(short == 0, long, 1 - tie - short)])
+        self._table = np.concatenate([
+            own, 2 * other, other + offset + twice_own - 1, twice_own,
+            # minor steps within the first m steps: floor((m * 2 short + c) / d)
+            [2 * short, np.maximum(long + short + tie - 1, 0), 2 * np.maximum(long + short, 1),
+             tie]]).astype(np.float64)
+        self._unpack()
 
-    def column(self):
-        """These walks with their constants shaped (n, 1), to broadcast over a row."""
-        return Walks(self.ax[:, None], self.ay[:, None])
+    def _unpack(self):
+        table = self._table
+        self.long, self.short = table[0], table[1]
+        self._twice_other = table[2:4]
+        self._before = table[4:6]
+        self._twice_own = table[6:8]
+        self._within = table[8:11]
+        self.major_is_x = table[11]
 
-    def y_before_x(self, i):
-        """y steps made before x step number i (0-based): #{j : (2j+1)*ax <= (2i+1)*ay}."""
-        return (i * self._two_ay + self._ax_plus_ay) // self._div_x
+    def select(self, index):
+        """The paths at `index` (an index array or a boolean mask)."""
+        out = CellPaths.__new__(CellPaths)
+        out._table = self._table[:, index]
+        out._unpack()
+        return out
 
-    def x_before_y(self, j):
-        """x steps made before y step number j (0-based): #{i : (2i+1)*ay < (2j+1)*ax}."""
-        return np.minimum(np.maximum(-((self._ay_minus_ax - j * self._two_ax) // self._div_y),
-                                     0), self.ax)
+    def others_before(self, c, kind):
+        """Steps of the other kind taken before step number c (0-based) of `kind`.
 
-    def x_count(self, m):
-        """Number of x steps among the first m steps.
-
-        x step number i is step i + y_before_x(i), within half a step of
-        (i + 1/2) * (1 + ay/ax); so the estimate below is off by at most one, and one
-        check in each direction settles it.
+        Beyond the path this carries on as if the path went on (c >= 0 only).
         """
-        ax = self.ax
-        est = np.ceil(np.minimum(m, self._ax_plus_ay) / (1.0 + self._slope) - 0.5)
-        est = np.minimum(np.maximum(est.astype(np.int64), 0), ax)
-        est = np.where((est < ax) & (est + self.y_before_x(est) < m), est + 1, est)
-        prev = est - 1
-        est = np.where((est > 0) & (prev + self.y_before_x(prev) >= m), prev, est)
-        return np.where(ax == 0, 0, est)
+        return np.floor((c * self._twice_other[kind] + self._before[kind]) /
+                        self._twice_own[kind])
 
-    def steps_until_x(self, count):
-        """Steps after which `count` >= 1 x steps are made (NEVER if the walk has fewer)."""
-        return np.where(count <= self.ax, count + self.y_before_x(count - 1), NEVER)
+    def state_after(self, count, kind=None):
+        """State at which `count` >= 1 steps of `kind` are done.
 
-    def steps_until_y(self, count):
-        """Steps after which `count` >= 1 y steps are made (NEVER if the walk has fewer)."""
-        return np.where(count <= self.ay, count + self.x_before_y(count - 1), NEVER)
+        Beyond the path this is a state beyond its end (and it is <= 0 for count <= 0),
+        so that comparisons with states within the path need no special case.
+        """
+        if kind is None:
+            shape = (2,) + (1,) * (np.ndim(count) - 2) + (-1,)
+            twice_other = self._twice_other.reshape(shape)
+            before = self._before.reshape(shape) - twice_other
+            twice_own = self._twice_own.reshape(shape)
+        else:
+            twice_other = self._twice_other[kind]
+            before = self._before[kind] - twice_other
+            twice_own = self._twice_own[kind]
+        return count + np.floor((count * twice_other + before) / twice_own)
+
+    def majors_before_minor(self, k):
+        """Major steps taken before minor step number k (all of them if there is none)."""
+        return np.minimum(np.maximum(self.others_before(k, MINOR), 0.0), self.long)
+
+    def minors_within(self, m):
+        """Minor steps among the first m steps, 0 <= m <= long + short.
+
+        Minor step k is step number k + majors_before_minor(k); solving that for k
+        gives one floor division.
+        """
+        twice_short, const, div = self._within
+        return np.floor((m * twice_short + const) / div)
+
+    def x_steps_within(self, m):
+        """x steps among the first m steps, 0 <= m <= long + short."""
+        minors = self.minors_within(m)
+        return np.where(self.major_is_x > 0, m - minors, minors)
 
 
 def line_cells(x0, y0, x1, y1):
@@ -76,14 +127,14 @@ def line_cells(x0, y0, x1, y1):
     edge of its polygon. Returns (xs, ys) of all edges' cells, concatenated.
     """
     x0, y0, x1, y1 = (np.atleast_1d(np.asarray(v, dtype=np.int64)) for v in (x0, y0, x1, y1))
-    ax = np.abs(x1 - x0)
-    ay = np.abs(y1 - y0)
-    n = ax + ay
-    if not len(n) or n.max() == 0:
+    a = np.abs(x1 - x0)
+    b = np.abs(y1 - y0)
+    steps = a + b
+    if not len(steps) or steps.max() == 0:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
     sx = np.where(x1 < x0, -1, 1)
     sy = np.where(y1 < y0, -1, 1)
-    edge = np.repeat(np.arange(len(n)), n)
-    m = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
-    i = Walks(ax[edge], ay[edge]).x_count(m)
+    edge = np.repeat(np.arange(len(steps)), steps)
+    m = np.arange(steps.sum()) - np.repeat(np.cumsum(steps) - steps, steps)
+    i = CellPaths(a[edge], b[edge]).x_steps_within(m).astype(np.int64)
     return x0[edge] + sx[edge] * i, y0[edge] + sy[edge] * (m - i)
