@@ -8,6 +8,7 @@ import os
 import signal
 import socket
 import subprocess
+import sys
 import tempfile
 
 WORLDS = ('room', 'arena', 'obstacles')
@@ -24,7 +25,8 @@ def free_port():
 def run_launch(launch_file, args, timeout=600.0):
     """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
 
-    None means the run wrote nothing: it failed or ran out of time.
+    None means the run wrote nothing: it failed or ran out of time; its
+    roslaunch output is then kept, and its path printed on stderr.
     """
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
@@ -33,15 +35,19 @@ def run_launch(launch_file, args, timeout=600.0):
     os.unlink(output)
     command = ['roslaunch', '-p', str(port), 'wall_follower', launch_file]
     command += ['%s:=%s' % item for item in sorted(args.items())] + ['json:=' + output]
-    process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL, start_new_session=True)
-    try:
-        process.wait(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGINT)
-        process.wait()
+    with tempfile.NamedTemporaryFile('w', prefix='benchmark-', suffix='.log',
+                                     delete=False) as log:
+        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        try:
+            process.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGINT)
+            process.wait()
     if not os.path.exists(output):
+        sys.stderr.write('run failed: %s (roslaunch output: %s)\n' % (' '.join(command), log.name))
         return None
+    os.unlink(log.name)
     with open(output) as stream:
         figures = json.load(stream)
     os.unlink(output)

@@ -83,6 +83,8 @@ class CourseMonitor(object):
                 self._backlog.append((stamp, pose))
 
     def _score(self, stamp, pose):
+        if self.goal_pose is None and self.start_on_goal:
+            self.goal_pose = pose
         self.trail.append(pose[:2])
         if self.result_time is None or stamp <= self.result_time:
             self.truth_length.add(pose[0], pose[1])
@@ -98,7 +100,6 @@ class CourseMonitor(object):
             self.goal_time = goal_id.stamp.to_sec()
             since = [(stamp, pose) for stamp, pose in self._backlog if stamp >= self.goal_time]
             self._backlog = []
-            self.goal_pose = since[0][1] if since else self.pose
             for stamp, pose in since:
                 self._score(stamp, pose)
 
