@@ -4,7 +4,6 @@ per simulated step, and drives it in step with /clock.
 Shared by the simulator rostests. Waits are on conditions; their wall-clock
 limits only bound how long a failing test takes.
 """
-import math
 import threading
 
 import rospy
@@ -16,7 +15,7 @@ from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
-from wall_follower.nodes.common import pose_of, yaw_of  # noqa: F401 (re-exported for the checks)
+from wall_follower.nodes.common import pose_message, pose_of, yaw_of  # noqa: F401 (re-exported)
 
 WAIT_LIMIT = 20.0
 
@@ -123,10 +122,7 @@ class SimProbe(object):
         self._cmd.publish(twist)
 
     def teleport(self, x, y, yaw):
-        pose = Pose()
-        pose.position.x, pose.position.y = x, y
-        pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
-        self._pose.publish(pose)
+        self._pose.publish(pose_message(x, y, yaw))
 
     def reset(self):
         """reset_positions, then waits until the reset pose is on ground truth."""

@@ -4,7 +4,7 @@ import threading
 
 import rospkg
 import rospy
-from geometry_msgs.msg import Twist
+from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
 from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
@@ -121,3 +121,11 @@ def pose_of(odometry):
     """(x, y, yaw) of a nav_msgs/Odometry message."""
     p = odometry.pose.pose
     return p.position.x, p.position.y, yaw_of(p.orientation)
+
+
+def pose_message(x, y, yaw):
+    """A geometry_msgs/Pose at (x, y) turned yaw (rad) about z."""
+    pose = Pose()
+    pose.position.x, pose.position.y = x, y
+    pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+    return pose

@@ -11,21 +11,13 @@ import math
 import rospy
 from geometry_msgs.msg import Pose
 
-from wall_follower.nodes.common import world_path
+from wall_follower.nodes.common import pose_message, world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.scoring import CourseMap
 from wall_follower.srv import FindWall
 
 # Simulated time for the scan and ground truth to show a new pose.
 SETTLE = 0.5
-
-
-def pose_message(x, y, yaw_deg):
-    pose = Pose()
-    pose.position.x, pose.position.y = x, y
-    yaw = math.radians(yaw_deg)
-    pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
-    return pose
 
 
 class FindTrials(object):
@@ -40,7 +32,8 @@ class FindTrials(object):
 
     def run(self, start):
         """One trial from start = (x, y, yaw_deg); returns its figures as a dict."""
-        self.teleport.publish(pose_message(*start))
+        x, y, yaw_deg = start
+        self.teleport.publish(pose_message(x, y, math.radians(yaw_deg)))
         rospy.sleep(SETTLE)
         monitor = CourseMonitor(self.map, start_on_goal=False)
         started = rospy.get_time()
