@@ -38,7 +38,7 @@ occupied cell along the exact ray, for scoring.
 import math
 import numpy as np
 
-from .stage_walk import NEVER, CellPaths
+from .stage_walk import MINOR, NEVER, CellPaths
 
 __all__ = ['stage_ranges', 'exact_ranges', 'stage_beam_angles', 'REGION_WIDTH']
 
@@ -46,7 +46,7 @@ REGION_BITS = 5
 REGION_WIDTH = 1 << REGION_BITS
 # Region borders looked ahead along each axis by one walk, and the ring of empty
 # regions around the grid's tables that this needs.
-_BORDERS_AHEAD = 4
+_BORDERS_AHEAD = 3
 _RING = _BORDERS_AHEAD + 1
 # Signed cell coordinate of the box of a region without visible cells: beyond any walk.
 _NO_BOX = 1 << 40
@@ -254,6 +254,8 @@ _FLIGHT_TANA = 10
 _FLIGHT_START = slice(11, 13)   # (filled in per flight) the position flown from
 # Crossings along each axis tried first.
 _FIRST_CROSSINGS = 3
+# Lines of a search window tried first.
+_FIRST_LINES = 2
 
 class _Scan(object):
     """One scan: per-beam constants, then rounds of flights and walks until all beams end.
@@ -269,50 +271,62 @@ class _Scan(object):
         self.ppm = ppm
         self.start = np.array([x * ppm, y * ppm])
         count = len(angles)
-        every = np.arange(count)
         # Stage nudges a beam at exactly 0 rad, whose slope would otherwise be 0.
-        angle = np.where(angles == 0.0, 1e-12, angles)
-        trig = np.empty((2, count))
-        np.cos(angle, out=trig[0])
-        np.sin(angle, out=trig[1])
-        self.tana = trig[1] / trig[0]
-        reach = (ppm * range_max) * trig
-        up = reach >= 0
-        self.paths = CellPaths(*np.abs(reach).astype(np.int64))
+        angle = angles.copy()
+        angle[angles == 0.0] = 1e-12
+        cos = np.cos(angle)
+        sin = np.sin(angle)
+        self.tana = sin / cos
+        reach = ppm * range_max
+        self.paths = CellPaths(np.abs(reach * cos).astype(np.int64),
+                               np.abs(reach * sin).astype(np.int64))
         self.budget = self.paths.long + self.paths.short
+        major_is_x = self.paths.major_is_x > 0
+        up_x = cos >= 0
+        up_y = sin >= 0
+        sx = 2 * up_x - 1
+        sy = 2 * up_y - 1
         # frame axis f is axis swap[f] of [x; y], and the other way round
         self.swap = np.empty((2, count), dtype=np.int64)
-        self.swap[0] = self.paths.major_is_x == 0
-        self.swap[1] = 1 - self.swap[0]
-        sign_xy = 2 * up - 1
-        sign = sign_xy[self.swap, every]
-        direction = (np.array([[_PLUS_X], [_PLUS_Y]]) + ~up)[self.swap, every]
-        # per x/y axis: region step, returns step, `ahead` line stride when it is major
-        per_axis = np.array([[1, 1, tables.width],
-                             [tables.region_stride, tables.width, tables.height]])[self.swap]
-        stride = per_axis[0, :, 2]
-        self.frame = np.empty((12, count), dtype=np.int64)
-        self.frame[_SIGN] = sign
-        self.frame[_BACK] = sign < 0
-        self.frame[_REGION_STRIDE] = per_axis[:, :, 0]
-        self.frame[_RETURNS_STRIDE] = per_axis[:, :, 1]
-        self.frame[_BOX] = direction * len(tables.populated)
-        self.frame[_AHEAD_BASE] = direction[0] * tables.cells - (
-            stride * tables.origin_cell[self.swap[1]] + tables.origin_cell[self.swap[0]])
-        self.frame[_AHEAD_LINE] = stride * sign[1]
-        self.major_trig = trig[self.swap[0], every]
-        self.major_start = self.start[self.swap[0]]
+        self.swap[1] = major_is_x
+        self.swap[0] = 1 - self.swap[1]
+        # per-beam frame constants, as they are for a major x and for a major y axis
+        dir_x = _PLUS_X + ~up_x
+        dir_y = _PLUS_Y + ~up_y
+        regions = len(tables.populated)
+        along = np.empty((2, 12, count), dtype=np.int64)
+        for major, (s_major, s_minor, d_major, d_minor, stride, origin, r, w) in enumerate((
+                (sx, sy, dir_x, dir_y, tables.width, tables.cy0 * tables.width + tables.cx0,
+                 (1, tables.region_stride), (1, tables.width)),
+                (sy, sx, dir_y, dir_x, tables.height, tables.cx0 * tables.height + tables.cy0,
+                 (tables.region_stride, 1), (tables.width, 1)))):
+            rows = along[major]
+            rows[0] = s_major
+            rows[1] = s_minor
+            rows[2:4] = rows[0:2] < 0
+            rows[_REGION_STRIDE] = np.array(r)[:, None]
+            rows[_RETURNS_STRIDE] = np.array(w)[:, None]
+            rows[8] = d_major * regions
+            rows[9] = d_minor * regions
+            rows[_AHEAD_BASE] = d_major * tables.cells - origin
+            rows[_AHEAD_LINE] = stride * s_minor
+        self.frame = np.where(major_is_x, along[0], along[1])
+        self.major_trig = np.where(major_is_x, cos, sin)
+        self.major_start = np.where(major_is_x, self.start[0], self.start[1])
         # flights: aim at the region border ahead, one cell past it going down
         self.flight = np.empty((13, count))
         hops = self.flight[_HOPS]
-        hops[0] = sign_xy[0] * float(REGION_WIDTH)
-        hops[1] = hops[0] * self.tana
-        hops[3] = sign_xy[1] * float(REGION_WIDTH)
-        hops[2] = hops[3] / self.tana
-        self.flight[4] = np.abs(hops[0]) + np.abs(hops[1])
-        self.flight[5] = np.abs(hops[2]) + np.abs(hops[3])
-        self.flight[_FLIGHT_AHEAD] = REGION_WIDTH * up
-        self.flight[_FLIGHT_BACK] = 1.0 - up
+        hops[0] = sx * float(REGION_WIDTH)
+        np.multiply(hops[0], self.tana, out=hops[1])
+        hops[3] = sy * float(REGION_WIDTH)
+        np.divide(hops[3], self.tana, out=hops[2])
+        np.abs(hops, out=self.flight[_HOP_LENGTH.start:_HOP_LENGTH.start + 4])
+        self.flight[4] = self.flight[4] + self.flight[5]
+        self.flight[5] = self.flight[6] + self.flight[7]
+        self.flight[6] = REGION_WIDTH * up_x
+        self.flight[7] = REGION_WIDTH * up_y
+        self.flight[8] = ~up_x
+        self.flight[9] = ~up_y
         self.flight[_FLIGHT_TANA] = self.tana
         self.ranges = np.full(count, range_max)
         self.intensities = np.zeros(count)
@@ -537,41 +551,52 @@ class _Scan(object):
         walks hit (indices into b), and for those the major steps made and the state.
         """
         path = paths.select(b)
-        sign = frame[_SIGN][0].take(b)
         step = frame[_AHEAD_LINE].take(b)
-        shift_major = shift[0].take(b)
-        base = frame[_AHEAD_BASE].take(b) + step * shift[1].take(b) + sign * shift_major
-        first = path.minors_within(start)
-        last = path.minors_within(stop - 1)
-        hit, majors, state = self._lines(path, first, np.minimum(last, first + 1), start, stop,
-                                         base, step, sign, shift_major)
-        rest = np.nonzero(~hit & (last > first + 1))[0]
+        sign = frame[_SIGN][0].take(b)
+        # per window: the first line and the last, start and stop, the `ahead` entry of
+        # line 0 at major step 0, its step per line and per major step, and the signed
+        # major cell at major step 0
+        window = np.empty((8, len(b)))
+        window[0:2] = path.minors_within(np.stack([start, stop - 1]))
+        window[2] = start
+        window[3] = stop
+        window[5] = step
+        window[6] = sign
+        window[7] = shift[0].take(b)
+        window[4] = frame[_AHEAD_BASE].take(b) + step * shift[1].take(b) + sign * window[7]
+        hit, majors, state = self._lines(path, window, _FIRST_LINES)
+        rest = np.nonzero(~hit & (window[1] - window[0] >= _FIRST_LINES))[0]
         if len(rest):
-            rest_hit, rest_majors, rest_state = self._lines(
-                path.select(rest), first.take(rest) + 2, last.take(rest), start.take(rest),
-                stop.take(rest), base.take(rest), step.take(rest), sign.take(rest),
-                shift_major.take(rest))
-            found = rest[rest_hit]
-            hit[found] = True
-            majors[found] = rest_majors[rest_hit]
-            state[found] = rest_state[rest_hit]
+            window = window.take(rest, axis=1)
+            window[0] += _FIRST_LINES
+            found, rest_majors, rest_state = self._lines(
+                path.select(rest), window, int((window[1] - window[0]).max()) + 1)
+            rest = rest[found]
+            hit[rest] = True
+            majors[rest] = rest_majors[found]
+            state[rest] = rest_state[found]
         found = np.nonzero(hit)[0]
         return found, majors.take(found), state.take(found)
 
-    def _lines(self, path, first, last, start, stop, base, step, sign, shift_major):
-        """Search lines first .. last of each window [start, stop) for a visible cell."""
-        offsets = np.arange(-1, int((last - first).max()) + 1)[:, None]
-        bounds = path.majors_before_minor(first + offsets)
+    def _lines(self, path, window, lines):
+        """Search the first `lines` lines of each window (see _first_hit) for a visible cell.
+
+        Returns (hit, majors, state) per window.
+        """
+        first, _, start, stop, base, step, sign, shift_major = window
+        offsets = np.arange(-1, lines)[:, None]
+        # major steps made before each line's first and after its last state (beyond
+        # the path these run on, but the window's own bounds then take over)
+        bounds = path.others_before(first + offsets, MINOR)
         line = first + offsets[1:]
         lo = np.maximum(bounds[:-1], start - line)
         hi = np.minimum(bounds[1:], stop - 1 - line)
         nearest = self.tables.ahead.take((base + step * line + sign * lo).astype(np.int64),
                                          mode='clip')
-        hits = (line <= last) & (lo <= hi) & (nearest <= hi + shift_major)
-        rows = len(line)
-        row = np.where(hits, np.arange(rows)[:, None], rows).min(axis=0)
-        hit = row < rows
-        row = np.minimum(row, rows - 1) * len(first) + np.arange(len(first))
+        hits = (lo <= hi) & (nearest <= hi + shift_major)
+        row = np.where(hits, np.arange(lines)[:, None], lines).min(axis=0)
+        hit = row < lines
+        row = np.minimum(row, lines - 1) * len(first) + np.arange(len(first))
         majors = nearest.take(row) - shift_major
         return hit, majors, majors + line.take(row)
 

@@ -37,27 +37,35 @@ class CellPaths(object):
     """
 
     def __init__(self, a, b):
-        a = np.asarray(a, dtype=np.int64)
-        b = np.asarray(b, dtype=np.int64)
-        long = np.maximum(a, b)
-        short = np.minimum(a, b)
+        a = np.asarray(a, dtype=np.float64)
+        b = np.asarray(b, dtype=np.float64)
+        table = np.empty((12,) + a.shape)
+        long, short = table[0], table[1]
+        np.maximum(a, b, out=long)
+        np.minimum(a, b, out=short)
         # The x-before-y rule is strict: seen from a major x axis a minor step waits
         # for a tie, seen from a major y axis it does not.
-        tie = (a > b).astype(np.int64)
-        own = np.stack([long, short])
-        other = own[::-1]
-        twice_own = 2 * np.maximum(own, 1)
+        tie = table[11]
+        np.greater(a, b, out=tie)
         # Steps of the other kind taken before step number c (0-based) of one kind:
         #   ceil(((2c+1) * other + offset) / twice_own)
         #   = floor((c * 2 other + other + offset + twice_own - 1) / twice_own),
-        # where the offset carries the tie rule (and, for a path without minor steps,
-        # puts them all after its end).
-        offset = np.stack([tie - long, np.where(short == 0, long, 1 - tie - short)])
-        self._table = np.concatenate([
-            own, 2 * other, other + offset + twice_own - 1, twice_own,
-            # minor steps within the first m steps: floor((m * 2 short + c) / d)
-            [2 * short, np.maximum(long + short + tie - 1, 0), 2 * np.maximum(long + short, 1),
-             tie]]).astype(np.float64)
+        # where the offset carries the tie rule: tie - long for major steps (other =
+        # short) and 1 - tie - short for minor ones (other = long), or, for a path
+        # without minor steps, long, which puts them all after its end.
+        twice_own = table[6:8]
+        np.maximum(table[0:2], 1.0, out=twice_own)
+        twice_own *= 2.0
+        np.multiply(short, 2.0, out=table[2])
+        np.multiply(long, 2.0, out=table[3])
+        table[4] = short + tie - long + twice_own[0] - 1.0
+        table[5] = np.where(short == 0, 2.0 * long, long + 1.0 - tie - short) + twice_own[1] - 1.0
+        # minor steps within the first m steps: floor((m * 2 short + c) / d)
+        table[8] = table[2]
+        np.maximum(long + short + tie - 1.0, 0.0, out=table[9])
+        np.maximum(long + short, 1.0, out=table[10])
+        table[10] *= 2.0
+        self._table = table
         self._unpack()
 
     def _unpack(self):
@@ -111,13 +119,16 @@ class CellPaths(object):
         Minor step k is step number k + majors_before_minor(k); solving that for k
         gives one floor division.
         """
-        twice_short, const, div = self._within
-        return np.floor((m * twice_short + const) / div)
+        return _minor_steps_within(m, *self._within)
 
-    def x_steps_within(self, m):
-        """x steps among the first m steps, 0 <= m <= long + short."""
-        minors = self.minors_within(m)
-        return np.where(self.major_is_x > 0, m - minors, minors)
+
+def _minor_steps_within(m, twice_short, offset, twice_total):
+    """floor((m * 2 short + offset) / (2 (long + short))), with offset long + short + tie - 1.
+
+    (Exact in float64, and for integer arguments too: a quotient of whole numbers this
+    small is never within rounding of the next whole number.)
+    """
+    return np.floor((m * twice_short + offset) / twice_total)
 
 
 def line_cells(x0, y0, x1, y1):
@@ -126,15 +137,21 @@ def line_cells(x0, y0, x1, y1):
     The cell before every step is marked, so an edge's end cell is left to the next
     edge of its polygon. Returns (xs, ys) of all edges' cells, concatenated.
     """
-    x0, y0, x1, y1 = (np.atleast_1d(np.asarray(v, dtype=np.int64)) for v in (x0, y0, x1, y1))
-    a = np.abs(x1 - x0)
-    b = np.abs(y1 - y0)
+    x0, y0, x1, y1 = (np.asarray(v, dtype=np.int64).ravel() for v in (x0, y0, x1, y1))
+    dx = x1 - x0
+    dy = y1 - y0
+    a = np.abs(dx)
+    b = np.abs(dy)
     steps = a + b
-    if not len(steps) or steps.max() == 0:
+    total = int(steps.sum())
+    if not total:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    sx = np.where(x1 < x0, -1, 1)
-    sy = np.where(y1 < y0, -1, 1)
-    edge = np.repeat(np.arange(len(steps)), steps)
-    m = np.arange(steps.sum()) - np.repeat(np.cumsum(steps) - steps, steps)
-    i = CellPaths(a[edge], b[edge]).x_steps_within(m).astype(np.int64)
-    return x0[edge] + sx[edge] * i, y0[edge] + sy[edge] * (m - i)
+    along_x = a > b
+    # per edge, repeated for each of its cells: the constants of minor steps within m
+    # steps (of edges with steps), whether x is major, the start, the signs
+    per_cell = np.stack([2 * np.minimum(a, b), steps + along_x - 1, 2 * steps, along_x, x0, y0,
+                         1 - 2 * (dx < 0), 1 - 2 * (dy < 0)]).repeat(steps, axis=1)
+    m = np.arange(total) - np.repeat(np.cumsum(steps) - steps, steps)
+    minors = _minor_steps_within(m, per_cell[0], per_cell[1], per_cell[2]).astype(np.int64)
+    i = np.where(per_cell[3] > 0, m - minors, minors)
+    return per_cell[4] + per_cell[6] * i, per_cell[5] + per_cell[7] * (m - i)
