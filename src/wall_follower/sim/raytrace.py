@@ -20,17 +20,21 @@ test/data/stage_reference, whose every beam `stage_ranges` reproduces):
   per cell step, and each flight's Manhattan length, rounded up. A wall just
   inside range_max can be out of reach, and then reads as a miss does:
   range_max exactly, intensity 0.
-* Crossing x = 0 or y = 0 inside a region, the followed cell and the
-  truncated position part by one until the next region border, where the cell
-  is taken from the position again.
+* Re-anchoring. Inside a region Stage follows the cell it stepped to; at every
+  region border it takes the cell from the (truncated) position again. The two
+  part where the path passes x = 0 or y = 0, or where rounding carries a
+  position within rounding of a cell border across it: then a cell is looked
+  at twice, or one is skipped.
 
-How it is computed here: every beam alternates flights and walks. A flight
-(over empty regions) is repeated crossing by crossing for all flying beams
-together. A walk covers several populated regions at once: the region
-borders ahead come from closed forms of the cell path, and inside each region
-only the part of the path within the bounding box of the region's visible
-cells is searched, one table lookup per line of the path's minor axis. A scan
-takes a handful of these rounds, whatever the number of beams.
+How it is computed here: every beam alternates flights and walks, in rounds
+that take all beams at once (numpy's cost is per call, not per beam). A
+flight lists the region-border crossings ahead of each beam along both axes
+and takes the first that lands. A walk covers up to three region borders
+along each axis: where the path crosses them comes from the closed forms of
+stage_walk, and inside each region only the part of the path within the
+bounding box of the region's visible cells is searched, one table lookup per
+line of the path's minor axis. Most beams end after a walk, a flight and a
+walk; a scan takes three or four rounds.
 
 `exact_ranges` is plain geometry: the distance to the boundary of the first
 occupied cell along the exact ray, for scoring.
@@ -50,8 +54,8 @@ _BORDERS_AHEAD = 3
 _RING = _BORDERS_AHEAD + 1
 # Signed cell coordinate of the box of a region without visible cells: beyond any walk.
 _NO_BOX = 1 << 40
-# Directions of travel, indexing the per-direction tables.
-_PLUS_X, _MINUS_X, _PLUS_Y, _MINUS_Y = range(4)
+# Directions of travel, in the order of the per-direction tables: +x, -x, +y, -y.
+_PLUS_X, _PLUS_Y = 0, 2
 
 
 def stage_beam_angles(start, increment, samples):
@@ -118,9 +122,9 @@ class _GridTables(object):
     all round (further regions are clamped onto the ring where needed); region (rx, ry)
     is entry (ry - ry0 + _RING) * region_stride + (rx - rx0 + _RING).
     populated[region]: something was drawn into the region (its cells are followed).
-    has_visible[region]: the region holds a cell the laser can hit.
     box_near / box_far [direction * regions + region]: bounding box of the region's
-        visible cells along a direction of travel, in signed coordinates (see `ahead`).
+        visible cells along a direction of travel, in signed coordinates (see `ahead`);
+        one no walk enters for a region without visible cells.
     ahead[direction * cells + cell]: for every cell and direction (+x, -x along its row,
         +y, -y along its column), the nearest visible cell at or beyond it, as its
         coordinate times the direction's sign, so that along every direction "no further
@@ -146,9 +150,7 @@ class _GridTables(object):
         self.returns_origin = -(self.cy0 * self.width + self.cx0)
         self._set_populated(populated)
         self.returns = returns.ravel()
-        blocks = visible.reshape(rows, REGION_WIDTH, cols, REGION_WIDTH)
-        self.has_visible = _with_ring(blocks.any(axis=(1, 3)))
-        self._build_boxes(blocks)
+        self._build_boxes(visible.reshape(rows, REGION_WIDTH, cols, REGION_WIDTH))
         self._build_ahead(visible)
 
     def _build_boxes(self, blocks):
@@ -160,7 +162,6 @@ class _GridTables(object):
         x_hi = col_base + REGION_WIDTH - 1 - np.argmax(by_col[:, :, ::-1], axis=2)
         y_lo = row_base + np.argmax(by_row, axis=1)
         y_hi = row_base + REGION_WIDTH - 1 - np.argmax(by_row[:, ::-1, :], axis=1)
-        # a region without visible cells gets a box no walk can enter
         empty = ~blocks.any(axis=(1, 3))
         self.box_near = np.concatenate([_with_ring(np.where(empty, _NO_BOX, b), _NO_BOX)
                                         for b in (x_lo, -x_hi, y_lo, -y_hi)])
@@ -256,6 +257,7 @@ _FLIGHT_START = slice(11, 13)   # (filled in per flight) the position flown from
 _FIRST_CROSSINGS = 3
 # Lines of a search window tried first.
 _FIRST_LINES = 2
+
 
 class _Scan(object):
     """One scan: per-beam constants, then rounds of flights and walks until all beams end.
@@ -378,10 +380,14 @@ class _Scan(object):
     def _crossings(self, flight, n, hops):
         """Flights of `hops` crossings along each axis (None: as many as needed).
 
-        The crossings along an axis are the same repeated additions as Stage's; merged
-        in the order of their distance (a tie goes to the y crossing, as in Stage), the
-        first that lands or runs out of budget ends the flight. Returns (landed, x y,
-        n), landed 1, 0, or -1 where `hops` did not reach far enough to tell.
+        The crossings along an axis are the same repeated additions as Stage's. Stage
+        keeps the distances to the next crossing along x and along y as running
+        differences; here both come from the Manhattan distances along the line, which
+        are the same up to rounding (that could only tell for a crossing within
+        rounding of a region's corner). Merged in that order (a tie goes to the y
+        crossing, as in Stage), the first crossing that lands or runs out of budget
+        ends the flight. Returns (landed, x y, n): landed 1, 0, or -1 where `hops` did
+        not reach far enough to tell.
         """
         tables = self.tables
         count = flight.shape[1]
@@ -419,14 +425,21 @@ class _Scan(object):
         on_x = order >= hops
         flat = order * count + every
         distance = distance.take(flat)
-        # each flight pays its length rounded up: after a flight along the same axis the
-        # full hop, otherwise what is left of the distance to the crossing
+        # Each flight pays its length: after a flight along the same axis the full hop,
+        # otherwise what is left of the distance to the crossing. Stage truncates the
+        # budget left after each, in double precision, so a length a hair over a whole
+        # number (a beam along an axis) may cost that number or one more, depending on
+        # the budget's magnitude.
         paid = np.empty((2 * hops, count))
         paid[0] = distance[0]
         np.subtract(distance[1:], distance[:-1], out=paid[1:])
         np.copyto(paid[1:], np.where(on_x[1:], length[0], length[1]),
                   where=on_x[1:] == on_x[:-1])
-        budget = n - np.cumsum(np.ceil(paid), axis=0)
+        budget = paid
+        left = n
+        for number in range(2 * hops):
+            left = np.trunc(left - paid[number])
+            budget[number] = left
         points = crossing[::-1].reshape(2 * hops, 2, count)
         land_x = points[:, 0].take(flat)
         land_y = points[:, 1].take(flat)

@@ -39,7 +39,7 @@ class CellPaths(object):
     def __init__(self, a, b):
         a = np.asarray(a, dtype=np.float64)
         b = np.asarray(b, dtype=np.float64)
-        table = np.empty((12,) + a.shape)
+        table = np.empty((14,) + a.shape)
         long, short = table[0], table[1]
         np.maximum(a, b, out=long)
         np.minimum(a, b, out=short)
@@ -60,6 +60,8 @@ class CellPaths(object):
         np.multiply(long, 2.0, out=table[3])
         table[4] = short + tie - long + twice_own[0] - 1.0
         table[5] = np.where(short == 0, 2.0 * long, long + 1.0 - tie - short) + twice_own[1] - 1.0
+        # the same for step number count - 1, for state_after
+        np.subtract(table[4:6], table[2:4], out=table[12:14])
         # minor steps within the first m steps: floor((m * 2 short + c) / d)
         table[8] = table[2]
         np.maximum(long + short + tie - 1.0, 0.0, out=table[9])
@@ -76,6 +78,7 @@ class CellPaths(object):
         self._twice_own = table[6:8]
         self._within = table[8:11]
         self.major_is_x = table[11]
+        self._after = table[12:14]
 
     def select(self, index):
         """The paths at `index` (an index array or a boolean mask)."""
@@ -87,7 +90,7 @@ class CellPaths(object):
     def others_before(self, c, kind):
         """Steps of the other kind taken before step number c (0-based) of `kind`.
 
-        Beyond the path this carries on as if the path went on (c >= 0 only).
+        Beyond the path this carries on as if the path went on; for c = -1 it is <= 0.
         """
         return np.floor((c * self._twice_other[kind] + self._before[kind]) /
                         self._twice_own[kind])
@@ -101,22 +104,19 @@ class CellPaths(object):
         if kind is None:
             shape = (2,) + (1,) * (np.ndim(count) - 2) + (-1,)
             twice_other = self._twice_other.reshape(shape)
-            before = self._before.reshape(shape) - twice_other
+            after = self._after.reshape(shape)
             twice_own = self._twice_own.reshape(shape)
         else:
             twice_other = self._twice_other[kind]
-            before = self._before[kind] - twice_other
+            after = self._after[kind]
             twice_own = self._twice_own[kind]
-        return count + np.floor((count * twice_other + before) / twice_own)
-
-    def majors_before_minor(self, k):
-        """Major steps taken before minor step number k (all of them if there is none)."""
-        return np.minimum(np.maximum(self.others_before(k, MINOR), 0.0), self.long)
+        # count steps of this kind, and the others taken before the last of them
+        return count + np.floor((count * twice_other + after) / twice_own)
 
     def minors_within(self, m):
         """Minor steps among the first m steps, 0 <= m <= long + short.
 
-        Minor step k is step number k + majors_before_minor(k); solving that for k
+        Minor step k is step number k + others_before(k, MINOR); solving that for k
         gives one floor division.
         """
         return _minor_steps_within(m, *self._within)
