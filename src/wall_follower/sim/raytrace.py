@@ -254,7 +254,7 @@ _FLIGHT_BACK = slice(8, 10)     # and 1 cell back when going down
 _FLIGHT_TANA = 10
 _FLIGHT_START = slice(11, 13)   # (filled in per flight) the position flown from
 # Crossings along each axis tried first.
-_FIRST_CROSSINGS = 3
+_FIRST_CROSSINGS = 4
 # Lines of a search window tried first.
 _FIRST_LINES = 2
 
