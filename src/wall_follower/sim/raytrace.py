@@ -40,6 +40,7 @@ walk; a scan takes three or four rounds.
 occupied cell along the exact ray, for scoring.
 """
 import math
+
 import numpy as np
 
 from .stage_walk import MINOR, NEVER, CellPaths
@@ -146,7 +147,6 @@ class _GridTables(object):
         self.populated_hi = np.array([rx0 + cols - 1, ry0 + rows - 1])
         self.region_lo = np.array([rx0 - _RING, ry0 - _RING])
         self.region_hi = np.array([rx0 + cols + _RING - 1, ry0 + rows + _RING - 1])
-        self.origin_cell = np.array([self.cx0, self.cy0])
         self.returns_origin = -(self.cy0 * self.width + self.cx0)
         self._set_populated(populated)
         self.returns = returns.ravel()
