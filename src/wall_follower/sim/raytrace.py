@@ -39,6 +39,7 @@ walk; a scan takes three or four rounds.
 `exact_ranges` is plain geometry: the distance to the boundary of the first
 occupied cell along the exact ray, for scoring.
 """
+import copy
 import math
 
 import numpy as np
@@ -148,7 +149,7 @@ class _GridTables(object):
         self.region_lo = np.array([rx0 - _RING, ry0 - _RING])
         self.region_hi = np.array([rx0 + cols + _RING - 1, ry0 + rows + _RING - 1])
         self.returns_origin = -(self.cy0 * self.width + self.cx0)
-        self._set_populated(populated)
+        self.populated = _with_ring(populated)
         self.returns = returns.ravel()
         self._build_boxes(visible.reshape(rows, REGION_WIDTH, cols, REGION_WIDTH))
         self._build_ahead(visible)
@@ -207,24 +208,20 @@ class _GridTables(object):
         return cls(populated, rx0, ry0, padded_visible, padded_returns)
 
     def with_bodies(self, bodies):
-        """These tables with the regions of `bodies` [(xs, ys)] populated (None if outside)."""
-        xs = np.concatenate([np.asarray(c[0], dtype=np.int64) for c in bodies])
-        ys = np.concatenate([np.asarray(c[1], dtype=np.int64) for c in bodies])
-        r = (ys >> REGION_BITS) - self.ry0
-        c = (xs >> REGION_BITS) - self.rx0
-        if r.min() < 0 or c.min() < 0 or r.max() >= self.region_rows or \
-                c.max() >= self.region_cols:
-            return None
-        out = _GridTables.__new__(_GridTables)
-        out.__dict__.update(self.__dict__)
-        populated = self.populated_core.copy()
-        populated[r, c] = True
-        out._set_populated(populated)
-        return out
+        """These tables with the regions of `bodies` [(xs, ys)] populated (None if outside).
 
-    def _set_populated(self, populated):
-        self.populated_core = populated
-        self.populated = _with_ring(populated)
+        Only `populated` differs, so the bodies' regions are set on a copy of it: much
+        cheaper, once per scan, than building the tables with the bodies drawn in.
+        """
+        rx = np.concatenate([np.asarray(c[0], dtype=np.int64) for c in bodies]) >> REGION_BITS
+        ry = np.concatenate([np.asarray(c[1], dtype=np.int64) for c in bodies]) >> REGION_BITS
+        if rx.min() < self.rx0 or ry.min() < self.ry0 or \
+                rx.max() >= self.rx0 + self.region_cols or ry.max() >= self.ry0 + self.region_rows:
+            return None
+        out = copy.copy(self)
+        out.populated = self.populated.copy()
+        out.populated[ry * self.region_stride + rx + self.region_origin] = True
+        return out
 
     def populated_at(self, point):
         """Is the region of `point` [x; y] (cell units) populated?"""
