@@ -561,19 +561,20 @@ class _Scan(object):
         walks hit (indices into b), and for those the major steps made and the state.
         """
         path = paths.select(b)
-        step = frame[_AHEAD_LINE].take(b)
-        sign = frame[_SIGN][0].take(b)
-        # per window: the first line and the last, start and stop, the `ahead` entry of
-        # line 0 at major step 0, its step per line and per major step, and the signed
-        # major cell at major step 0
+        frame = frame.take(b, axis=1)
+        shift = shift.take(b, axis=1)
+        # per window: its first line and its last, its first state and its last, the
+        # `ahead` entry of line 0 at major step 0, its step per line and per major step,
+        # and the signed major cell at major step 0
         window = np.empty((8, len(b)))
-        window[0:2] = path.minors_within(np.stack([start, stop - 1]))
-        window[2] = start
-        window[3] = stop
-        window[5] = step
-        window[6] = sign
-        window[7] = shift[0].take(b)
-        window[4] = frame[_AHEAD_BASE].take(b) + step * shift[1].take(b) + sign * window[7]
+        window[0] = start
+        np.subtract(stop, 1.0, out=window[1])
+        window[2:4] = window[0:2]
+        window[0:2] = path.minors_within(window[0:2])
+        window[5] = frame[_AHEAD_LINE]
+        window[6] = frame[_SIGN.start]
+        window[7] = shift[0]
+        window[4] = frame[_AHEAD_BASE] + window[5] * shift[1] + window[6] * shift[0]
         hit, majors, state = self._lines(path, window, _FIRST_LINES)
         rest = np.nonzero(~hit & (window[1] - window[0] >= _FIRST_LINES))[0]
         if len(rest):
@@ -591,24 +592,25 @@ class _Scan(object):
     def _lines(self, path, window, lines):
         """Search the first `lines` lines of each window (see _first_hit) for a visible cell.
 
-        Returns (hit, majors, state) per window.
+        Returns (hit, majors, state) per window; majors and state only mean something
+        where it hits.
         """
-        first, _, start, stop, base, step, sign, shift_major = window
-        offsets = np.arange(-1, lines)[:, None]
+        first, _, start, last, base, step, sign, shift_major = window
+        count = len(first)
+        # the line before the first, then the lines searched
+        line = first + np.arange(-1.0, lines)[:, None]
         # major steps made before each line's first and after its last state (beyond
         # the path these run on, but the window's own bounds then take over)
-        bounds = path.others_before(first + offsets, MINOR)
-        line = first + offsets[1:]
+        bounds = path.others_before(line, MINOR)
+        line = line[1:]
         lo = np.maximum(bounds[:-1], start - line)
-        hi = np.minimum(bounds[1:], stop - 1 - line)
+        hi = np.minimum(bounds[1:], last - line)
         nearest = self.tables.ahead.take((base + step * line + sign * lo).astype(np.int64),
                                          mode='clip')
         hits = (lo <= hi) & (nearest <= hi + shift_major)
-        row = np.where(hits, np.arange(lines)[:, None], lines).min(axis=0)
-        hit = row < lines
-        row = np.minimum(row, lines - 1) * len(first) + np.arange(len(first))
-        majors = nearest.take(row) - shift_major
-        return hit, majors, majors + line.take(row)
+        at = hits.argmax(axis=0) * count + np.arange(count)
+        majors = nearest.take(at) - shift_major
+        return hits.take(at), majors, majors + line.take(at)
 
     def _record(self, beam, g_major, cell, frame, moved):
         """Range and intensity of beams that hit after `moved` [major; minor] steps."""
