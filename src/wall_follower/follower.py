@@ -10,8 +10,9 @@ fit cannot see them coming:
 - a wall ahead (inner corner) is turned onto at the full turn rate, on the
   arc that ends parallel to it; the speed is re-planned from the wall ahead
   at every scan, so the turn is closed-loop, not timed;
-- a wall that ends on the right (outer, convex corner) is rounded by
-  circling its end at a fixed radius.
+- a wall that ends on the right (outer, convex corner) is rounded on an
+  arc around the corner as if it were rounded off (see corner.py), pinned
+  to the corner's tip at every scan.
 
 The turn rate, not the speed, is what limits a lap: a 90 degree corner
 takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
@@ -25,7 +26,8 @@ import math
 
 import numpy as np
 
-from wall_follower.motion import Command
+from wall_follower.corner import CornerArc
+from wall_follower.motion import Command, seen_after_move
 from wall_follower.scan import RIGHT, fit_line, wrap_angle
 
 FOLLOW = 'FOLLOW'
@@ -36,6 +38,8 @@ SEARCH = 'SEARCH'
 #: Every tunable number of the controller: name -> (default, meaning).
 #: Distances from the laser in metres, speeds in m/s and rad/s, angles in degrees.
 PARAMETERS = {
+    # The robot
+    'laser_x': (-0.032, 'laser position ahead of the rotation centre (Burger: 32 mm behind)'),
     # Following a straight wall
     'target_distance': (0.25, 'wanted distance to the wall on the right'),
     'range_bias': (0.008, 'how much longer than true the laser reads (Stage ~0.008, LDS-01 0)'),
@@ -44,7 +48,7 @@ PARAMETERS = {
     'k_distance': (8.0, 'turn rate per metre of distance error (rad/s/m)'),
     'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
     'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
-    'turn_slowdown': (0.3, 'share of cruise speed given up at the largest turn rate'),
+    'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
     'closest_distance': (0.22, 'heading into the wall, slow so as to turn parallel no nearer'),
     # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
@@ -66,12 +70,13 @@ PARAMETERS = {
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
-    'corner_lead': (0.03, 'the right wall has ended when seen less than this far ahead'),
-    'outer_corner_radius': (0.21, 'radius of the arc around the end of the wall'),
+    'outer_corner_radius': (0.30, 'radius of the arc around a corner (its tip is rounded off)'),
     'outer_corner_speed_share': (0.9, 'share of the arc speed at max_turn_rate (turn headroom)'),
+    'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
     'rejoin_angle_deg': (25.0, '... and within this angle of the heading'),
+    'arc_exit_angle_deg': (5.0, 'an outer corner arc ends this near parallel to the next wall'),
     # No wall near
     'search_speed': (0.15, 'forward speed while no wall is near'),
 }
@@ -101,8 +106,10 @@ class Observation(object):
     """What one scan tells the controller, measured once per update.
 
     wall: (distance, angle) of the straight wall on the right, angle > 0
-    when the robot heads into it, or None. wall_ahead: how far ahead of the
-    laser that wall is still seen. front: distance to the nearest hit in the
+    when the robot heads into it, or None. wall_end: (x, y) of that wall's
+    farthest hit ahead, and wall_ahead its x: how far ahead of the laser
+    the wall is still seen (-inf without a wall). right: every hit on the
+    right side. front: distance to the nearest hit in the
     lane the robot is about to drive through. ahead: (distance, angle) of
     the straight wall across that lane, angle measured like the right
     wall's (pi/2 for a wall square ahead), or None. nearest: (distance,
@@ -110,17 +117,23 @@ class Observation(object):
     """
 
     def __init__(self, view, params, motion=(0.0, 0.0)):
-        hits = ahead_in_time(unbiased(view.points(), params.range_bias),
-                             motion[0] * params.latency, motion[1] * params.latency)
+        # A command takes effect a scan period or so after the scan it
+        # answers: judging the scan where the robot will be by then, under
+        # the command still running, keeps the loop from overshooting.
+        hits = seen_after_move(unbiased(view.points(), params.range_bias),
+                               motion[0] * params.latency, motion[1] * params.latency,
+                               params.laser_x)
         off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
         sector = hits[(off_right <= math.radians(params.wall_sector_deg)) & near]
-        self.wall, self.wall_ahead = right_wall(sector, params)
+        self.wall, self.wall_end = right_wall(sector, params)
+        self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
+        self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
         lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
         self.front = second_smallest(lane[:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
-        self.nearest = nearest_in(hits[off_right <= math.pi / 2])
+        self.nearest = nearest_in(self.right)
 
 
 def unbiased(points, bias):
@@ -135,20 +148,8 @@ def unbiased(points, bias):
     return points * scale[:, None]
 
 
-def ahead_in_time(points, advance, turn):
-    """Hits as they will be seen after the laser has moved advance metres and turned turn rad.
-
-    A command takes effect a scan period or so after the scan it answers;
-    judging the scan where the robot will be by then, under the command
-    still running, keeps the loop from overshooting.
-    """
-    c, s = math.cos(turn), math.sin(turn)
-    x, y = points[:, 0] - advance, points[:, 1]
-    return np.column_stack((c * x + s * y, -s * x + c * y))
-
-
 def right_wall(points, params):
-    """((distance, angle), reach ahead) of the wall on the right, or (None, -inf).
+    """((distance, angle), (x, y) of its farthest hit ahead) of the wall on the right, or None, None.
 
     Seeded by the hits straight to the right only, so that the other leg of
     a corner, or an obstacle, in the wider sector is not averaged into it.
@@ -157,10 +158,10 @@ def right_wall(points, params):
     seed = points[np.abs(bearings - RIGHT) <= math.radians(params.wall_seed_deg)]
     wall = wall_through(seed, points, params)
     if wall is None or wall[0] > params.wall_lost_distance:
-        return None, -math.inf
+        return None, None
     line = (wall[0], wall[1] + RIGHT)
-    reach = points[np.abs(offsets_from(points, line)) < params.wall_inlier_distance, 0].max()
-    return wall, float(reach)
+    inliers = points[np.abs(offsets_from(points, line)) < params.wall_inlier_distance]
+    return wall, inliers[np.argmax(inliers[:, 0])]
 
 
 def wall_through(seed, points, params):
@@ -251,7 +252,7 @@ class WallFollower(object):
 
     States: FOLLOW (PD on the fitted right wall), WALL_AHEAD (turn left,
     still moving, until the wall ahead has come round to the right),
-    OUTER_CORNER (circle the end of a wall that stopped on the right),
+    OUTER_CORNER (round the end of a wall that stopped on the right),
     SEARCH (no wall near: drive straight until one appears ahead or on the
     right). The last command is kept, to judge the next scan where the
     robot will be when that command takes effect.
@@ -261,16 +262,24 @@ class WallFollower(object):
         self.params = params or FollowerParams()
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
+        self.arc = None
+        self._stamp = None
 
-    def update(self, view):
+    def update(self, view, stamp=None):
         """Advance the state machine on a ScanView; returns the next Command.
 
-        The command stays within cruise_speed and max_turn_rate; the node
-        still clamps it to the robot's limits.
+        stamp: the scan's time [s]. The time since the last scan tells how
+        far the robot has turned round a corner; without stamps the scans
+        are taken to be latency apart. The command stays within
+        cruise_speed and max_turn_rate; the node still clamps it to the
+        robot's limits.
         """
         p = self.params
+        dt = p.latency if stamp is None or self._stamp is None else stamp - self._stamp
+        self._stamp = stamp
         obs = Observation(view, p, self.command)
-        self.state = self._next_state(obs)
+        previous, self.state = self.state, self._next_state(obs)
+        self._track_corner(obs, previous == OUTER_CORNER, dt)
         speed, turn = getattr(self, '_cmd_' + self.state.lower())(obs)
         self.command = Command(min(max(speed, 0.0), p.cruise_speed),
                                min(max(turn, -p.max_turn_rate), p.max_turn_rate))
@@ -286,7 +295,7 @@ class WallFollower(object):
             # the end of a wall beside the robot (a short wall, a box) can
             # end the turn otherwise: anything near behind it only means the
             # turn is not over yet.
-            if self._rejoined(obs) and not self._blocking(obs):
+            if self._rejoined(obs, p.rejoin_angle_deg) and not self._blocking(obs):
                 return FOLLOW
             if obs.ahead is not None or obs.front < p.front_clear_distance:
                 return WALL_AHEAD
@@ -295,9 +304,10 @@ class WallFollower(object):
             if near:
                 return WALL_AHEAD
         elif self.state == OUTER_CORNER:
-            if self._rejoined(obs):
+            if self._rejoined(obs, p.arc_exit_angle_deg):
                 return FOLLOW
-        elif obs.wall is not None and obs.wall_ahead > p.corner_lead:
+        elif obs.wall is not None and obs.wall_ahead + p.laser_x > self._rounding():
+            # The wall goes on past where the arc round its end starts.
             return FOLLOW
         if near and self.state != SEARCH:
             return OUTER_CORNER
@@ -337,11 +347,11 @@ class WallFollower(object):
         """
         return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
-    def _rejoined(self, obs):
+    def _rejoined(self, obs, max_angle_deg):
         """True when a corner is over: a straight wall on the right, nearly parallel."""
         p = self.params
         return (obs.wall is not None and obs.wall_ahead > p.rejoin_ahead
-                and abs(obs.wall[1]) < math.radians(p.rejoin_angle_deg))
+                and abs(obs.wall[1]) < math.radians(max_angle_deg))
 
     def _steer(self, distance, angle, target):
         """PD turn rate holding a wall at distance target and parallel."""
@@ -376,13 +386,39 @@ class WallFollower(object):
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
 
+    def _track_corner(self, obs, rounding, dt):
+        """Start the arc round an outer corner, or move it on, or drop it after the corner."""
+        if self.state != OUTER_CORNER:
+            self.arc = None
+        elif not rounding or self.arc is None:
+            self.arc = self._corner_arc(obs)
+        else:
+            self.arc.moved(self.command.linear * dt, self.command.angular * dt)
+            self.arc.observe(obs.right, self.params.corner_gate)
+
+    def _rounding(self):
+        """Radius a corner is taken to be rounded off with: the arc keeps target_distance from it."""
+        return max(0.0, self.params.outer_corner_radius - self.params.target_distance)
+
+    def _corner_arc(self, obs):
+        """The arc round the end of the wall that just ended, else round the nearest hit."""
+        p = self.params
+        if obs.wall is not None:
+            tip, angle = obs.wall_end, obs.wall[1]
+            along = (math.cos(angle), math.sin(angle))
+        else:
+            distance, bearing = obs.nearest
+            tip = (distance * math.cos(bearing), distance * math.sin(bearing))
+            along = (-math.sin(bearing), math.cos(bearing))
+        return CornerArc(tip, along, self._rounding(), p.outer_corner_radius, p.laser_x)
+
     def _cmd_outer_corner(self, obs):
         p = self.params
-        distance, bearing = obs.nearest
+        distance, bearing = self.arc.offset()
         radius = p.outer_corner_radius
         speed = min(p.cruise_speed, p.outer_corner_speed_share * radius * p.max_turn_rate)
-        # Circle the wall's end: the circle's curvature as a feed-forward,
-        # and the PD law on the end as if it were a wall tangent to the circle.
+        # The arc's curvature as a feed-forward, and the PD law on its
+        # centre as if that were a wall tangent to the arc.
         turn = -speed / radius + self._steer(distance, float(wrap_angle(bearing - RIGHT)), radius)
         return Command(speed, turn)
 

@@ -3,7 +3,10 @@
 The course's real TurtleBot3 kills a node that exceeds 0.19 m/s or
 0.49 rad/s, so no command leaves a node without passing through clamp().
 """
+import math
 from collections import namedtuple
+
+import numpy as np
 
 MAX_LINEAR = 0.19
 MAX_ANGULAR = 0.49
@@ -19,3 +22,17 @@ def clamp(command, max_linear=MAX_LINEAR, max_angular=MAX_ANGULAR):
             return 0.0
         return max(-bound, min(bound, float(value)))
     return Command(limit(command.linear, max_linear), limit(command.angular, max_angular))
+
+
+def seen_after_move(points, advance, turn, laser_x=0.0):
+    """(N, 2) laser-frame points as the laser sees them after the robot's move.
+
+    The robot drives advance metres ahead and then turns turn rad left
+    about its rotation centre; the laser sits laser_x ahead of that centre.
+    A laser off the centre (the Burger's sits 32 mm behind it) is
+    carried sideways by every turn, which a controller circling a point
+    at full turn rate has to know about.
+    """
+    c, s = math.cos(turn), math.sin(turn)
+    x, y = points[:, 0] + laser_x - advance, points[:, 1]
+    return np.column_stack((c * x + s * y - laser_x, -s * x + c * y))

@@ -13,14 +13,15 @@ import yaml
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from wall_follower import follower
 from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    WallFollower, ahead_in_time, consensus_line, unbiased)
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp
+                                    WallFollower, consensus_line, unbiased)
+from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
 from wall_follower.scan import ScanView
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]
-# The geometry tests expect exact ranges, so the Stage-grid correction is off.
-EXACT = FollowerParams(range_bias=0.0)
+# The geometry tests expect exact ranges, so the Stage-grid correction is off,
+# and they move the laser itself, so it is the rotation centre.
+EXACT = FollowerParams(range_bias=0.0, laser_x=0.0)
 CONFIG = os.path.join(os.path.dirname(__file__), '..', '..', 'config', 'wall_following.yaml')
 
 
@@ -185,8 +186,13 @@ def convex_corner(end_x, right=0.25):
 def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
     controller, command = update(convex_corner(1.0), convention=convention)
     assert controller.state == FOLLOW and abs(command.angular) < 0.01
-    # The robot has come level with the wall's end.
-    controller, command = update(convex_corner(-0.02), convention=convention,
+    # The arc round the end starts (outer_corner_radius - target_distance)
+    # before the end: the corner counts as rounded off by that much.
+    lead = EXACT.outer_corner_radius - EXACT.target_distance
+    controller, command = update(convex_corner(lead + 0.04), convention=convention,
+                                 controller=controller)
+    assert controller.state == FOLLOW
+    controller, command = update(convex_corner(lead - 0.03), convention=convention,
                                  controller=controller)
     assert controller.state == OUTER_CORNER
     assert command.angular < -0.3 and command.linear > 0.05
@@ -267,7 +273,7 @@ def test_every_parameter_is_described():
 
 def test_look_ahead_moves_hits_against_the_motion():
     points = np.array([[1.0, 0.0], [0.0, -0.25]])
-    moved = ahead_in_time(points, 0.1, math.pi / 2)
+    moved = seen_after_move(points, 0.1, math.pi / 2)
     # Forward 0.1 m, then a quarter turn left: what was ahead is now on the right.
     assert moved[0] == pytest.approx([0.0, -0.9])
     assert moved[1] == pytest.approx([-0.25, 0.1])

@@ -68,14 +68,12 @@ class LatestScan(object):
     """
 
     def __init__(self, topic='scan'):
-        self.view = None
-        self.stamp = None
+        self._latest = (None, None)   # (view, arrival time), replaced as one
         self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
 
     def _on_scan(self, msg):
-        self.view = ScanView.from_msg(msg)
-        self.stamp = rospy.Time.now()
+        self._latest = (ScanView.from_msg(msg), rospy.Time.now())
         with self._arrived:
             self._arrived.notify_all()
 
@@ -87,16 +85,19 @@ class LatestScan(object):
         repeats the last one would let the world step on a stale decision.
         """
         with self._arrived:
-            if self.view is view:
+            if self._latest[0] is view:
                 self._arrived.wait(timeout)
 
     def fresh(self, timeout):
         """The latest scan if it is younger than timeout seconds, else None."""
-        if self.view is None or self.stamp is None:
-            return None
-        if (rospy.Time.now() - self.stamp).to_sec() > timeout:
-            return None
-        return self.view
+        return self.fresh_stamped(timeout)[0]
+
+    def fresh_stamped(self, timeout):
+        """(view, arrival time in s) of the latest scan if younger than timeout s, else (None, None)."""
+        view, stamp = self._latest
+        if view is None or (rospy.Time.now() - stamp).to_sec() > timeout:
+            return None, None
+        return view, stamp.to_sec()
 
 
 def world_path(world):

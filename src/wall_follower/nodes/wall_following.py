@@ -124,7 +124,7 @@ class WallFollowingNode(object):
         sent = rospy.get_time()
         while not rospy.is_shutdown() and not self.lap_done.is_set():
             now = rospy.get_time()
-            view = self.scan.fresh(self.node['scan_timeout'])
+            view, stamp = self.scan.fresh_stamped(self.node['scan_timeout'])
             if view is None:
                 self.commander.stop()
                 sent = now
@@ -132,7 +132,7 @@ class WallFollowingNode(object):
                                        % (rospy.resolve_name('scan'), self.node['scan_timeout']))
             elif view is not last_view:
                 last_view = view
-                self.commander.send(self.controller.update(view))
+                self.commander.send(self.controller.update(view, stamp))
                 sent = now
                 if self.controller.state != state:
                     rospy.loginfo('wall_following: %s -> %s', state, self.controller.state)

@@ -1,0 +1,73 @@
+"""The arc round an outer corner: its geometry, how it follows the robot, how it re-pins."""
+import math
+
+import numpy as np
+import pytest
+
+from wall_follower.corner import CornerArc
+from wall_follower.motion import seen_after_move
+
+RADIUS, ROUNDING = 0.30, 0.05
+KEPT = RADIUS - ROUNDING   # distance kept from the rounded-off corner
+
+
+def corner_points(tip, step=0.005):
+    """Hits along a wall ending at tip (along +x, wall below) and the next wall going down."""
+    back = np.arange(-0.5, 0.0, step)
+    old = np.column_stack((tip[0] + back, np.full(back.size, tip[1])))
+    new = np.column_stack((np.full(back.size, tip[0]), tip[1] + back[::-1]))
+    return np.vstack((old, [tip], new))
+
+
+def start_arc(laser_x=0.0):
+    """The arc as it starts: the tip ROUNDING ahead, the wall KEPT to the right."""
+    return CornerArc((ROUNDING, -KEPT), (1.0, 0.0), ROUNDING, RADIUS, laser_x)
+
+
+def test_an_arc_that_starts_now_has_its_centre_square_to_the_right():
+    distance, bearing = start_arc().offset()
+    assert distance == pytest.approx(RADIUS)
+    assert bearing == pytest.approx(-math.pi / 2)
+
+
+@pytest.mark.parametrize('laser_x', [0.0, -0.032])
+def test_driving_the_arc_keeps_the_centre_square_to_the_right(laser_x):
+    arc = start_arc(laser_x)
+    # The same arc with the laser off the rotation centre: the centre is
+    # measured from the rotation centre, which the turn does not move sideways.
+    arc.tip = arc.tip - (laser_x, 0.0)
+    turn = math.pi / 64
+    tips = []
+    for _ in range(32):   # a quarter turn, each step a chord of the arc
+        arc.moved(0.0, -turn / 2)
+        arc.moved(2.0 * RADIUS * math.sin(turn / 2), 0.0)
+        arc.moved(0.0, -turn / 2)
+        distance, bearing = arc.offset()
+        assert distance == pytest.approx(RADIUS, abs=1e-3)
+        assert bearing == pytest.approx(-math.pi / 2, abs=0.01)
+        tips.append(math.hypot(*(arc.tip + (laser_x, 0.0))))
+    # Round a corner rounded off by ROUNDING: the tip comes to KEPT - 0.41 ROUNDING half way.
+    assert min(tips) == pytest.approx(KEPT - (math.sqrt(2.0) - 1.0) * ROUNDING, abs=2e-3)
+    assert max(tips) <= math.hypot(KEPT, ROUNDING) + 1e-3
+
+
+def test_observing_re_pins_the_tip_to_the_corner_not_to_the_wall_beside_it():
+    arc = start_arc()
+    seen = np.array((0.06, -0.245))
+    assert arc.observe(corner_points(seen), gate=0.1)
+    assert arc.tip == pytest.approx(seen, abs=0.006)
+
+
+def test_a_corner_out_of_the_gate_leaves_the_tip_where_it_was_expected():
+    arc = start_arc()
+    assert not arc.observe(corner_points(np.array((0.5, -0.5))), gate=0.1)
+    assert arc.tip == pytest.approx((ROUNDING, -KEPT))
+
+
+def test_a_turn_carries_a_laser_behind_the_centre_sideways():
+    ahead = np.array([[1.0, 0.0]])
+    # A quarter turn left on the spot, the laser 0.1 m behind the centre:
+    # the point, 0.9 m ahead of the centre, ends up 0.9 m to the centre's
+    # right, and the laser, swung round behind the centre, sees it 0.1 m ahead.
+    moved = seen_after_move(ahead, 0.0, math.pi / 2, laser_x=-0.1)
+    assert moved[0] == pytest.approx([0.1, -0.9])
