@@ -132,6 +132,17 @@ class CourseMonitor(object):
         if self.start_on_goal:
             self.done.set()
 
+    def summary(self):
+        """The score's figures so far (RunScore.summary).
+
+        Under the lock: ground truth keeps arriving on the subscriber's
+        thread, poses stamped up to the recorder's result still count after
+        the run has ended, and a summary taken while one is being added
+        would pair one pose's weight with another's distance.
+        """
+        with self.lock:
+            return self.score.summary()
+
     def wait(self):
         """Block until the run ends (result, or lap on ground truth); False on shutdown.
 

@@ -19,7 +19,7 @@ from wall_follower.sim.worldfile import WorldFileError
 
 def course_figures(monitor):
     """The run's figures: the action's result next to the ground-truth score."""
-    figures = monitor.score.summary()
+    figures = monitor.summary()
     points = monitor.result or []
     nan = float('nan')
     figures.update({

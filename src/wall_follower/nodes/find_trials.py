@@ -41,7 +41,7 @@ class FindTrials(object):
         took = rospy.get_time() - started
         rospy.sleep(SETTLE)
         monitor.close()
-        score = monitor.score.summary()
+        score = monitor.summary()
         aligned = self.map.right_wall_alignment(monitor.pose) if monitor.pose else None
         return {
             'start': list(start),
