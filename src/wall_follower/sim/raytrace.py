@@ -124,9 +124,10 @@ class _GridTables(object):
     all round (further regions are clamped onto the ring where needed); region (rx, ry)
     is entry (ry - ry0 + _RING) * region_stride + (rx - rx0 + _RING).
     populated[region]: something was drawn into the region (its cells are followed).
-    box_near / box_far [direction * regions + region]: bounding box of the region's
-        visible cells along a direction of travel, in signed coordinates (see `ahead`);
-        one no walk enters for a region without visible cells.
+    box [(side * 4 + direction) * regions + region]: bounding box of the region's
+        visible cells along a direction of travel, in signed coordinates (see `ahead`):
+        side 0 its first coordinate, side 1 the first beyond it (one no walk enters for a
+        region without visible cells); box_sides: offsets of the two sides.
     ahead[direction * cells + cell]: for every cell and direction (+x, -x along its row,
         +y, -y along its column), the nearest visible cell at or beyond it, as its
         coordinate times the direction's sign, so that along every direction "no further
@@ -153,6 +154,10 @@ class _GridTables(object):
         self.returns = returns.ravel()
         self._build_boxes(visible.reshape(rows, REGION_WIDTH, cols, REGION_WIDTH))
         self._build_ahead(visible)
+        # _Scan.frame for each kind of beam: 4 * (major axis is x) + 2 * (going up x)
+        # + (going up y)
+        kind = np.arange(8)
+        self.frames = _frame_rows(self, kind >= 4, (kind & 2) > 0, (kind & 1) > 0)
 
     def _build_boxes(self, blocks):
         by_col = blocks.any(axis=1)   # [region row, region col, column within]
@@ -164,10 +169,11 @@ class _GridTables(object):
         y_lo = row_base + np.argmax(by_row, axis=1)
         y_hi = row_base + REGION_WIDTH - 1 - np.argmax(by_row[:, ::-1, :], axis=1)
         empty = ~blocks.any(axis=(1, 3))
-        self.box_near = np.concatenate([_with_ring(np.where(empty, _NO_BOX, b), _NO_BOX)
-                                        for b in (x_lo, -x_hi, y_lo, -y_hi)])
-        self.box_far = np.concatenate([_with_ring(np.where(empty, -_NO_BOX, b), -_NO_BOX)
-                                       for b in (x_hi, -x_lo, y_hi, -y_lo)])
+        near = [np.where(empty, _NO_BOX, b) for b in (x_lo, -x_hi, y_lo, -y_hi)]
+        beyond = [np.where(empty, -_NO_BOX, b + 1) for b in (x_hi, -x_lo, y_hi, -y_lo)]
+        self.box = np.concatenate([_with_ring(b, _NO_BOX) for b in near] +
+                                  [_with_ring(b, -_NO_BOX) for b in beyond])
+        self.box_sides = np.array([0, len(self.box) // 2]).reshape(2, 1, 1)
 
     def _build_ahead(self, visible):
         xs = self.cx0 + np.arange(self.width)[None, :]
@@ -289,27 +295,7 @@ class _Scan(object):
         self.swap = np.empty((2, count), dtype=np.int64)
         self.swap[1] = major_is_x
         self.swap[0] = 1 - self.swap[1]
-        # per-beam frame constants, as they are for a major x and for a major y axis
-        dir_x = _PLUS_X + ~up_x
-        dir_y = _PLUS_Y + ~up_y
-        regions = len(tables.populated)
-        along = np.empty((2, 12, count), dtype=np.int64)
-        for major, (s_major, s_minor, d_major, d_minor, stride, origin, r, w) in enumerate((
-                (sx, sy, dir_x, dir_y, tables.width, tables.cy0 * tables.width + tables.cx0,
-                 (1, tables.region_stride), (1, tables.width)),
-                (sy, sx, dir_y, dir_x, tables.height, tables.cx0 * tables.height + tables.cy0,
-                 (tables.region_stride, 1), (tables.width, 1)))):
-            rows = along[major]
-            rows[0] = s_major
-            rows[1] = s_minor
-            rows[2:4] = rows[0:2] < 0
-            rows[_REGION_STRIDE] = np.array(r)[:, None]
-            rows[_RETURNS_STRIDE] = np.array(w)[:, None]
-            rows[8] = d_major * regions
-            rows[9] = d_minor * regions
-            rows[_AHEAD_BASE] = d_major * tables.cells - origin
-            rows[_AHEAD_LINE] = stride * s_minor
-        self.frame = np.where(major_is_x, along[0], along[1])
+        self.frame = tables.frames.take(4 * major_is_x + 2 * up_x + up_y, axis=1)
         self.major_trig = np.where(major_is_x, cos, sin)
         self.major_start = np.where(major_is_x, self.start[0], self.start[1])
         # flights: aim at the region border ahead, one cell past it going down
@@ -510,8 +496,9 @@ class _Scan(object):
         entry[1:] = states
         shift = sign * cell - steps    # signed cell = shift + steps made, per axis
         box = frame[_BOX][:, None, :] + regions
-        into = paths.state_after(tables.box_near.take(box, mode='clip') - shift[:, None, :])
-        beyond = paths.state_after(tables.box_far.take(box, mode='clip') - shift[:, None, :] + 1)
+        into, beyond = paths.state_after(
+            tables.box.take(box[:, None] + tables.box_sides, mode='clip') -
+            shift[:, None, None, :]).swapaxes(0, 1)
         start = np.maximum(np.maximum(entry, into[0]), into[1])
         stop = np.minimum(np.minimum(end, beyond[0]), beyond[1])
         start[start >= stop] = NEVER
@@ -621,6 +608,32 @@ class _Scan(object):
         hit_cell = (cell + sign * moved.astype(np.int64)) * frame[_RETURNS_STRIDE]
         self.intensities[beam] = tables.returns.take(hit_cell[0] + hit_cell[1] +
                                                      tables.returns_origin)
+
+
+def _frame_rows(tables, major_is_x, up_x, up_y):
+    """The rows of _Scan.frame of beams with these axes and directions, on `tables`."""
+    sx = 2 * up_x - 1
+    sy = 2 * up_y - 1
+    dir_x = _PLUS_X + ~up_x
+    dir_y = _PLUS_Y + ~up_y
+    regions = len(tables.populated)
+    along = np.empty((2, 12, len(up_x)), dtype=np.int64)
+    for major, (s_major, s_minor, d_major, d_minor, stride, origin, r, w) in enumerate((
+            (sx, sy, dir_x, dir_y, tables.width, tables.cy0 * tables.width + tables.cx0,
+             (1, tables.region_stride), (1, tables.width)),
+            (sy, sx, dir_y, dir_x, tables.height, tables.cx0 * tables.height + tables.cy0,
+             (tables.region_stride, 1), (tables.width, 1)))):
+        rows = along[major]
+        rows[0] = s_major
+        rows[1] = s_minor
+        rows[2:4] = rows[0:2] < 0
+        rows[_REGION_STRIDE] = np.array(r)[:, None]
+        rows[_RETURNS_STRIDE] = np.array(w)[:, None]
+        rows[8] = d_major * regions
+        rows[9] = d_minor * regions
+        rows[_AHEAD_BASE] = d_major * tables.cells - origin
+        rows[_AHEAD_LINE] = stride * s_minor
+    return np.where(major_is_x, along[0], along[1])
 
 
 def _with_ring(table, empty=False):
