@@ -49,7 +49,7 @@ PARAMETERS = {
     'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
     'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
     'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
-    'closest_distance': (0.235, 'heading into the wall, slow so as to turn parallel no nearer'),
+    'closest_distance': (0.24, 'heading into the wall, slow so as to turn parallel no nearer'),
     # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
     'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the fit'),
@@ -367,7 +367,9 @@ class WallFollower(object):
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
             radius = self._arc_radius(distance - p.closest_distance, angle)
-            speed = min(speed, radius * p.max_turn_rate)
+            if radius * p.max_turn_rate < speed:
+                # That arc is flown at the full turn rate, the way it was planned.
+                speed, turn = radius * p.max_turn_rate, p.max_turn_rate
         return Command(speed, turn)
 
     def _cmd_wall_ahead(self, obs):

@@ -96,6 +96,15 @@ def test_heading_into_the_wall_slows_down_to_turn_in_time():
     assert steep.linear < gentle.linear
 
 
+def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
+    # Just outside closest_distance, 15 deg into the wall: the arc that turns
+    # parallel in time is tight, so the robot slows down, but it keeps moving
+    # and turns at the full rate instead of pivoting on the spot.
+    _, command = update(right_wall(EXACT.closest_distance + 0.005), (0.0, 0.0, math.radians(-15.0)))
+    assert command.angular == EXACT.max_turn_rate
+    assert 0.0 < command.linear < 0.5 * EXACT.cruise_speed
+
+
 @pytest.mark.parametrize('seed', range(5))
 def test_lds01_noise_and_dropouts_do_not_shake_it(seed):
     controller = WallFollower(EXACT)
