@@ -50,6 +50,7 @@ PARAMETERS = {
     'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
     'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
     'closest_distance': (0.24, 'heading into the wall, slow so as to turn parallel no nearer'),
+    'min_arc_radius': (0.2, '... but never onto an arc tighter than this (no pivot on the spot)'),
     # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
     'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the fit'),
@@ -366,7 +367,8 @@ class WallFollower(object):
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
-            radius = self._arc_radius(distance - p.closest_distance, angle)
+            radius = max(p.min_arc_radius,
+                         self._arc_radius(distance - p.closest_distance, angle))
             if radius * p.max_turn_rate < speed:
                 # That arc is flown at the full turn rate, the way it was planned.
                 speed, turn = radius * p.max_turn_rate, p.max_turn_rate
@@ -392,9 +394,9 @@ class WallFollower(object):
         """Start the arc round an outer corner, or move it on, or drop it after the corner."""
         if self.state != OUTER_CORNER:
             self.arc = None
-        elif not rounding or self.arc is None:
+        elif not rounding:
             self.arc = self._corner_arc(obs)
-        else:
+        elif self.arc is not None:
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
 
@@ -403,21 +405,26 @@ class WallFollower(object):
         return max(0.0, self.params.outer_corner_radius - self.params.target_distance)
 
     def _corner_arc(self, obs):
-        """The arc round the end of the wall that just ended, else round the nearest hit."""
-        p = self.params
-        if obs.wall is not None:
-            tip, angle = obs.wall_end, obs.wall[1]
-            along = (math.cos(angle), math.sin(angle))
-        else:
-            distance, bearing = obs.nearest
-            tip = (distance * math.cos(bearing), distance * math.sin(bearing))
-            along = (-math.sin(bearing), math.cos(bearing))
-        return CornerArc(tip, along, self._rounding(), p.outer_corner_radius, p.laser_x)
+        """The arc round the end of the wall that just ended; None without such a wall.
+
+        Without it (the corner comes up in the middle of a left turn, at
+        the end of a short wall or a box's side) which way the corner points
+        is unknown, and the robot circles the nearest hit instead.
+        """
+        if obs.wall is None:
+            return None
+        angle = obs.wall[1]
+        return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self._rounding(),
+                         self.params.outer_corner_radius, self.params.laser_x)
 
     def _cmd_outer_corner(self, obs):
         p = self.params
-        distance, bearing = self.arc.offset()
-        radius = p.outer_corner_radius
+        if self.arc is not None:
+            distance, bearing = self.arc.offset()
+            radius = p.outer_corner_radius
+        else:
+            distance, bearing = obs.nearest
+            radius = p.target_distance
         speed = min(p.cruise_speed, p.outer_corner_speed_share * radius * p.max_turn_rate)
         # The arc's curvature as a feed-forward, and the PD law on its
         # centre as if that were a wall tangent to the arc.

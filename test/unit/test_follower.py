@@ -219,6 +219,19 @@ def test_an_outer_corner_is_rounded_onto_the_next_wall():
     assert all(0.18 < distance < 0.32 for _, _, distance in trail)
 
 
+def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
+    """Inner corner onto the box's short side, whose end comes up mid-turn, two outer
+    corners round the box, the inner corner back onto the wall: in band all the way."""
+    world = [((-5.0, -0.25), (0.8, -0.25)), ((0.8, -0.25), (0.8, 0.05)), ((0.8, 0.05), (1.1, 0.05)),
+             ((1.1, 0.05), (1.1, -0.25)), ((1.1, -0.25), (5.0, -0.25))]
+    trail = drive(world, (0.0, 0.0, 0.0), steps=160)
+    states = set(state for state, _, _ in trail)
+    assert {WALL_AHEAD, OUTER_CORNER} <= states and trail[-1][0] == FOLLOW
+    x, y, yaw = trail[-1][1]
+    assert x > 1.6 and y == pytest.approx(0.0, abs=0.04) and abs(yaw) < math.radians(8.0)
+    assert all(0.17 < distance < 0.36 for _, _, distance in trail)
+
+
 # --- no wall near ----------------------------------------------------------------------
 
 @pytest.mark.parametrize('convention', ALL, ids=IDS)
