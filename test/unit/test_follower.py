@@ -97,12 +97,16 @@ def test_heading_into_the_wall_slows_down_to_turn_in_time():
 
 
 def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
-    # Just outside closest_distance, 15 deg into the wall: the arc that turns
-    # parallel in time is tight, so the robot slows down, but it keeps moving
-    # and turns at the full rate instead of pivoting on the spot.
-    _, command = update(right_wall(EXACT.closest_distance + 0.005), (0.0, 0.0, math.radians(-15.0)))
-    assert command.angular == EXACT.max_turn_rate
-    assert 0.0 < command.linear < 0.5 * EXACT.cruise_speed
+    # 2 cm outside closest_distance, 20 deg into the wall: the arc that turns
+    # parallel just in time has radius 0.02 / (1 - cos 20 deg), flown at the full rate.
+    _, command = update(right_wall(EXACT.closest_distance + 0.02), (0.0, 0.0, math.radians(-20.0)))
+    radius = 0.02 / (1.0 - math.cos(math.radians(20.0)))
+    assert command == pytest.approx((radius * EXACT.max_turn_rate, EXACT.max_turn_rate), abs=0.01)
+    # Nearer still, that arc would be a pivot on the spot; it is never tighter
+    # than min_arc_radius, so the robot keeps moving.
+    _, command = update(right_wall(EXACT.closest_distance + 0.002), (0.0, 0.0, math.radians(-15.0)))
+    assert command == pytest.approx((EXACT.min_arc_radius * EXACT.max_turn_rate,
+                                     EXACT.max_turn_rate))
 
 
 @pytest.mark.parametrize('seed', range(5))
