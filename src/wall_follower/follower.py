@@ -12,7 +12,8 @@ fit cannot see them coming:
   at every scan, so the turn is closed-loop, not timed;
 - a wall that ends on the right (outer, convex corner) is rounded on an
   arc around the corner as if it were rounded off (see corner.py), pinned
-  to the corner's tip at every scan.
+  to the corner's tip at every scan; a corner that comes up with no wall
+  fitted (the end of a box's short side, mid-turn) is circled instead.
 
 The turn rate, not the speed, is what limits a lap: a 90 degree corner
 takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
@@ -21,6 +22,8 @@ largest radius that keeps the wall in the band.
 Everything is in the laser frame (x ahead, y left, angles counter-clockwise,
 0 = ahead, -pi/2 = right) and read by angle through ScanView, so the
 laser's beam order and its way of writing "no return" do not matter.
+Motion is modelled about the robot's rotation centre; the laser sits
+laser_x ahead of it (on a Burger, 32 mm behind it).
 """
 import math
 
