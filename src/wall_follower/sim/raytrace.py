@@ -526,14 +526,15 @@ class _Scan(object):
             after = np.where(after >= until[passed], after, NEVER).min(axis=0)
             end[missed] = np.minimum(end[missed], after)
         going_on = np.nonzero(~hit & (end < budget_end))[0]
-        end = end.take(going_on)
-        done = np.empty((2, len(going_on)))
-        done[1] = paths.select(going_on).minors_within(end)
+        done = np.empty((2, count))
+        done[1] = paths.minors_within(end)
         done[0] = end - done[1]
-        g = g.take(going_on, axis=1) + sign.take(going_on, axis=1) * (
-            done - steps.take(going_on, axis=1))
+        done = done.take(going_on, axis=1)
+        end = end.take(going_on)
+        frame = frame.take(going_on, axis=1)
+        g = g.take(going_on, axis=1) + frame[_SIGN] * (done - steps.take(going_on, axis=1))
         # Stage goes on from the cell of the position, which need not be the one entered
-        region = (g.astype(np.int64) >> REGION_BITS) * region_stride.take(going_on, axis=1)
+        region = (g.astype(np.int64) >> REGION_BITS) * frame[_REGION_STRIDE]
         flies = ~tables.populated.take(region[0] + region[1] + tables.region_origin,
                                        mode='clip')
         return beam.take(going_on), g, done, budget_end.take(going_on) - end, flies
