@@ -43,6 +43,7 @@ def test_a_lap_of_the_room_in_band_without_contact():
     assert figures['time_in_band'] >= 0.97
     assert figures['rms_error'] <= 0.02
     assert figures['max_linear'] <= MAX_LINEAR and figures['max_angular'] <= MAX_ANGULAR
-    # Fast on the straights: not much slower than the speed limit allows.
-    assert figures['lap_time_ratio'] <= 1.25
+    # Fast: the room's four corners cost the lap less than a fifth of the
+    # time its path takes at the speed limit.
+    assert figures['lap_time_ratio'] <= 1.2
     assert 'WALL_AHEAD' in states
