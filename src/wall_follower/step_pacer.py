@@ -2,9 +2,11 @@
 
 Real `stageros -g` steps as fast as the CPU allows, so Python controllers,
 which answer each scan a little later, fall behind and see the world jump.
-The built-in simulator instead holds a chosen multiple of real time, and can
-go further and wait for the controllers (lockstep), which makes a run give the
-same result however busy the machine is.
+The built-in simulator instead holds a chosen multiple of real time, gives a
+controller whose answer is a little late part of a period more (the steady
+schedule takes the delay back on the next steps), and can go further and
+wait for the controllers (lockstep), which makes a run give the same result
+however busy the machine is.
 """
 import threading
 import time
@@ -15,6 +17,8 @@ class StepPacer(object):
 
     period: wall seconds between steps (interval_sim / speedup); 0 steps as
         fast as possible.
+    patience: without lockstep, how long past its time a step waits for a
+        new command from every robot that is being driven (wall seconds).
     lockstep: before each step, wait for a new command from every robot that
         is being driven, at most `timeout` wall seconds (so a controller that
         died cannot freeze the world); when nobody drives, wait at most
@@ -27,8 +31,9 @@ class StepPacer(object):
     STOP_POLL = 0.1
 
     def __init__(self, period, robot_count=1, lockstep=False, grace=0.05, timeout=1.0,
-                 clock=time.monotonic):
+                 patience=0.0, clock=time.monotonic):
         self.period = max(0.0, period)
+        self.patience = max(0.0, patience)
         self.lockstep = lockstep
         self.grace = grace
         self.timeout = timeout
@@ -69,18 +74,20 @@ class StepPacer(object):
             if self._due is not None:
                 self._wait_until(self._due, lambda: False)
             if self.lockstep:
-                self._wait_for_commands(driving)
+                self._wait_for_commands(driving, self.timeout, self.grace)
+            elif self.patience > 0.0:
+                self._wait_for_commands(driving, self.patience, 0.0)
             self._fresh = [False] * len(self._fresh)
             self._schedule_next(self._clock())
             return not self._stopped
 
-    def _wait_for_commands(self, driving):
+    def _wait_for_commands(self, driving, timeout, grace):
         awaited = [index for index, active in enumerate(driving) if active]
         if awaited:
-            self._wait_until(self._clock() + self.timeout,
+            self._wait_until(self._clock() + timeout,
                              lambda: all(self._fresh[index] for index in awaited))
-        else:
-            self._wait_until(self._clock() + self.grace, lambda: any(self._fresh))
+        elif grace > 0.0:
+            self._wait_until(self._clock() + grace, lambda: any(self._fresh))
 
     def _wait_until(self, deadline, ready):
         while not self._stopped and not ready():

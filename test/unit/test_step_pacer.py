@@ -89,3 +89,28 @@ def test_stop_releases_a_waiting_step():
     stopper.start()
     assert pacer.wait_turn([True]) is False
     stopper.join()
+
+
+def test_a_held_rate_waits_a_little_for_a_late_command():
+    # The command comes 30 ms after the step's time; the step waits for it (patience 0.2 s).
+    pacer = StepPacer(period=0.01, patience=0.2)
+    pacer.wait_turn([True])
+    sender, arrivals = send_later(pacer, 0, delay=0.03)
+    assert pacer.wait_turn([True])
+    stepped = time.monotonic()
+    sender.join()
+    assert stepped >= arrivals[0]
+
+
+def test_a_held_rate_waits_no_longer_than_its_patience():
+    pacer = StepPacer(period=0.01, patience=0.05)
+    pacer.wait_turn([True])
+    start = time.monotonic()
+    assert pacer.wait_turn([True])   # no command ever comes
+    assert time.monotonic() - start >= 0.05
+
+
+def test_a_held_rate_waits_for_nobody_when_no_robot_is_driven():
+    pacer = StepPacer(period=0.01, patience=30.0)
+    assert run_steps(pacer, 5, driving=[False]) < 20.0
+

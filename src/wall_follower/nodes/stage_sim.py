@@ -21,6 +21,9 @@ Private parameters:
   ~speedup (1.0)          simulated seconds per wall second, held; <= 0 runs as fast
                           as the CPU allows. The world file's `speedup` is ignored,
                           as stageros -g ignores it.
+  ~late_command_share (0.5) at a held speedup, a step waits at most this share of
+                          its period for a moving robot's next cmd_vel; the steady
+                          schedule makes up the delay on the next steps
   ~laser_profile (stage)  scan convention: stage, lds01 or gazebo
   ~seed (0)               seed of the laser noise
   ~pose ('')              'x y yaw_deg' start pose of the first robot instead of the
@@ -67,6 +70,7 @@ from wall_follower.step_pacer import StepPacer
 DEFAULTS = {
     'base_watchdog_timeout': 0.2,
     'speedup': 1.0,
+    'late_command_share': 0.5,
     'laser_profile': 'stage',
     'seed': 0,
     'pose': '',
@@ -174,10 +178,11 @@ class StageSimNode(object):
         self._lock = threading.Lock()
         count = len(self._sim.robots)
         speedup = params['speedup']
-        self._pacer = StepPacer(self._sim.dt / speedup if speedup > 0 else 0.0,
-                                robot_count=count, lockstep=bool(params['lockstep']),
+        period = self._sim.dt / speedup if speedup > 0 else 0.0
+        self._pacer = StepPacer(period, robot_count=count, lockstep=bool(params['lockstep']),
                                 grace=params['lockstep_grace'],
-                                timeout=params['lockstep_timeout'])
+                                timeout=params['lockstep_timeout'],
+                                patience=params['late_command_share'] * period)
         self._robots = [RobotTopics(robot_prefix(index, count)) for index in range(count)]
         self._clock = rospy.Publisher('/clock', Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
