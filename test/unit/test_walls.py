@@ -19,7 +19,9 @@ def degrees(wall):
 def test_the_four_walls_of_a_room_nearest_first(convention):
     walls = extract_walls(scan_view(ROOM, (0.5, 0.3, 0.0), convention), min_length=0.5)
     assert [round(w.distance, 2) for w in walls] == [1.2, 1.5, 1.8, 2.5]
-    assert [round(degrees(w)) for w in walls] == [90, 0, -90, 180]
+    # Modulo 360: the wall behind may come out at +180 or -180 deg, by a
+    # rounding that differs between numpy versions.
+    assert [round(degrees(w)) % 360 for w in walls] == [90, 0, 270, 180]
     assert all(w.rms < 0.005 and w.foot_inside(0.5) for w in walls)
 
 
