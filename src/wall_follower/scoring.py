@@ -148,17 +148,23 @@ class RunScore(object):
     def path_length(self):
         return self.lap.total_distance
 
-    def _measure(self):
-        """(right-wall distance, clearance) of every pose so far, cast once each."""
-        for pose in self.poses[len(self._measured):]:
+    def _measure(self, count):
+        """(right-wall distance, clearance) of the first count poses, cast once each."""
+        for pose in self.poses[len(self._measured):count]:
             self._measured.append((self.map.right_wall_distance(pose), self.map.clearance(pose)))
-        return self._measured
+        return self._measured[:count]
 
     def summary(self):
-        """The run's figures as a dict (NaN where there is nothing to measure)."""
-        measured = self._measure()
+        """The run's figures as a dict (NaN where there is nothing to measure).
+
+        Only the poses complete when it starts count: a monitor may still be
+        adding one from its subscriber's thread (a pose's weight goes in
+        before the pose).
+        """
+        count = len(self.poses)
+        measured = self._measure(count)
         min_clearance = min((c for _, c in measured), default=math.inf)
-        weights = np.asarray(self.weights[1:], dtype=float)
+        weights = np.asarray(self.weights[1:count], dtype=float)
         distances = np.asarray([d for d, _ in measured[1:]], dtype=float)
         total = weights.sum()
         if total > 0.0:

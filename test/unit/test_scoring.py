@@ -81,6 +81,20 @@ def test_run_score_of_a_lap_along_the_bottom_wall(room):
     assert 0.45 < figures['time_in_band'] < 0.55
 
 
+def test_a_summary_taken_while_a_pose_is_half_added_counts_the_complete_ones(room):
+    # A monitor's subscriber thread adds a pose's weight before the pose;
+    # a summary taken in between must not pair the weights with the poses
+    # one off.
+    score = RunScore(room)
+    for step in range(20):
+        score.add_pose(0.1 * step, (-0.8 + 0.019 * step, -0.95, 0.0))
+    whole = score.summary()
+    score.weights.append(0.1)
+    half_added = score.summary()
+    assert half_added['time_in_band'] == whole['time_in_band'] == 1.0
+    assert half_added['rms_error'] == pytest.approx(whole['rms_error'])
+
+
 def test_true_lap_length_of_a_square_trail():
     side, step = 1.0, 0.01
     trail = []
