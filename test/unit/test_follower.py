@@ -175,16 +175,11 @@ def test_the_nearer_the_wall_ahead_the_tighter_the_turn():
 
 def test_an_inner_corner_is_turned_onto_the_next_wall():
     """Closed loop round a corner: ends following the new wall, inside the band, never stopped."""
-    world = corridor_end(1.2)
-    trail = drive(world, (0.0, 0.0, 0.0), steps=80)
-    states = [state for state, _, _ in trail]
-    assert WALL_AHEAD in states and states[-1] == FOLLOW
-    x, y, yaw = trail[-1][1]
+    (x, y, yaw), distances, _ = round_a_corner(corridor_end(1.2), 80, WALL_AHEAD)
     assert yaw == pytest.approx(math.pi / 2, abs=math.radians(8.0))
     assert 1.2 - x == pytest.approx(0.25, abs=0.04)
     # The arc cuts the corner: at its middle both walls are a little over
     # 0.3 m away, by design (a tighter arc would be slower), never more.
-    distances = [distance for _, _, distance in trail]
     assert 0.22 < min(distances) and max(distances) < 0.33
 
 
@@ -212,15 +207,11 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
 
 
 def test_an_outer_corner_is_rounded_onto_the_next_wall():
-    world = convex_corner(0.6)
-    trail = drive(world, (0.0, 0.0, 0.0), steps=90)
-    states = [state for state, _, _ in trail]
-    assert OUTER_CORNER in states and states[-1] == FOLLOW
-    x, y, yaw = trail[-1][1]
+    (x, y, yaw), distances, _ = round_a_corner(convex_corner(0.6), 90, OUTER_CORNER)
     assert yaw == pytest.approx(-math.pi / 2, abs=math.radians(10.0))
     assert x - 0.6 == pytest.approx(0.25, abs=0.05)
     # All the way round, the wall's end stays near the target distance.
-    assert all(0.18 < distance < 0.32 for _, _, distance in trail)
+    assert all(0.18 < distance < 0.32 for distance in distances)
 
 
 def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
@@ -228,12 +219,10 @@ def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
     corners round the box, the inner corner back onto the wall: in band all the way."""
     world = [((-5.0, -0.25), (0.8, -0.25)), ((0.8, -0.25), (0.8, 0.05)), ((0.8, 0.05), (1.1, 0.05)),
              ((1.1, 0.05), (1.1, -0.25)), ((1.1, -0.25), (5.0, -0.25))]
-    trail = drive(world, (0.0, 0.0, 0.0), steps=160)
-    states = set(state for state, _, _ in trail)
-    assert {WALL_AHEAD, OUTER_CORNER} <= states and trail[-1][0] == FOLLOW
-    x, y, yaw = trail[-1][1]
+    (x, y, yaw), distances, states = round_a_corner(world, 160, OUTER_CORNER)
+    assert WALL_AHEAD in states
     assert x > 1.6 and y == pytest.approx(0.0, abs=0.04) and abs(yaw) < math.radians(8.0)
-    assert all(0.17 < distance < 0.36 for _, _, distance in trail)
+    assert all(0.17 < distance < 0.36 for distance in distances)
 
 
 # --- no wall near ----------------------------------------------------------------------
@@ -340,3 +329,15 @@ def drive(world, pose, steps, dt=0.1):
         trail.append((controller.state, (x, y, yaw),
                       sector.min_range(-math.pi / 2, math.radians(30.0))))
     return trail
+
+
+def round_a_corner(world, steps, corner_state):
+    """Drive from the origin through corner_state back to FOLLOW.
+
+    Returns (the end pose, the right-wall distance at every step, the states
+    passed through).
+    """
+    trail = drive(world, (0.0, 0.0, 0.0), steps)
+    states = [state for state, _, _ in trail]
+    assert corner_state in states and states[-1] == FOLLOW
+    return trail[-1][1], [distance for _, _, distance in trail], set(states)
