@@ -12,9 +12,9 @@ The arc is pinned to the corner's tip as the scans see it, and carried
 along with the robot's own motion between scans. Which way the corner
 points, which the tip alone cannot tell, comes from the wall that ended.
 
-Points are in the laser frame (x ahead, y left), in metres; the arc is
-the path of the robot's rotation centre, -laser_x from the
-laser, because that is the point a turn does not move sideways.
+Points are in the laser frame (x ahead, y left), in metres. The arc is
+the path of the robot's rotation centre (-laser_x ahead of the laser),
+the one point that a turn does not carry sideways.
 """
 import math
 
@@ -24,17 +24,15 @@ from wall_follower.motion import seen_after_move
 
 
 class CornerArc(object):
-    """The circle of radius `radius` around the rounded-off corner at `tip`.
+    """The centre of the arcs round the corner at `tip`, rounded off with radius `rounding`.
 
     tip: (x, y) of the wall's end; along: vector along that wall in the
-    direction of travel; rounding: the radius the corner is taken to be
-    rounded off with, so that radius - rounding is the distance kept from
-    that rounding. laser_x: the laser's position ahead of the rotation
-    centre.
+    direction of travel. An arc of radius r about the centre keeps
+    r - rounding from the rounded-off corner. laser_x: the laser's position
+    ahead of the rotation centre.
     """
 
-    def __init__(self, tip, along, rounding, radius, laser_x=0.0):
-        self.radius = float(radius)
+    def __init__(self, tip, along, rounding, laser_x=0.0):
         self.laser_x = float(laser_x)
         self.tip = np.asarray(tip, dtype=float)
         along = np.asarray(along, dtype=float) / math.hypot(*along)

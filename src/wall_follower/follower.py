@@ -259,7 +259,8 @@ class WallFollower(object):
     OUTER_CORNER (round the end of a wall that stopped on the right),
     SEARCH (no wall near: drive straight until one appears ahead or on the
     right). The last command is kept, to judge the next scan where the
-    robot will be when that command takes effect.
+    robot will be when that command takes effect; arc is the CornerArc
+    being driven round an outer corner, or None.
     """
 
     def __init__(self, params=None):
@@ -393,11 +394,11 @@ class WallFollower(object):
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
 
-    def _track_corner(self, obs, rounding, dt):
+    def _track_corner(self, obs, was_rounding, dt):
         """Start the arc round an outer corner, or move it on, or drop it after the corner."""
         if self.state != OUTER_CORNER:
             self.arc = None
-        elif not rounding:
+        elif not was_rounding:
             self.arc = self._corner_arc(obs)
         elif self.arc is not None:
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
@@ -418,7 +419,7 @@ class WallFollower(object):
             return None
         angle = obs.wall[1]
         return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self._rounding(),
-                         self.params.outer_corner_radius, self.params.laser_x)
+                         self.params.laser_x)
 
     def _cmd_outer_corner(self, obs):
         p = self.params

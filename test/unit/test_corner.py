@@ -21,7 +21,7 @@ def corner_points(tip, step=0.005):
 
 def start_arc(laser_x=0.0):
     """The arc as it starts: the tip ROUNDING ahead, the wall KEPT to the right."""
-    return CornerArc((ROUNDING, -KEPT), (1.0, 0.0), ROUNDING, RADIUS, laser_x)
+    return CornerArc((ROUNDING, -KEPT), (1.0, 0.0), ROUNDING, laser_x)
 
 
 def test_an_arc_that_starts_now_has_its_centre_square_to_the_right():
