@@ -206,6 +206,25 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
     assert command.angular < -0.3 and command.linear > 0.05
 
 
+@pytest.mark.parametrize('period', [0.1, 0.2])
+def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(period):
+    # The rounded-off corner's centre is fixed in the world: between two
+    # scans it turns, seen from the robot, by the robot's own turn, which
+    # is the command times the time between the scans' stamps.
+    lead = EXACT.outer_corner_radius - EXACT.target_distance
+    view = scan_view(convex_corner(lead - 0.03), (0.0, 0.0, 0.0), STAGE)
+    controller = WallFollower(EXACT)
+    controller.update(scan_view(convex_corner(1.0), (0.0, 0.0, 0.0), STAGE), stamp=9.9)
+    controller.update(view, stamp=10.0)
+    assert controller.state == OUTER_CORNER
+    before = controller.arc.center - controller.arc.tip
+    turn = controller.command.angular * period
+    controller.update(view, stamp=10.0 + period)
+    after = controller.arc.center - controller.arc.tip
+    turned = math.atan2(after[1], after[0]) - math.atan2(before[1], before[0])
+    assert turned == pytest.approx(-turn)
+
+
 def test_an_outer_corner_is_rounded_onto_the_next_wall():
     (x, y, yaw), distances, _ = round_a_corner(convex_corner(0.6), 90, OUTER_CORNER)
     assert yaw == pytest.approx(-math.pi / 2, abs=math.radians(10.0))
