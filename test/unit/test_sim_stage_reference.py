@@ -33,9 +33,9 @@ def _world(name):
     return load_world(os.path.join(DATA, name + '.world'))
 
 
-def _scan_at(world, gt):
+def _scan_at(world, gt, raytrace=None):
     """The scan a simulation of `world` publishes with the robot at ground truth `gt`."""
-    sim = Simulation(world, poses={0: (gt['x'], gt['y'], gt['yaw'])})
+    sim = Simulation(world, poses={0: (gt['x'], gt['y'], gt['yaw'])}, raytrace=raytrace)
     return sim.step().robots[0]
 
 
@@ -58,11 +58,12 @@ def test_laser_tf_matches_stageros(name):
     assert laser.yaw == pytest.approx(reference['yaw'], abs=1e-6)
 
 
+@pytest.mark.parametrize('implementation', ('numpy', 'compiled'))
 @pytest.mark.parametrize('name', WORLDS)
-def test_every_snapshot_scan_matches_real_stage(name):
+def test_every_snapshot_scan_matches_real_stage(name, implementation):
     world = _world(name)
     for snapshot in _reference(name)['snapshots']:
-        robot = _scan_at(world, snapshot['gt'])
+        robot = _scan_at(world, snapshot['gt'], raytrace=implementation)
         ranges = robot.scan.ranges
         expected = np.array(snapshot['ranges'])
         error = np.abs(ranges - expected)
