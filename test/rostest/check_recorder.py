@@ -6,6 +6,7 @@ at the robot's pose of that moment, carrying nothing over from the first.
 """
 import math
 import sys
+import time
 import unittest
 
 import actionlib
@@ -13,11 +14,15 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
+from std_srvs.srv import Empty
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import pose_of
 
 POLL = 0.1
+# Wall seconds: polling for the goal to be taken while the world is paused, and the limit.
+WALL_POLL = 0.01
+ACCEPT_LIMIT = 10.0
 # Simulated seconds around a goal's sending in which its first point must lie.
 FIRST_POINT_WINDOW = (-0.5, 2.0)
 
@@ -29,6 +34,8 @@ class RecordOdomGoals(unittest.TestCase):
         cls.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         assert cls.client.wait_for_server(rospy.Duration(30.0)), 'no record_odom server'
         cls.truths = []
+        cls.pause = rospy.ServiceProxy('pause_physics', Empty)
+        cls.unpause = rospy.ServiceProxy('unpause_physics', Empty)
         rospy.Subscriber('base_pose_ground_truth', Odometry, cls._on_truth, queue_size=50)
 
     @classmethod
@@ -40,13 +47,25 @@ class RecordOdomGoals(unittest.TestCase):
         return [pose for t, pose in list(self.truths) if stamp + low <= t <= stamp + high]
 
     def record(self, until_distance):
-        """Send a goal, cancel it once the feedback reaches until_distance."""
+        """Send a goal, cancel it once the feedback reaches until_distance.
+
+        The goal is sent with the world paused and the world resumes once
+        the server has taken it: the simulator runs many times faster than
+        real time, and the wall milliseconds the goal spends in transit would
+        otherwise be simulated seconds of driving.
+        """
         feedback = []
         while not self.truths:
             rospy.sleep(POLL)
+        self.pause()
         started = rospy.get_time()
         self.client.send_goal(OdomRecordGoal(),
                               feedback_cb=lambda fb: feedback.append(fb.current_total))
+        deadline = time.time() + ACCEPT_LIMIT
+        while self.client.get_state() != GoalStatus.ACTIVE and time.time() < deadline:
+            time.sleep(WALL_POLL)   # simulated time stands still while paused
+        self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE, 'record_odom took no goal')
+        self.unpause()
         while not feedback or feedback[-1] < until_distance:
             rospy.sleep(POLL)
         self.client.cancel_goal()
