@@ -32,7 +32,8 @@ Private parameters:
                           that is moving, so a busy machine cannot change a run
   ~lockstep_grace (0.05)  lockstep: wall seconds to wait when no robot is moving
   ~lockstep_timeout (1.0) lockstep: longest wall wait for a moving robot's command
-  ~quit_time (the world's quit_time) exit after this many simulated seconds; 0 = never
+  ~quit_time (the world's quit_time) exit after this many simulated seconds (and log the
+                          multiple of real time it ran at); 0 = never
   ~paused (the world's paused) start without stepping until unpause_physics is
                           called, e.g. so that a monitor can connect first
 Services beyond stageros, named as Gazebo's: pause_physics and unpause_physics
@@ -48,6 +49,7 @@ import os
 import signal
 import sys
 import threading
+import time
 
 import rospkg
 import rospy
@@ -244,6 +246,7 @@ class StageSimNode(object):
 
     def run(self):
         """Steps until shutdown or quit_time."""
+        first_step = None
         while not rospy.is_shutdown() and not self._pacer.stopped:
             if not self._running.wait(self.PAUSE_POLL):
                 continue
@@ -252,6 +255,8 @@ class StageSimNode(object):
             if not self._pacer.wait_turn(moving):
                 return
             with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
+            if first_step is None:
+                first_step = time.time()
             with self._lock:
                 frame = self._sim.step(with_scans=with_scans)
             try:
@@ -261,7 +266,10 @@ class StageSimNode(object):
                     return
                 raise
             if 0.0 < self._quit_time <= frame.stamp + 1e-9:
-                rospy.loginfo('quit_time %.1f s of simulated time reached', self._quit_time)
+                wall = time.time() - first_step
+                rospy.loginfo('quit_time %.1f s of simulated time reached after %.2f wall s '
+                              '(%.0fx real time)', self._quit_time, wall,
+                              frame.stamp / max(wall, 1e-9))
                 return
 
     def _publish(self, frame):
