@@ -53,6 +53,39 @@ static int64_t visible_cell(const struct grid_tables *t, int64_t x, int64_t y)
   return t->visible[y * t->width + x] ? y * t->width + x : -1;
 }
 
+/* A region border ahead of a flying beam along one axis. */
+struct crossing {
+  double x, y;         /* where the beam crosses it */
+  double hop_x, hop_y; /* how that point moves on to the next border along the axis */
+  double hop_length;   /* Manhattan length of such a hop */
+  double distance;     /* Manhattan distance still to fly to it */
+};
+
+static struct crossing first_crossing(double gx, double gy, double dx, double dy, double hop_x,
+                                      double hop_y)
+{
+  const struct crossing c = {gx + dx, gy + dy, hop_x, hop_y, fabs(hop_x) + fabs(hop_y),
+                             fabs(dx) + fabs(dy)};
+  return c;
+}
+
+/*
+ * Fly to the border `taken`, paying its distance from the budget (truncated,
+ * as Stage's integer budget is), and move it on to the next border along its
+ * axis; the other border comes that much nearer.
+ */
+static void fly_to(struct crossing *taken, struct crossing *other, double *gx, double *gy,
+                   int64_t *budget)
+{
+  *gx = taken->x;
+  *gy = taken->y;
+  *budget = (int64_t)((double)*budget - taken->distance);
+  taken->x += taken->hop_x;
+  taken->y += taken->hop_y;
+  other->distance -= taken->distance;
+  taken->distance = taken->hop_length;
+}
+
 /*
  * One beam from (startx, starty) in cell units. cosa, sina, tana: its
  * direction (tana = sina / cosa, the beam at exactly 0 rad already nudged);
@@ -66,19 +99,12 @@ static int trace_beam(const struct grid_tables *t, double startx, double starty,
 {
   const int64_t sx = cosa < 0.0 ? -1 : 1;
   const int64_t sy = sina < 0.0 ? -1 : 1;
-  /* Flights: a region along x (along y) moves the crossing by these. */
-  const double xhop_x = (double)(sx * REGION_WIDTH);
-  const double xhop_y = (double)(sx * REGION_WIDTH) * tana;
-  const double yhop_x = (double)(sy * REGION_WIDTH) / tana;
-  const double yhop_y = (double)(sy * REGION_WIDTH);
-  const double xhop_length = fabs(xhop_x) + fabs(xhop_y);
-  const double yhop_length = fabs(yhop_x) + fabs(yhop_y);
+  const double region_x = (double)(sx * REGION_WIDTH), region_y = (double)(sy * REGION_WIDTH);
   double gx = startx, gy = starty;
   /* The cell path's error term: step along x while it is negative. */
   int64_t error = ay - ax;
   int64_t budget = ax + ay;
-  double xcross_x = 0.0, xcross_y = 0.0, ycross_x = 0.0, ycross_y = 0.0;
-  double to_xcross = 0.0, to_ycross = 0.0;
+  struct crossing along_x = {0}, along_y = {0};
   int crossings_stale = 1;
 
   while (budget > 0) {
@@ -114,32 +140,14 @@ static int trace_beam(const struct grid_tables *t, double startx, double starty,
       const double left = (double)(rx * REGION_WIDTH), bottom = (double)(ry * REGION_WIDTH);
       const double dx = sx < 0 ? left - gx - 1.0 : left + REGION_WIDTH - gx;
       const double dy = sy < 0 ? bottom - gy - 1.0 : bottom + REGION_WIDTH - gy;
-      const double rise = dx * tana, run = dy / tana;
+      along_x = first_crossing(gx, gy, dx, dx * tana, region_x, region_x * tana);
+      along_y = first_crossing(gx, gy, dy / tana, dy, region_y / tana, region_y);
       crossings_stale = 0;
-      xcross_x = gx + dx;
-      xcross_y = gy + rise;
-      ycross_x = gx + run;
-      ycross_y = gy + dy;
-      to_xcross = fabs(dx) + fabs(rise);
-      to_ycross = fabs(run) + fabs(dy);
     }
-    if (to_xcross < to_ycross) {
-      gx = xcross_x;
-      gy = xcross_y;
-      budget = (int64_t)((double)budget - to_xcross);
-      xcross_x += xhop_x;
-      xcross_y += xhop_y;
-      to_ycross -= to_xcross;
-      to_xcross = xhop_length;
-    } else {
-      gx = ycross_x;
-      gy = ycross_y;
-      budget = (int64_t)((double)budget - to_ycross);
-      ycross_x += yhop_x;
-      ycross_y += yhop_y;
-      to_xcross -= to_ycross;
-      to_ycross = yhop_length;
-    }
+    if (along_x.distance < along_y.distance)
+      fly_to(&along_x, &along_y, &gx, &gy, &budget);
+    else
+      fly_to(&along_y, &along_x, &gx, &gy, &budget);
   }
   return 0;
 }
