@@ -9,7 +9,7 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 WS_DIR="${WALL_FOLLOWER_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/wall_follower_ws}"
 
-APT_PACKAGES="g++ make cmake catkin ros-message-generation python3-rospy
+APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-roslaunch python3-rostest librostest-dev python3-actionlib
   ros-std-msgs libstd-msgs-dev python3-std-msgs
   ros-geometry-msgs libgeometry-msgs-dev python3-geometry-msgs
