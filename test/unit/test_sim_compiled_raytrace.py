@@ -61,3 +61,9 @@ def test_both_implementations_trace_the_same_beams(path):
         beams += len(angles)
         differ += np.count_nonzero(ranges != numpy_ranges)
     assert differ <= 0.01 * beams
+
+
+def test_an_unknown_implementation_is_an_error():
+    grid = Simulation(load_world(WORLDS[0])).grid
+    with pytest.raises(ValueError, match='fast'):
+        stage_ranges(grid, 0.0, 0.0, [0.0], 3.5, implementation='fast')

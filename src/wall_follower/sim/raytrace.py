@@ -109,11 +109,16 @@ def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), oth
         bodies = bodies + [(c[0], c[1]) for c in others]
         tables = _GridTables.build(grid, visible, returns, bodies)
     beams = _Beams(angles, grid.ppm * float(range_max))
-    trace = _trace_numpy if implementation == 'numpy' else _compiled_or_numpy(implementation)
-    return trace(tables, grid.ppm, float(x), float(y), beams, float(range_max))
+    return _tracer(implementation)(tables, grid.ppm, float(x), float(y), beams, float(range_max))
 
 
-def _compiled_or_numpy(implementation):
+def _tracer(implementation):
+    """The trace function of an implementation named as in stage_ranges."""
+    if implementation == 'numpy':
+        return _trace_numpy
+    if implementation not in (None, 'compiled'):
+        raise ValueError("raytrace implementation %r is none of 'compiled', 'numpy' or None"
+                         % (implementation,))
     if compiled_raytrace.available():
         return compiled_raytrace.trace
     if implementation == 'compiled':
