@@ -1,7 +1,12 @@
 """stage_sim's interface rules that need no ROS: how several robots are named
-(as stageros names them) and how a start pose is written as a parameter.
+(as stageros names them), how a start pose is written as a parameter, and
+the line it logs at quit_time (which the sim benchmark reads back).
 """
 import math
+import re
+
+_QUIT_REPORT = re.compile(r'quit_time [0-9.]+ s of simulated time reached after [0-9.]+ wall s '
+                          r'\(([0-9.]+)x real time\)')
 
 
 def robot_prefix(index, robot_count):
@@ -31,3 +36,19 @@ def parse_pose(text):
     if not all(math.isfinite(value) for value in (x, y, yaw_deg)):
         raise ValueError('pose %r: values must be finite' % text)
     return x, y, math.radians(yaw_deg)
+
+
+def quit_report(quit_time, wall_seconds):
+    """What stage_sim logs when it reaches quit_time, wall_seconds after its first step.
+
+    The real-time multiple in it is the only way to see how fast the
+    simulator runs with nobody subscribed to anything.
+    """
+    return 'quit_time %.1f s of simulated time reached after %.2f wall s (%.0fx real time)' % (
+        quit_time, wall_seconds, quit_time / max(wall_seconds, 1e-9))
+
+
+def rate_in_quit_report(text):
+    """The real-time multiple of the first quit_report line in `text`, or None."""
+    found = _QUIT_REPORT.search(text)
+    return float(found.group(1)) if found else None

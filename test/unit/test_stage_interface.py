@@ -3,7 +3,8 @@ import math
 
 import pytest
 
-from wall_follower.stage_interface import parse_pose, robot_prefix
+from wall_follower.stage_interface import (parse_pose, quit_report, rate_in_quit_report,
+                                           robot_prefix)
 
 
 def test_a_lone_robot_has_unprefixed_names():
@@ -30,3 +31,14 @@ def test_bad_poses_are_rejected_with_the_text_quoted(text):
     with pytest.raises(ValueError) as error:
         parse_pose(text)
     assert repr(text) in str(error.value)
+
+
+def test_the_quit_report_carries_the_real_time_multiple_back_to_the_benchmark():
+    line = quit_report(5000.0, 0.5)
+    assert line.startswith('quit_time 5000.0 s of simulated time reached after 0.50 wall s')
+    logged = '[INFO] [1795348212.066946]: %s\n[INFO] [1795348212.1]: shutting down\n' % line
+    assert rate_in_quit_report(logged) == 10000.0
+
+
+def test_no_quit_report_reads_as_none():
+    assert rate_in_quit_report('[INFO] [1.0]: world arena.world: 1 robot(s)\n') is None

@@ -10,7 +10,6 @@ one ran without a fresh command: that is a missed control step.
 """
 import argparse
 import os
-import re
 import signal
 import subprocess
 import sys
@@ -28,6 +27,7 @@ from wall_follower.benchmarks.launching import WORLDS, fmt, free_port, print_tab
 from wall_follower.nodes.common import world_path
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
+from wall_follower.stage_interface import rate_in_quit_report
 
 HELD_SPEEDUP = 20.0
 GOAL_FREE_RUN = 500.0
@@ -38,8 +38,6 @@ START_LIMIT = 20.0
 RUN_LIMIT = 120.0
 # Simulated seconds of the first unobserved free run, which sizes the second.
 UNOBSERVED_FIRST_RUN = 1000.0
-# stage_sim's log line at quit_time, and the rate in it.
-QUIT_REPORT = re.compile(r'quit_time .* reached after .* wall s \(([0-9.]+)x real time\)')
 
 
 class PrivateMaster(object):
@@ -146,10 +144,10 @@ def _reported_rate(master, world, quit_time):
     process = master.simulator(world, output=subprocess.PIPE, speedup=0, quit_time=quit_time)
     output = process.communicate(timeout=RUN_LIMIT)[0].decode('utf-8', 'replace')
     master.forget(process)
-    found = QUIT_REPORT.search(output)
-    if not found:
+    rate = rate_in_quit_report(output)
+    if rate is None:
         raise RuntimeError('the simulator did not report its rate at quit_time:\n' + output)
-    return float(found.group(1))
+    return rate
 
 
 def free_run_rate(master, world, seconds):

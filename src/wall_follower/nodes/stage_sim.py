@@ -67,7 +67,7 @@ from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.worldfile import WorldFileError, load_world
-from wall_follower.stage_interface import parse_pose, robot_prefix
+from wall_follower.stage_interface import parse_pose, quit_report, robot_prefix
 from wall_follower.step_pacer import StepPacer
 
 DEFAULTS = {
@@ -266,10 +266,7 @@ class StageSimNode(object):
                     return
                 raise
             if 0.0 < self._quit_time <= frame.stamp + 1e-9:
-                wall = time.time() - first_step
-                rospy.loginfo('quit_time %.1f s of simulated time reached after %.2f wall s '
-                              '(%.0fx real time)', self._quit_time, wall,
-                              frame.stamp / max(wall, 1e-9))
+                rospy.loginfo(quit_report(frame.stamp, time.time() - first_step))
                 return
 
     def _publish(self, frame):
