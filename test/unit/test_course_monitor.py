@@ -34,28 +34,33 @@ def _goal(stamp):
     return msg
 
 
-def _result(stamp):
+def _result(stamp, first, last):
+    """A result stamped `stamp` whose points are the true poses at `first` .. `last` s."""
     msg = OdomRecordActionResult()
     msg.header.stamp = rospy.Time.from_sec(stamp)
     msg.status.goal_id = GoalID(stamp=rospy.Time.from_sec(1.0), id='goal')
-    msg.result.list_of_odoms = [Point(x=0.19), Point(x=0.38)]
+    msg.result.list_of_odoms = [Point(x=SPEED * t) for t in (first, (first + last) / 2.0, last)]
     return msg
 
 
 @pytest.mark.parametrize('result_first', (True, False), ids=('result first', 'truth first'))
-def test_true_distance_at_the_result_counts_ground_truth_up_to_the_results_stamp(result_first):
+def test_true_distance_runs_from_the_first_recorded_point_to_the_last(result_first):
+    """The recorder takes its first point 0.2 s after the goal and answers 0.6 s after its
+    last point (1.0 s later), and ground truth stamped after the answer may arrive first:
+    the true distance is still that between the first and the last point."""
     monitor = CourseMonitor(CourseMap(ROOM))
     try:
         monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 21):
+        for tenth in range(10, 27):
             monitor._on_truth(_truth(tenth / 10.0))
-        late = [_truth(tenth / 10.0) for tenth in range(21, 31)]   # stamped after the result
+        late = [_truth(tenth / 10.0) for tenth in range(27, 35)]   # stamped after the result
+        result = _result(2.6, 1.2, 2.2)
         if result_first:
-            monitor._on_result(_result(2.0))
+            monitor._on_result(result)
         for msg in late:
             monitor._on_truth(msg)
         if not result_first:
-            monitor._on_result(_result(2.0))
+            monitor._on_result(result)
         assert monitor.truth_at_result == pytest.approx(SPEED * 1.0)
     finally:
         monitor.close()
