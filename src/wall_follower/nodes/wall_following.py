@@ -16,6 +16,7 @@ import threading
 import time
 
 import actionlib
+from actionlib.action_client import CommState
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
@@ -59,6 +60,7 @@ class WallFollowingNode(object):
         self.scan = LatestScan('scan')
         self.lap_done = threading.Event()
         self._recorder = None
+        self._recording = None
         self._distance = 0.0
 
     def find_wall(self):
@@ -83,14 +85,16 @@ class WallFollowingNode(object):
     def start_recording(self):
         """Send the record_odom goal; False when the action server never appears."""
         name = rospy.resolve_name('record_odom')
-        self._recorder = actionlib.SimpleActionClient(name, OdomRecordAction)
+        self._recorder = actionlib.ActionClient(name, OdomRecordAction)
         rospy.loginfo('wall_following: waiting for the %s action server', name)
         if not self._wait_for_recorder():
             rospy.logerr('wall_following: no %s action server after %.0f s; '
                          'is odom_recorder running?', name, self.node['service_wait'])
             return False
-        self._recorder.send_goal(OdomRecordGoal(), done_cb=self._on_recorded,
-                                 feedback_cb=self._on_feedback)
+        # The goal handle is kept so that the goal stays tracked; the callbacks
+        # use the handle they are given, as they can run before send_goal returns.
+        self._recording = self._recorder.send_goal(OdomRecordGoal(), self._on_transition,
+                                                   self._on_feedback)
         rospy.loginfo('wall_following: recording odometry on %s', name)
         return True
 
@@ -102,10 +106,21 @@ class WallFollowingNode(object):
                 return True
         return False
 
-    def _on_feedback(self, feedback):
+    def _on_feedback(self, _goal, feedback):
         self._distance = feedback.current_total
         rospy.loginfo_throttle(self.node['feedback_period'],
                                'wall_following: %.2f m travelled' % feedback.current_total)
+
+    def _on_transition(self, goal):
+        """The goal's result once it is done.
+
+        A plain ActionClient rather than SimpleActionClient: the simple one
+        compares each transition with the goal handle it stores when
+        send_goal returns, and a server answering before that logs an error
+        and loses the transition (ros/actionlib#206).
+        """
+        if goal.get_comm_state() == CommState.DONE:
+            self._on_recorded(goal.get_goal_status(), goal.get_result())
 
     def _on_recorded(self, state, result):
         if state != GoalStatus.SUCCEEDED:
