@@ -30,9 +30,7 @@ LAST_BITS = 1e-12
 
 
 def test_the_library_is_built_and_found():
-    assert compiled_raytrace.available(), (
-        '%s is not on LD_LIBRARY_PATH: build the workspace and source its setup file'
-        % compiled_raytrace.LIBRARY)
+    assert compiled_raytrace.available(), compiled_raytrace.NOT_FOUND
 
 
 @pytest.mark.parametrize('path', WORLDS, ids=lambda p: os.path.basename(p))

@@ -78,10 +78,11 @@ class CourseMonitor(object):
             if not self.result:
                 return None
             stamps = np.array(self._trail_stamps)
-            trail = np.array(self.trail)[stamps <= self.result_time]
+            before = stamps <= self.result_time
+            stamps, trail = stamps[before], np.array(self.trail)[before]
             if len(trail) < 2:
                 return 0.0
-            half = int(np.searchsorted(stamps, (stamps[0] + self.result_time) / 2.0))
+            half = int(np.searchsorted(stamps, (stamps[0] + stamps[-1]) / 2.0))
             half = min(max(half, 1), len(trail) - 1)
             first = _nearest(trail[:half], self.result[0])
             last = half + _nearest(trail[half:], self.result[-1])

@@ -371,9 +371,8 @@ def run_node(world, argv):
                   params['speedup'] if params['speedup'] > 0 else 'unlimited',
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
     if not compiled_raytrace.available():
-        rospy.logwarn('%s not found on LD_LIBRARY_PATH: the laser is traced in numpy, over '
-                      '20 times slower (source the workspace\'s setup file after building it)',
-                      compiled_raytrace.LIBRARY)
+        rospy.logwarn('%s; until then the laser is traced in numpy, over 20 times slower',
+                      compiled_raytrace.NOT_FOUND)
     if not node.running:
         rospy.loginfo('paused: call unpause_physics to start the world')
     if world.unknown_keywords:

@@ -12,9 +12,11 @@ import ctypes
 
 import numpy as np
 
-__all__ = ['LIBRARY', 'available', 'trace']
+__all__ = ['LIBRARY', 'NOT_FOUND', 'available', 'trace']
 
 LIBRARY = 'libwall_follower_raytrace.so'
+NOT_FOUND = ('%s is not on LD_LIBRARY_PATH: build the workspace and source its setup file'
+             % LIBRARY)
 
 _BYTES = np.ctypeslib.ndpointer(dtype=np.uint8, flags='C_CONTIGUOUS')
 _DOUBLES = np.ctypeslib.ndpointer(dtype=np.float64, flags='C_CONTIGUOUS')

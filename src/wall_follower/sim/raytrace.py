@@ -122,9 +122,7 @@ def _tracer(implementation):
     if compiled_raytrace.available():
         return compiled_raytrace.trace
     if implementation == 'compiled':
-        raise RuntimeError('the compiled raytrace library (%s) is not on the library path; '
-                           'build the workspace and source its setup file'
-                           % compiled_raytrace.LIBRARY)
+        raise RuntimeError(compiled_raytrace.NOT_FOUND)
     return _trace_numpy
 
 
