@@ -83,6 +83,11 @@ DEFAULTS = {
 }
 
 SIMULATORS = ('builtin', 'stage', 'auto')
+# Outgoing queue of the topics whose every message counts (a recorder sums odometry, a
+# monitor scores ground truth): rospy sends from a thread per connection, which the
+# stepping loop can starve for a while at high speed-ups, and a full queue drops the
+# oldest messages. Scans are only ever wanted fresh and keep a short queue.
+EVERY_STEP_QUEUE = 1000
 
 
 def stamp_of(seconds):
@@ -107,9 +112,10 @@ class RobotTopics(object):
         self.base_frame = prefix + 'base_link'
         self.laser_frame = prefix + 'base_laser_link'
         self.scan = rospy.Publisher(prefix + 'base_scan', LaserScan, queue_size=10)
-        self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=10)
-        self.truth = rospy.Publisher(prefix + 'base_pose_ground_truth', Odometry, queue_size=10)
-        self.stalled = rospy.Publisher(prefix + 'stalled', Bool, queue_size=10)
+        self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=EVERY_STEP_QUEUE)
+        self.truth = rospy.Publisher(prefix + 'base_pose_ground_truth', Odometry,
+                                     queue_size=EVERY_STEP_QUEUE)
+        self.stalled = rospy.Publisher(prefix + 'stalled', Bool, queue_size=EVERY_STEP_QUEUE)
 
     def scan_msg(self, stamp, scan):
         msg = LaserScan()
