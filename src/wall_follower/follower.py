@@ -229,6 +229,22 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
             and abs(first[0] - second[0]) < max_distance)
 
 
+def as_planned(ahead):
+    """The (distance, angle) of a wall ahead that a left turn is planned for.
+
+    A wall ahead at more than a right angle is rare in rooms, but common in
+    the fit of a short wall's few hits, a box's side say, whose angle is
+    the uncertain part: the hits pin down where the wall crosses the way
+    ahead, while a tilted fit brings its foot (the perpendicular distance)
+    nearer, and would start the turn early. Such a wall counts as a square
+    wall where its line crosses the way.
+    """
+    distance, angle = ahead
+    if angle <= math.pi / 2:
+        return distance, angle
+    return distance / max(math.sin(angle), 1e-6), math.pi / 2
+
+
 def second_smallest(values):
     """The second-smallest value (inf if fewer than two).
 
@@ -330,8 +346,9 @@ class WallFollower(object):
         p = self.params
         if not self._blocking(obs):
             return False
-        gap = obs.ahead[0] - p.turn_lead - p.inner_corner_distance
-        return self._arc_radius(gap, obs.ahead[1]) <= p.inner_corner_radius
+        distance, angle = as_planned(obs.ahead)
+        gap = distance - p.turn_lead - p.inner_corner_distance
+        return self._arc_radius(gap, angle) <= p.inner_corner_radius
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
@@ -346,9 +363,8 @@ class WallFollower(object):
 
         Heading into a wall at angle needs a turn through angle; an arc of
         radius r comes r * (1 - cos(angle)) nearer the wall meanwhile, hence
-        r = gap / (1 - cos(angle)). Angles past a right angle, rare in
-        rooms but common in the estimate of a short wall's angle, count as
-        a right angle, so that noise does not start the turn early.
+        r = gap / (1 - cos(angle)). Angles past a right angle count as a
+        right angle (see as_planned).
         """
         return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
@@ -388,7 +404,7 @@ class WallFollower(object):
         p = self.params
         radius = p.inner_corner_radius
         if obs.ahead is not None:
-            distance, angle = obs.ahead
+            distance, angle = as_planned(obs.ahead)
             radius = min(radius, self._arc_radius(distance - p.inner_corner_distance, angle))
         if obs.front < p.front_stop_distance:
             radius = 0.0

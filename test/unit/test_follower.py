@@ -13,7 +13,7 @@ import yaml
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from wall_follower import follower
 from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    WallFollower, consensus_line, unbiased)
+                                    WallFollower, as_planned, consensus_line, unbiased)
 from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
 from wall_follower.scan import ScanView
 
@@ -171,6 +171,40 @@ def test_a_wall_right_in_front_is_turned_from_on_the_spot():
 def test_the_nearer_the_wall_ahead_the_tighter_the_turn():
     speeds = [update(corridor_end(ahead))[1].linear for ahead in (0.45, 0.40, 0.36, 0.33)]
     assert speeds == sorted(speeds, reverse=True) and speeds[0] > speeds[-1]
+
+
+def tilted_end(crossing, angle_deg, right=0.25):
+    """A right wall that meets a wall crossing the way crossing metres ahead.
+
+    angle_deg is the wall's angle as the controller measures it: 90 for a
+    wall square across the way, more for one that leans back over the
+    right wall (an acute corner).
+    """
+    angle = math.radians(angle_deg)
+    along = (math.cos(angle), math.sin(angle))
+    meet = (crossing - right * along[0] / along[1], -right)
+    return [((-5.0, -right), meet), (meet, (crossing + 1.5 * along[0], 1.5 * along[1]))]
+
+
+def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
+    assert as_planned((0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
+    distance, angle = as_planned((0.45, math.radians(120.0)))
+    assert distance == pytest.approx(0.45 / math.sin(math.radians(120.0)))
+    assert angle == pytest.approx(math.pi / 2)
+    # So the turn starts where it would for a square wall at that crossing,
+    # not sooner because the tilted line's foot is nearer.
+    for crossing, state in ((0.52, FOLLOW), (0.46, WALL_AHEAD)):
+        assert update(corridor_end(crossing))[0].state == state
+        assert update(tilted_end(crossing, 120.0))[0].state == state
+
+
+@pytest.mark.parametrize('angle_deg', [110.0, 135.0])
+def test_an_acute_corner_is_still_turned_onto_in_the_band(angle_deg):
+    trail = drive(tilted_end(1.5, angle_deg), (0.0, 0.0, 0.0), 120)
+    state, (_, _, yaw), distance = trail[-1]
+    assert state == FOLLOW and distance == pytest.approx(0.25, abs=0.03)
+    assert math.degrees(yaw) == pytest.approx(angle_deg, abs=5.0)
+    assert min(d for _, _, d in trail) > 0.2
 
 
 def test_an_inner_corner_is_turned_onto_the_next_wall():
