@@ -364,7 +364,8 @@ class WallFollower(object):
         Heading into a wall at angle needs a turn through angle; an arc of
         radius r comes r * (1 - cos(angle)) nearer the wall meanwhile, hence
         r = gap / (1 - cos(angle)). Angles past a right angle count as a
-        right angle (see as_planned).
+        right angle, at the same gap; a wall ahead is first moved to where it
+        crosses the way (as_planned), so the gap is not the tilted line's foot.
         """
         return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
