@@ -7,9 +7,12 @@ being a line fitted through many beams, which holds the band without the
 zig-zag of the bang-bang rule. Corners get their own states because a wall
 fit cannot see them coming:
 
-- a wall ahead (inner corner) is turned onto at the full turn rate, on the
-  arc that ends parallel to it; the speed is re-planned from the wall ahead
-  at every scan, so the turn is closed-loop, not timed;
+- a wall ahead (inner corner) is turned onto at the full turn rate, wide
+  at first and then on a tighter arc that ends parallel to it (see
+  left_turn.py); the speed is re-planned from the wall ahead at every scan,
+  so the turn is closed-loop, not timed. While such a wall comes up, the
+  robot rides a little nearer the old wall, by as much as the wide start
+  will carry it off;
 - a wall that ends on the right (outer, convex corner) is rounded on an
   arc around the corner as if it were rounded off (see corner.py), pinned
   to the corner's tip at every scan; a corner that comes up with no wall
@@ -30,6 +33,7 @@ import math
 import numpy as np
 
 from wall_follower.corner import CornerArc
+from wall_follower.left_turn import LeftTurn
 from wall_follower.motion import Command, seen_after_move
 from wall_follower.scan import RIGHT, fit_line, wrap_angle
 
@@ -67,7 +71,9 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.23, 'radius of the left turn onto the wall ahead'),
+    'inner_corner_radius': (0.23, 'radius of the left turn onto the wall ahead, after its wide start'),
+    'wide_start_deg': (15.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'approach_range': (0.9, 'a wall ahead this near: ride nearer the wall by the wide start\'s drift'),
     'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
     'turn_lead': (0.02, 'start the turn this much early, for the scan and command delay'),
     'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
@@ -284,6 +290,9 @@ class WallFollower(object):
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
         self.arc = None
+        p = self.params
+        self.left_turn = LeftTurn(p.inner_corner_radius, p.cruise_speed / p.max_turn_rate,
+                                  math.radians(p.wide_start_deg))
         self._stamp = None
 
     def update(self, view, stamp=None):
@@ -342,13 +351,16 @@ class WallFollower(object):
         return off_right <= math.radians(self.params.corner_bearing_deg)
 
     def _turn_due(self, obs):
-        """True once an arc of inner_corner_radius would end on the wall ahead."""
+        """True once the planned left turn would end on the wall ahead."""
         p = self.params
         if not self._blocking(obs):
             return False
         distance, angle = as_planned(obs.ahead)
-        gap = distance - p.turn_lead - p.inner_corner_distance
-        return self._arc_radius(gap, angle) <= p.inner_corner_radius
+        return self.left_turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
+
+    def _approaching(self, obs):
+        """True when a wall across the way is within approach_range."""
+        return self._blocking(obs) and as_planned(obs.ahead)[0] < self.params.approach_range
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
@@ -364,8 +376,7 @@ class WallFollower(object):
         Heading into a wall at angle needs a turn through angle; an arc of
         radius r comes r * (1 - cos(angle)) nearer the wall meanwhile, hence
         r = gap / (1 - cos(angle)). Angles past a right angle count as a
-        right angle, at the same gap; a wall ahead is first moved to where it
-        crosses the way (as_planned), so the gap is not the tilted line's foot.
+        right angle, at the same gap.
         """
         return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
@@ -383,20 +394,23 @@ class WallFollower(object):
     def _cmd_follow(self, obs):
         p = self.params
         distance, angle = obs.wall
-        turn = self._steer(distance, angle, p.target_distance)
+        # The wide start of a left turn carries the robot off this wall:
+        # riding that much nearer before it keeps the turn's middle in band.
+        dip = self.left_turn.drift(as_planned(obs.ahead)[1]) if self._approaching(obs) else 0.0
+        turn = self._steer(distance, angle, p.target_distance - dip)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
             radius = max(p.min_arc_radius,
-                         self._arc_radius(distance - p.closest_distance, angle))
+                         self._arc_radius(distance - p.closest_distance + dip, angle))
             if radius * p.max_turn_rate < speed:
                 # That arc is flown at the full turn rate, the way it was planned.
                 speed, turn = radius * p.max_turn_rate, p.max_turn_rate
         return Command(speed, turn)
 
     def _cmd_wall_ahead(self, obs):
-        """Turn left at full rate, on the arc that ends parallel to the wall ahead.
+        """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
 
         Closed loop on the wall ahead: the speed is set each update to the
         radius still needed, so a late start slows the robot down instead of
@@ -406,7 +420,7 @@ class WallFollower(object):
         radius = p.inner_corner_radius
         if obs.ahead is not None:
             distance, angle = as_planned(obs.ahead)
-            radius = min(radius, self._arc_radius(distance - p.inner_corner_distance, angle))
+            radius = self.left_turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)

@@ -173,6 +173,31 @@ def test_the_nearer_the_wall_ahead_the_tighter_the_turn():
     assert speeds == sorted(speeds, reverse=True) and speeds[0] > speeds[-1]
 
 
+def test_a_wall_ahead_coming_up_is_approached_a_little_nearer():
+    # The wide start of the turn will carry the robot off this wall by its
+    # drift; riding that much nearer first keeps the turn's middle in band.
+    _, far = update(corridor_end(1.5))
+    controller, near = update(corridor_end(0.8))
+    assert controller.state == FOLLOW
+    assert far.angular == pytest.approx(0.0, abs=0.01)
+    drift = controller.left_turn.drift(math.pi / 2)
+    assert 0.005 < drift < 0.03
+    assert near.angular == pytest.approx(-EXACT.k_distance * drift, rel=0.05)
+
+
+def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
+    trail = drive(corridor_end(1.2), (0.0, 0.0, 0.0), 80)
+    # One step's travel is the command of that step (see drive).
+    speeds = [math.hypot(b[0] - a[0], b[1] - a[1]) / 0.1
+              for (_, a, _), (_, b, _) in zip(trail, trail[1:])]
+    turning = [(math.degrees(pose[2]), speed)
+               for (state, pose, _), speed in zip(trail, speeds) if state == WALL_AHEAD]
+    start = [speed for yaw, speed in turning if yaw < 10.0]
+    middle = [speed for yaw, speed in turning if 30.0 < yaw < 60.0]
+    assert start and min(start) > 0.9 * EXACT.cruise_speed
+    assert middle and max(middle) < 1.1 * EXACT.inner_corner_radius * EXACT.max_turn_rate
+
+
 def tilted_end(crossing, angle_deg, right=0.25):
     """A right wall that meets a wall crossing the way crossing metres ahead.
 
@@ -193,7 +218,7 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
     assert angle == pytest.approx(math.pi / 2)
     # So the turn starts where it would for a square wall at that crossing,
     # not sooner because the tilted line's foot is nearer.
-    for crossing, state in ((0.52, FOLLOW), (0.46, WALL_AHEAD)):
+    for crossing, state in ((0.56, FOLLOW), (0.50, WALL_AHEAD)):
         assert update(corridor_end(crossing))[0].state == state
         assert update(tilted_end(crossing, 120.0))[0].state == state
 

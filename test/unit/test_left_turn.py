@@ -1,0 +1,68 @@
+"""The planned left turn onto a wall ahead: its gap, its arcs, and how it shrinks to fit."""
+import math
+
+import pytest
+
+from wall_follower.left_turn import LeftTurn
+
+TIGHT, WIDE, WIDE_ANGLE = 0.23, 0.19 / 0.49, math.radians(15.0)
+
+
+def plan(wide_angle=WIDE_ANGLE):
+    return LeftTurn(TIGHT, WIDE, wide_angle)
+
+
+@pytest.mark.parametrize('angle_deg', [10.0, 45.0, 90.0])
+def test_without_a_wide_start_it_is_one_arc(angle_deg):
+    angle = math.radians(angle_deg)
+    assert plan(0.0).gap(angle) == pytest.approx(TIGHT * (1.0 - math.cos(angle)))
+    assert plan(0.0).arc_radius(angle) == TIGHT
+
+
+def test_a_square_turn_uses_the_wide_arc_first_then_the_tight_one():
+    # The wide arc turns from 90 to 75 deg, the tight one from 75 deg to parallel.
+    expected = WIDE * math.sin(WIDE_ANGLE) + TIGHT * (1.0 - math.sin(WIDE_ANGLE))
+    assert plan().gap(math.pi / 2) == pytest.approx(expected)
+    assert plan().arc_radius(math.radians(80.0)) == WIDE
+    assert plan().arc_radius(math.radians(70.0)) == TIGHT
+
+
+def test_the_gap_grows_with_the_angle_left_and_has_no_jump():
+    angles = [math.radians(a / 10.0) for a in range(0, 901)]
+    gaps = [plan().gap(a) for a in angles]
+    assert gaps[0] == 0.0
+    assert all(later > earlier for earlier, later in zip(gaps, gaps[1:]))
+    assert max(later - earlier for earlier, later in zip(gaps, gaps[1:])) < 1e-3
+
+
+def test_angles_past_a_right_angle_count_as_one():
+    assert plan().gap(math.radians(120.0)) == plan().gap(math.pi / 2)
+    assert plan().gap(-0.1) == 0.0
+
+
+def test_the_wide_start_drifts_off_the_old_wall_as_its_arc_does():
+    assert plan().drift(math.pi / 2) == pytest.approx(WIDE * (1.0 - math.cos(WIDE_ANGLE)))
+    assert plan().drift(math.radians(120.0)) == plan().drift(math.pi / 2)
+    assert plan(0.0).drift(math.pi / 2) == 0.0
+
+
+def test_a_turn_short_of_the_tight_arcs_share_has_no_wide_start_and_no_drift():
+    assert plan().drift(math.radians(45.0)) == 0.0
+    assert plan().drift(math.radians(80.0)) == pytest.approx(WIDE * (1.0 - math.cos(math.radians(5.0))))
+
+
+def test_with_the_gap_it_plans_the_turn_flies_the_planned_arc():
+    for angle_deg in (85.0, 60.0):
+        angle = math.radians(angle_deg)
+        turn = plan()
+        assert turn.radius_within(turn.gap(angle), angle) == turn.arc_radius(angle)
+        # More room than needed: the turn is not widened; it ends early.
+        assert turn.radius_within(2.0 * turn.gap(angle), angle) == turn.arc_radius(angle)
+
+
+def test_a_short_gap_shrinks_the_rest_of_the_turn_in_proportion():
+    angle = math.radians(85.0)
+    turn = plan()
+    assert turn.radius_within(0.5 * turn.gap(angle), angle) == pytest.approx(0.5 * WIDE)
+    assert turn.radius_within(0.0, angle) == 0.0
+    assert turn.radius_within(-0.1, angle) == 0.0
