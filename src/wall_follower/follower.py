@@ -80,7 +80,7 @@ PARAMETERS = {
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
-    'outer_corner_radius': (0.30, 'radius of the arc around a corner (its tip is rounded off)'),
+    'outer_corner_radius': (0.29, 'radius of the arc around a corner (its tip is rounded off)'),
     'outer_corner_speed_share': (0.9, 'share of the arc speed at max_turn_rate (turn headroom)'),
     'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
