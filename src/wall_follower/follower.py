@@ -334,7 +334,10 @@ class WallFollower(object):
             if near:
                 return WALL_AHEAD
         elif self.state == OUTER_CORNER:
-            if self._rejoined(obs, p.arc_exit_angle_deg):
+            # An arc ends where it was planned to, nearly parallel to the next
+            # wall; circling a hit has no such end, and takes any wall.
+            exit_deg = p.arc_exit_angle_deg if self.arc is not None else p.rejoin_angle_deg
+            if self._rejoined(obs, exit_deg):
                 return FOLLOW
         elif obs.wall is not None and obs.wall_ahead + p.laser_x > self._rounding():
             # The wall goes on past where the arc round its end starts.

@@ -12,6 +12,7 @@ import yaml
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from wall_follower import follower
+from wall_follower.corner import CornerArc
 from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
                                     WallFollower, as_planned, consensus_line, unbiased)
 from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
@@ -282,6 +283,20 @@ def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(
     after = controller.arc.center - controller.arc.tip
     turned = math.atan2(after[1], after[0]) - math.atan2(before[1], before[0])
     assert turned == pytest.approx(-turn)
+
+
+def test_circling_a_hit_ends_on_a_wall_that_an_arc_would_still_turn_for():
+    # With no wall to pin an arc to (a box's short side, mid-turn) the robot
+    # circles the nearest hit, and any straight wall within rejoin_angle_deg
+    # ends that; an arc ends only within arc_exit_angle_deg, where it was
+    # planned to.
+    pose = (0.0, 0.0, math.radians(15.0))
+    circling = WallFollower(EXACT)
+    circling.state = OUTER_CORNER
+    assert update(right_wall(0.25), pose, controller=circling)[0].state == FOLLOW
+    on_arc = WallFollower(EXACT)
+    on_arc.state, on_arc.arc = OUTER_CORNER, CornerArc((0.05, -0.25), (1.0, 0.0), 0.04)
+    assert update(right_wall(0.25), pose, controller=on_arc)[0].state == OUTER_CORNER
 
 
 def test_an_outer_corner_is_rounded_onto_the_next_wall():
