@@ -75,7 +75,7 @@ PARAMETERS = {
     'wide_start_deg': (15.0, 'first part of that turn, flown at cruise speed on its widest arc'),
     'approach_range': (0.9, 'a wall ahead this near: ride nearer the wall by the wide start\'s drift'),
     'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
-    'turn_lead': (0.02, 'start the turn this much early, for the scan and command delay'),
+    'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
     'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
