@@ -212,6 +212,17 @@ def tilted_end(crossing, angle_deg, right=0.25):
     return [((-5.0, -right), meet), (meet, (crossing + 1.5 * along[0], 1.5 * along[1]))]
 
 
+def test_a_wall_ahead_turned_onto_on_the_tight_arc_alone_is_not_approached_nearer():
+    # A 45 degree wall needs less turn than the tight arc's share, so the
+    # turn has no wide start and nothing to ride nearer for.
+    controller, command = update(tilted_end(1.0, 45.0))
+    assert controller.state == FOLLOW and abs(command.angular) < 0.01
+    # With a wide start of 60 degrees the same turn would start wide.
+    wide = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0, wide_start_deg=60.0))
+    _, command = update(tilted_end(1.0, 45.0), controller=wide)
+    assert command.angular < -0.05
+
+
 def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
     assert as_planned((0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
     distance, angle = as_planned((0.45, math.radians(120.0)))
