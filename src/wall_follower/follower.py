@@ -71,9 +71,9 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.23, 'radius of the left turn onto the wall ahead, after its wide start'),
+    'inner_corner_radius': (0.23, 'radius of the left turn onto a wall ahead, after its wide start'),
     'wide_start_deg': (15.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'approach_range': (0.9, 'a wall ahead this near: ride nearer the wall by the wide start\'s drift'),
+    'approach_range': (0.9, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
     'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
     'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
     'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
@@ -361,9 +361,15 @@ class WallFollower(object):
         distance, angle = as_planned(obs.ahead)
         return self.left_turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
-    def _approaching(self, obs):
-        """True when a wall across the way is within approach_range."""
-        return self._blocking(obs) and as_planned(obs.ahead)[0] < self.params.approach_range
+    def _approach_dip(self, obs):
+        """How much nearer to ride while a wall across the way is within approach_range.
+
+        As much as the wide start of the turn onto that wall will drift.
+        """
+        if not self._blocking(obs):
+            return 0.0
+        distance, angle = as_planned(obs.ahead)
+        return self.left_turn.drift(angle) if distance < self.params.approach_range else 0.0
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
@@ -399,7 +405,7 @@ class WallFollower(object):
         distance, angle = obs.wall
         # The wide start of a left turn carries the robot off this wall:
         # riding that much nearer before it keeps the turn's middle in band.
-        dip = self.left_turn.drift(as_planned(obs.ahead)[1]) if self._approaching(obs) else 0.0
+        dip = self._approach_dip(obs)
         turn = self._steer(distance, angle, p.target_distance - dip)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
