@@ -1,18 +1,24 @@
-"""The arc that rounds a convex (outer) corner faster than circling its tip.
+"""Rounding a convex (outer) corner: the arc round its tip, and the turn that flies it.
 
 Circling the end of a wall at the band's distance (0.25 m) holds the wall
 in the band, but at the turn-rate limit it allows only 0.49 * 0.25 = 0.12
-m/s. Rounding the corner as if it were rounded off with a radius c and
-keeping the band's distance from that rounding lets the robot drive an
-arc of radius 0.25 + c, which is faster, and its distance to the tip
-still stays within the band: it starts and ends at hypot(c, 0.25) and
-comes to 0.25 - 0.41 c half way round.
+m/s. Two things make the corner faster while its tip stays in the band:
+
+- the arc round the tip is centred a little off the tip (CornerArc's
+  centre), as if the corner were rounded off: an arc of radius 0.25 + c
+  round a corner rounded off by c starts and ends at the band's distance
+  and comes only 0.41 c nearer half way round;
+- the turn starts and ends on the widest arc the turn rate allows at cruise
+  speed (0.39 m, OuterTurn), and circles the tip on the tighter arc only
+  in between. Begun before the tip is reached, a wide arc keeps the tip
+  about as near as circling it would, and only the tight middle part of
+  the turn loses time to the turn-rate limit.
 
 The arc is pinned to the corner's tip as the scans see it, and carried
 along with the robot's own motion between scans. Which way the corner
 points, which the tip alone cannot tell, comes from the wall that ended.
 
-Points are in the laser frame (x ahead, y left), in metres. The arc is
+Points are in the laser frame (x ahead, y left), in metres. The arcs are
 the path of the robot's rotation centre (-laser_x ahead of the laser),
 the one point that a turn does not carry sideways.
 """
@@ -21,26 +27,28 @@ import math
 import numpy as np
 
 from wall_follower.motion import seen_after_move
+from wall_follower.scan import wrap_angle
 
 
 class CornerArc(object):
-    """The centre of the arcs round the corner at `tip`, rounded off with radius `rounding`.
+    """The centre of the arcs round the corner at `tip`, carried along with the robot.
 
     tip: (x, y) of the wall's end; along: vector along that wall in the
-    direction of travel. An arc of radius r about the centre keeps
-    r - rounding from the rounded-off corner. laser_x: the laser's position
-    ahead of the rotation centre.
+    direction of travel. center: where the arcs' centre lies from the tip,
+    as (ahead, off): metres ahead along the wall and off it, away from it
+    (toward the robot); a corner rounded off with radius r has its centre
+    at (-r, -r). laser_x: the laser's position ahead of the rotation centre.
     """
 
-    def __init__(self, tip, along, rounding, laser_x=0.0):
+    def __init__(self, tip, along, center, laser_x=0.0):
         self.laser_x = float(laser_x)
         self.tip = np.asarray(tip, dtype=float)
         along = np.asarray(along, dtype=float) / math.hypot(*along)
-        toward_wall = np.array((along[1], -along[0]))
-        # From the tip to the centre of the rounding, and the corner's
-        # outward direction (from that centre through the tip).
-        self._to_center = rounding * (toward_wall - along)
-        self._outward = (along - toward_wall) / math.sqrt(2.0)
+        away = np.array((-along[1], along[0]))
+        self._to_center = center[0] * along + center[1] * away
+        self._along = along
+        # The corner's outward direction, halfway between the two walls.
+        self._outward = (along + away) / math.sqrt(2.0)
 
     @property
     def center(self):
@@ -53,7 +61,19 @@ class CornerArc(object):
         c, s = math.cos(turn), math.sin(turn)
         rotate = np.array(((c, s), (-s, c)))
         self._to_center = rotate.dot(self._to_center)
+        self._along = rotate.dot(self._along)
         self._outward = rotate.dot(self._outward)
+
+    def past_tip(self):
+        """How far the rotation centre is past the tip, along the wall that ended.
+
+        Round a square corner, that is its distance from the next wall.
+        """
+        return float((np.array((-self.laser_x, 0.0)) - self.tip).dot(self._along))
+
+    def turned(self):
+        """How far (rad) the robot has turned right since the arc started."""
+        return float(wrap_angle(math.atan2(self._along[1], self._along[0])))
 
     def observe(self, points, gate):
         """Re-pin the tip to the hits within gate of where it is expected.
@@ -74,3 +94,49 @@ class CornerArc(object):
         x, y = self.center
         x += self.laser_x
         return float(math.hypot(x, y)), float(math.atan2(y, x))
+
+
+class OuterTurn(object):
+    """The right turn round a square corner: wide at first, round the tip, wide at the end.
+
+    The wide arcs (wide_radius: cruise speed at the full turn rate) take
+    the first wide_start and the last wide_end (rad) of the turn; between
+    them the robot circles the corner's tip on a tighter arc of `radius`.
+    The tight arc's centre (`center`, for a CornerArc) is placed so that
+    the turn starts and ends at `distance` from the walls, each wide arc
+    meeting the tight one tangentially; `lead` is how far ahead of the
+    rotation centre the tip is where the turn starts.
+    """
+
+    def __init__(self, radius, wide_radius, wide_start, wide_end, distance):
+        self.radius = float(radius)
+        self.distance = float(distance)
+        self.wide_radius = float(wide_radius)
+        self.wide_start = float(wide_start)
+        self.wide_end = float(wide_end)
+        shift = self.wide_radius - self.radius
+        # A wide arc through angle a from parallel to a wall at `distance`,
+        # tangent to the tight arc, puts the tight arc's centre
+        # wide_radius - shift * cos(a) nearer that wall: the old wall for the
+        # wide start, the next wall (its offset ahead) for the wide end.
+        self.center = (distance - self.wide_radius + shift * math.cos(self.wide_end),
+                       distance - self.wide_radius + shift * math.cos(self.wide_start))
+        self.lead = shift * math.sin(self.wide_start) - self.center[0]
+
+    def is_wide(self, turned, off_centre, past_tip):
+        """True where the turn is flown on a wide arc.
+
+        turned: angle turned so far (rad); off_centre: the rotation centre's
+        distance from the tight arc's centre; past_tip: its distance from
+        the next wall. The wide start ends on meeting the tight arc, so a
+        start nearer the wall than planned tightens early. The wide end
+        starts no earlier than planned, and only where it would end at
+        `distance` from the next wall, so an arc flown wide of the tight
+        one turns out later.
+        """
+        if self.wide_start and turned < self.wide_start:
+            return off_centre > self.radius
+        if not self.wide_end or abs(turned - math.pi / 2) > self.wide_end:
+            return False
+        landing = past_tip + self.wide_radius * (1.0 - math.cos(math.pi / 2 - turned))
+        return landing <= self.distance

@@ -13,10 +13,12 @@ fit cannot see them coming:
   so the turn is closed-loop, not timed. While such a wall comes up, the
   robot rides a little nearer the old wall, by as much as the wide start
   will carry it off;
-- a wall that ends on the right (outer, convex corner) is rounded on an
-  arc around the corner as if it were rounded off (see corner.py), pinned
-  to the corner's tip at every scan; a corner that comes up with no wall
-  fitted (the end of a box's short side, mid-turn) is circled instead.
+- a wall that ends on the right (outer, convex corner) is rounded on a
+  wide arc, an arc round the corner's tip and a wide arc again (see
+  corner.py); the middle arc is pinned to the tip at every scan, and the
+  last one starts where it will end at the planned distance from the next
+  wall. A corner that comes up with no wall fitted (the end of a box's
+  short side, mid-turn) is circled instead.
 
 The turn rate, not the speed, is what limits a lap: a 90 degree corner
 takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
@@ -32,7 +34,7 @@ import math
 
 import numpy as np
 
-from wall_follower.corner import CornerArc
+from wall_follower.corner import CornerArc, OuterTurn
 from wall_follower.left_turn import LeftTurn
 from wall_follower.motion import Command, seen_after_move
 from wall_follower.scan import RIGHT, fit_line, wrap_angle
@@ -80,8 +82,10 @@ PARAMETERS = {
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
-    'outer_corner_radius': (0.29, 'radius of the arc around a corner (its tip is rounded off)'),
-    'outer_corner_speed_share': (0.9, 'share of the arc speed at max_turn_rate (turn headroom)'),
+    'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
+    'outer_wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'outer_wide_end_deg': (30.0, 'last part of that turn as planned, flown the same way'),
+    'outer_corner_speed_share': (1.0, 'share of the arc speed at max_turn_rate (turn headroom)'),
     'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
@@ -291,8 +295,11 @@ class WallFollower(object):
         self.command = Command(0.0, 0.0)
         self.arc = None
         p = self.params
-        self.left_turn = LeftTurn(p.inner_corner_radius, p.cruise_speed / p.max_turn_rate,
-                                  math.radians(p.wide_start_deg))
+        wide_radius = p.cruise_speed / p.max_turn_rate
+        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg))
+        self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius,
+                                    math.radians(p.outer_wide_start_deg),
+                                    math.radians(p.outer_wide_end_deg), p.target_distance)
         self._stamp = None
 
     def update(self, view, stamp=None):
@@ -339,7 +346,7 @@ class WallFollower(object):
             exit_deg = p.arc_exit_angle_deg if self.arc is not None else p.rejoin_angle_deg
             if self._rejoined(obs, exit_deg):
                 return FOLLOW
-        elif obs.wall is not None and obs.wall_ahead + p.laser_x > self._rounding():
+        elif obs.wall is not None and obs.wall_ahead + p.laser_x > self.right_turn.lead:
             # The wall goes on past where the arc round its end starts.
             return FOLLOW
         if near and self.state != SEARCH:
@@ -444,10 +451,6 @@ class WallFollower(object):
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
 
-    def _rounding(self):
-        """Radius a corner is taken to be rounded off with: the arc keeps target_distance from it."""
-        return max(0.0, self.params.outer_corner_radius - self.params.target_distance)
-
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
 
@@ -458,13 +461,15 @@ class WallFollower(object):
         if obs.wall is None:
             return None
         angle = obs.wall[1]
-        return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self._rounding(),
+        return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.right_turn.center,
                          self.params.laser_x)
 
     def _cmd_outer_corner(self, obs):
         p = self.params
         if self.arc is not None:
             distance, bearing = self.arc.offset()
+            if self.right_turn.is_wide(self.arc.turned(), distance, self.arc.past_tip()):
+                return Command(p.cruise_speed, -p.max_turn_rate)
             radius = p.outer_corner_radius
         else:
             distance, bearing = obs.nearest

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.corner import CornerArc
+from wall_follower.corner import CornerArc, OuterTurn
 from wall_follower.motion import seen_after_move
 
 RADIUS, ROUNDING = 0.30, 0.05
@@ -21,7 +21,7 @@ def corner_points(tip, step=0.005):
 
 def start_arc(laser_x=0.0):
     """The arc as it starts: the tip ROUNDING ahead, the wall KEPT to the right."""
-    return CornerArc((ROUNDING, -KEPT), (1.0, 0.0), ROUNDING, laser_x)
+    return CornerArc((ROUNDING, -KEPT), (1.0, 0.0), (-ROUNDING, -ROUNDING), laser_x)
 
 
 def test_an_arc_that_starts_now_has_its_centre_square_to_the_right():
@@ -71,3 +71,62 @@ def test_a_turn_carries_a_laser_behind_the_centre_sideways():
     # right, and the laser, swung round behind the centre, sees it 0.1 m ahead.
     moved = seen_after_move(ahead, 0.0, math.pi / 2, laser_x=-0.1)
     assert moved[0] == pytest.approx([0.1, -0.9])
+
+
+def chord(arc, radius, turn):
+    """Drive `turn` rad right on an arc of radius, as one chord."""
+    arc.moved(0.0, -turn / 2)
+    arc.moved(2.0 * radius * math.sin(turn / 2), 0.0)
+    arc.moved(0.0, -turn / 2)
+
+
+@pytest.mark.parametrize('wide_start, wide_end', [(0, 0), (25, 25), (20, 45)])
+def test_a_square_corner_flown_as_planned_ends_at_the_distance_it_started(wide_start, wide_end):
+    turn = OuterTurn(0.27, 0.39, math.radians(wide_start), math.radians(wide_end), 0.25)
+    # Parallel to the wall at 0.25 m, where the plan starts the turn.
+    arc = CornerArc((turn.lead, -0.25), (1.0, 0.0), turn.center)
+    step = math.radians(0.25)
+    tight_from = tight_to = None
+    tip_distances = []
+    while arc.turned() < math.pi / 2 - step / 2:
+        turned, off_centre = arc.turned(), arc.offset()[0]
+        wide = turn.is_wide(turned, off_centre, arc.past_tip())
+        if not wide and tight_from is None:
+            # The wide start meets the tight arc where the plan says, tangentially.
+            tight_from = turned
+            assert off_centre == pytest.approx(turn.radius, abs=1e-3)
+        if wide and tight_from is not None and tight_to is None:
+            tight_to = turned
+        chord(arc, turn.wide_radius if wide else turn.radius, step)
+        tip_distances.append(math.hypot(*arc.tip))
+    assert tight_from == pytest.approx(math.radians(wide_start), abs=2 * step)
+    if wide_end:
+        assert tight_to == pytest.approx(math.radians(90 - wide_end), abs=2 * step)
+    # Parallel to the next wall, which runs through the tip: 0.25 m to the right of it.
+    assert -arc.tip[1] == pytest.approx(0.25, abs=2e-3)
+    assert 0.2 < min(tip_distances) and max(tip_distances) < 0.3
+
+
+def test_without_wide_arcs_the_turn_is_one_arc_round_a_rounded_off_corner():
+    turn = OuterTurn(0.29, 0.39, 0.0, 0.0, 0.25)
+    assert turn.center == pytest.approx((-0.04, -0.04))
+    assert turn.lead == pytest.approx(0.04)
+    assert not turn.is_wide(math.radians(-5.0), 0.35, -0.1)
+    assert not turn.is_wide(math.pi / 2, 0.35, 0.1)
+
+
+def test_a_turn_begun_nearer_the_wall_than_planned_tightens_as_soon_as_it_meets_the_tight_arc():
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
+    assert turn.is_wide(math.radians(5.0), 0.28, -0.05)
+    assert not turn.is_wide(math.radians(5.0), 0.26, -0.05)
+
+
+def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
+    # With 25 degrees left to turn, the wide arc carries the robot
+    # 0.39 * (1 - cos 25 deg) = 0.037 m further from the next wall.
+    carried = 0.39 * (1.0 - math.cos(math.radians(25.0)))
+    assert turn.is_wide(math.radians(65.0), 0.27, 0.25 - carried - 0.002)
+    # Wide of the tight arc, the robot turns on round the tip a while longer.
+    assert not turn.is_wide(math.radians(65.0), 0.28, 0.25 - carried + 0.01)
+    assert not turn.is_wide(math.radians(45.0), 0.27, 0.16)

@@ -265,9 +265,8 @@ def convex_corner(end_x, right=0.25):
 def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
     controller, command = update(convex_corner(1.0), convention=convention)
     assert controller.state == FOLLOW and abs(command.angular) < 0.01
-    # The arc round the end starts (outer_corner_radius - target_distance)
-    # before the end: the corner counts as rounded off by that much.
-    lead = EXACT.outer_corner_radius - EXACT.target_distance
+    # The turn round the end starts where it was planned to (lead) before the end.
+    lead = controller.right_turn.lead
     controller, command = update(convex_corner(lead + 0.04), convention=convention,
                                  controller=controller)
     assert controller.state == FOLLOW
@@ -282,9 +281,8 @@ def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(
     # The rounded-off corner's centre is fixed in the world: between two
     # scans it turns, seen from the robot, by the robot's own turn, which
     # is the command times the time between the scans' stamps.
-    lead = EXACT.outer_corner_radius - EXACT.target_distance
-    view = scan_view(convex_corner(lead - 0.03), (0.0, 0.0, 0.0), STAGE)
     controller = WallFollower(EXACT)
+    view = scan_view(convex_corner(controller.right_turn.lead - 0.03), (0.0, 0.0, 0.0), STAGE)
     controller.update(scan_view(convex_corner(1.0), (0.0, 0.0, 0.0), STAGE), stamp=9.9)
     controller.update(view, stamp=10.0)
     assert controller.state == OUTER_CORNER
@@ -306,7 +304,7 @@ def test_circling_a_hit_ends_on_a_wall_that_an_arc_would_still_turn_for():
     circling.state = OUTER_CORNER
     assert update(right_wall(0.25), pose, controller=circling)[0].state == FOLLOW
     on_arc = WallFollower(EXACT)
-    on_arc.state, on_arc.arc = OUTER_CORNER, CornerArc((0.05, -0.25), (1.0, 0.0), 0.04)
+    on_arc.state, on_arc.arc = OUTER_CORNER, CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
     assert update(right_wall(0.25), pose, controller=on_arc)[0].state == OUTER_CORNER
 
 
@@ -316,6 +314,19 @@ def test_an_outer_corner_is_rounded_onto_the_next_wall():
     assert x - 0.6 == pytest.approx(0.25, abs=0.05)
     # All the way round, the wall's end stays near the target distance.
     assert all(0.18 < distance < 0.32 for distance in distances)
+
+
+def test_an_outer_corner_starts_wide_at_cruise_speed_and_tightens_round_its_tip():
+    trail = drive(convex_corner(0.6), (0.0, 0.0, 0.0), 90)
+    # One step's travel is the command of that step (see drive).
+    speeds = [math.hypot(b[0] - a[0], b[1] - a[1]) / 0.1
+              for (_, a, _), (_, b, _) in zip(trail, trail[1:])]
+    turning = [(-math.degrees(pose[2]), speed)
+               for (state, pose, _), speed in zip(trail, speeds) if state == OUTER_CORNER]
+    start = [speed for turned, speed in turning if turned < 10.0]
+    middle = [speed for turned, speed in turning if 35.0 < turned < 55.0]
+    assert start and min(start) > 0.9 * EXACT.cruise_speed
+    assert middle and max(middle) < 1.1 * EXACT.outer_corner_radius * EXACT.max_turn_rate
 
 
 def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
