@@ -123,19 +123,22 @@ class OuterTurn(object):
                        distance - self.wide_radius + shift * math.cos(self.wide_start))
         self.lead = shift * math.sin(self.wide_start) - self.center[0]
 
-    def is_wide(self, turned, off_centre, past_tip):
-        """True where the turn is flown on a wide arc.
+    def starts_wide(self, turned, off_centre):
+        """True while the wide start goes on: turned (rad) short of wide_start.
 
-        turned: angle turned so far (rad); off_centre: the rotation centre's
-        distance from the tight arc's centre; past_tip: its distance from
-        the next wall. The wide start ends on meeting the tight arc, so a
-        start nearer the wall than planned tightens early. The wide end
-        starts no earlier than planned, and only where it would end at
+        off_centre: the rotation centre's distance from the tight arc's
+        centre. The wide start ends on meeting the tight arc, so a start
+        nearer the wall than planned tightens early.
+        """
+        return 0.0 < self.wide_start and turned < self.wide_start and off_centre > self.radius
+
+    def ends_wide(self, turned, past_tip):
+        """True where the wide end goes on, turned (rad) so far and past_tip from the next wall.
+
+        It starts no earlier than planned, and only where it will end at
         `distance` from the next wall, so an arc flown wide of the tight
         one turns out later.
         """
-        if self.wide_start and turned < self.wide_start:
-            return off_centre > self.radius
         if not self.wide_end or abs(turned - math.pi / 2) > self.wide_end:
             return False
         landing = past_tip + self.wide_radius * (1.0 - math.cos(math.pi / 2 - turned))

@@ -85,7 +85,7 @@ PARAMETERS = {
     'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
     'outer_wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
     'outer_wide_end_deg': (30.0, 'last part of that turn as planned, flown the same way'),
-    'outer_corner_speed_share': (1.0, 'share of the arc speed at max_turn_rate (turn headroom)'),
+    'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
     'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
@@ -286,7 +286,9 @@ class WallFollower(object):
     SEARCH (no wall near: drive straight until one appears ahead or on the
     right). The last command is kept, to judge the next scan where the
     robot will be when that command takes effect; arc is the CornerArc
-    being driven round an outer corner, or None.
+    being driven round an outer corner, or None, and starting_wide whether
+    that corner's turn is still in its wide start (only a turn begun from
+    following the wall has one, and once over it does not come back).
     """
 
     def __init__(self, params=None):
@@ -294,6 +296,7 @@ class WallFollower(object):
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
         self.arc = None
+        self.starting_wide = False
         p = self.params
         wide_radius = p.cruise_speed / p.max_turn_rate
         self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg))
@@ -316,7 +319,7 @@ class WallFollower(object):
         self._stamp = stamp
         obs = Observation(view, p, self.command)
         previous, self.state = self.state, self._next_state(obs)
-        self._track_corner(obs, previous == OUTER_CORNER, dt)
+        self._track_corner(obs, previous, dt)
         speed, turn = getattr(self, '_cmd_' + self.state.lower())(obs)
         self.command = Command(min(max(speed, 0.0), p.cruise_speed),
                                min(max(turn, -p.max_turn_rate), p.max_turn_rate))
@@ -441,12 +444,13 @@ class WallFollower(object):
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
 
-    def _track_corner(self, obs, was_rounding, dt):
+    def _track_corner(self, obs, previous, dt):
         """Start the arc round an outer corner, or move it on, or drop it after the corner."""
         if self.state != OUTER_CORNER:
             self.arc = None
-        elif not was_rounding:
+        elif previous != OUTER_CORNER:
             self.arc = self._corner_arc(obs)
+            self.starting_wide = previous == FOLLOW
         elif self.arc is not None:
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
@@ -468,13 +472,15 @@ class WallFollower(object):
         p = self.params
         if self.arc is not None:
             distance, bearing = self.arc.offset()
-            if self.right_turn.is_wide(self.arc.turned(), distance, self.arc.past_tip()):
+            turned = self.arc.turned()
+            self.starting_wide = self.starting_wide and self.right_turn.starts_wide(turned, distance)
+            if self.starting_wide or self.right_turn.ends_wide(turned, self.arc.past_tip()):
                 return Command(p.cruise_speed, -p.max_turn_rate)
-            radius = p.outer_corner_radius
+            radius, share = p.outer_corner_radius, 1.0
         else:
             distance, bearing = obs.nearest
-            radius = p.target_distance
-        speed = min(p.cruise_speed, p.outer_corner_speed_share * radius * p.max_turn_rate)
+            radius, share = p.target_distance, p.circling_speed_share
+        speed = min(p.cruise_speed, share * radius * p.max_turn_rate)
         # The arc's curvature as a feed-forward, and the PD law on its
         # centre as if that were a wall tangent to the arc.
         turn = -speed / radius + self._steer(distance, float(wrap_angle(bearing - RIGHT)), radius)

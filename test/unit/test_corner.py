@@ -86,18 +86,19 @@ def test_a_square_corner_flown_as_planned_ends_at_the_distance_it_started(wide_s
     # Parallel to the wall at 0.25 m, where the plan starts the turn.
     arc = CornerArc((turn.lead, -0.25), (1.0, 0.0), turn.center)
     step = math.radians(0.25)
-    tight_from = tight_to = None
+    starting, tight_from, tight_to = True, None, None
     tip_distances = []
     while arc.turned() < math.pi / 2 - step / 2:
         turned, off_centre = arc.turned(), arc.offset()[0]
-        wide = turn.is_wide(turned, off_centre, arc.past_tip())
-        if not wide and tight_from is None:
+        starting = starting and turn.starts_wide(turned, off_centre)
+        ending = turn.ends_wide(turned, arc.past_tip())
+        if not starting and tight_from is None:
             # The wide start meets the tight arc where the plan says, tangentially.
             tight_from = turned
             assert off_centre == pytest.approx(turn.radius, abs=1e-3)
-        if wide and tight_from is not None and tight_to is None:
+        if ending and tight_to is None:
             tight_to = turned
-        chord(arc, turn.wide_radius if wide else turn.radius, step)
+        chord(arc, turn.wide_radius if starting or ending else turn.radius, step)
         tip_distances.append(math.hypot(*arc.tip))
     assert tight_from == pytest.approx(math.radians(wide_start), abs=2 * step)
     if wide_end:
@@ -111,14 +112,15 @@ def test_without_wide_arcs_the_turn_is_one_arc_round_a_rounded_off_corner():
     turn = OuterTurn(0.29, 0.39, 0.0, 0.0, 0.25)
     assert turn.center == pytest.approx((-0.04, -0.04))
     assert turn.lead == pytest.approx(0.04)
-    assert not turn.is_wide(math.radians(-5.0), 0.35, -0.1)
-    assert not turn.is_wide(math.pi / 2, 0.35, 0.1)
+    assert not turn.starts_wide(math.radians(-5.0), 0.35)
+    assert not turn.ends_wide(math.pi / 2, 0.1)
 
 
 def test_a_turn_begun_nearer_the_wall_than_planned_tightens_as_soon_as_it_meets_the_tight_arc():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
-    assert turn.is_wide(math.radians(5.0), 0.28, -0.05)
-    assert not turn.is_wide(math.radians(5.0), 0.26, -0.05)
+    assert turn.starts_wide(math.radians(5.0), 0.28)
+    assert not turn.starts_wide(math.radians(5.0), 0.26)
+    assert not turn.starts_wide(math.radians(30.0), 0.28)
 
 
 def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
@@ -126,7 +128,8 @@ def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
     # With 25 degrees left to turn, the wide arc carries the robot
     # 0.39 * (1 - cos 25 deg) = 0.037 m further from the next wall.
     carried = 0.39 * (1.0 - math.cos(math.radians(25.0)))
-    assert turn.is_wide(math.radians(65.0), 0.27, 0.25 - carried - 0.002)
+    assert turn.ends_wide(math.radians(65.0), 0.25 - carried - 0.002)
     # Wide of the tight arc, the robot turns on round the tip a while longer.
-    assert not turn.is_wide(math.radians(65.0), 0.28, 0.25 - carried + 0.01)
-    assert not turn.is_wide(math.radians(45.0), 0.27, 0.16)
+    assert not turn.ends_wide(math.radians(65.0), 0.25 - carried + 0.01)
+    # Never before the planned angle, wherever the robot is.
+    assert not turn.ends_wide(math.radians(45.0), 0.0)

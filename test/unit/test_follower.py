@@ -329,6 +329,18 @@ def test_an_outer_corner_starts_wide_at_cruise_speed_and_tightens_round_its_tip(
     assert middle and max(middle) < 1.1 * EXACT.outer_corner_radius * EXACT.max_turn_rate
 
 
+@pytest.mark.parametrize('before, starting_wide', [(FOLLOW, True), (WALL_AHEAD, False)])
+def test_only_a_corner_met_while_following_the_wall_starts_wide(before, starting_wide):
+    # Met mid left turn (a box's short side), the corner is not where the
+    # planned turn would start it: that turn circles the tip at once.
+    controller = WallFollower(EXACT)
+    controller.state = before
+    controller, command = update(convex_corner(0.0), controller=controller)
+    assert controller.state == OUTER_CORNER and controller.arc is not None
+    assert controller.starting_wide == starting_wide
+    assert (command.linear == pytest.approx(EXACT.cruise_speed)) == starting_wide
+
+
 def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
     """Inner corner onto the box's short side, whose end comes up mid-turn, two outer
     corners round the box, the inner corner back onto the wall: in band all the way."""
