@@ -59,7 +59,23 @@ class OdomRecorderNode(object):
         self.server = actionlib.SimpleActionServer(
             'record_odom', OdomRecordAction, execute_cb=self._execute, auto_start=False)
         self.server.start()
+        rospy.on_shutdown(self._stop_status_timer)
         rospy.loginfo('record_odom: ready (a point every %.1f s)', self.params['sample_period'])
+
+    def _stop_status_timer(self):
+        """Stop actionlib's goal-status timer before rospy closes the topics.
+
+        Its thread checks for shutdown and then publishes; a tick caught
+        between the two raises "publish() to a closed topic" there, which
+        prints a traceback as the node ends. Shutdown hooks run before the
+        topics close, and holding the server's lock waits out a tick that
+        is already publishing.
+        """
+        server = self.server.action_server
+        if server.status_timer is not None:
+            server.status_timer.shutdown()
+        with server.lock:
+            pass  # a tick that was publishing has now finished
 
     def _on_odom(self, msg):
         stamp = msg.header.stamp.to_sec() or rospy.get_time()
