@@ -72,7 +72,7 @@ class CornerArc(object):
         return float((np.array((-self.laser_x, 0.0)) - self.tip).dot(self._along))
 
     def turned(self):
-        """How far (rad) the robot has turned right since the arc started."""
+        """How far (rad) the robot is turned right from the direction of the wall that ended."""
         return float(wrap_angle(math.atan2(self._along[1], self._along[0])))
 
     def observe(self, points, gate):

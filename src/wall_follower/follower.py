@@ -445,7 +445,10 @@ class WallFollower(object):
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
 
     def _track_corner(self, obs, previous, dt):
-        """Start the arc round an outer corner, or move it on, or drop it after the corner."""
+        """Start the arc round an outer corner, or move it on, or drop it after the corner.
+
+        The wide start, once over, stays over (see starting_wide).
+        """
         if self.state != OUTER_CORNER:
             self.arc = None
         elif previous != OUTER_CORNER:
@@ -454,6 +457,9 @@ class WallFollower(object):
         elif self.arc is not None:
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
+        if self.arc is not None:
+            self.starting_wide = self.starting_wide and self.right_turn.starts_wide(
+                self.arc.turned(), self.arc.offset()[0])
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
@@ -471,11 +477,10 @@ class WallFollower(object):
     def _cmd_outer_corner(self, obs):
         p = self.params
         if self.arc is not None:
-            distance, bearing = self.arc.offset()
-            turned = self.arc.turned()
-            self.starting_wide = self.starting_wide and self.right_turn.starts_wide(turned, distance)
-            if self.starting_wide or self.right_turn.ends_wide(turned, self.arc.past_tip()):
+            if self.starting_wide or self.right_turn.ends_wide(self.arc.turned(),
+                                                               self.arc.past_tip()):
                 return Command(p.cruise_speed, -p.max_turn_rate)
+            distance, bearing = self.arc.offset()
             radius, share = p.outer_corner_radius, 1.0
         else:
             distance, bearing = obs.nearest
