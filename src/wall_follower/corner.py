@@ -47,8 +47,6 @@ class CornerArc(object):
         away = np.array((-along[1], along[0]))
         self._to_center = center[0] * along + center[1] * away
         self._along = along
-        # The corner's outward direction, halfway between the two walls.
-        self._outward = (along + away) / math.sqrt(2.0)
 
     @property
     def center(self):
@@ -62,7 +60,6 @@ class CornerArc(object):
         rotate = np.array(((c, s), (-s, c)))
         self._to_center = rotate.dot(self._to_center)
         self._along = rotate.dot(self._along)
-        self._outward = rotate.dot(self._outward)
 
     def past_tip(self):
         """How far the rotation centre is past the tip, along the wall that ended.
@@ -85,7 +82,9 @@ class CornerArc(object):
         near = points[np.hypot(*(points - self.tip).T) < gate]
         if len(near) < 2:
             return False
-        reach = near.dot(self._outward)
+        # Out along the corner's diagonal, halfway between the two walls.
+        along_x, along_y = self._along
+        reach = near.dot((along_x - along_y, along_y + along_x))
         self.tip = near[np.argpartition(-reach, 1)[1]]
         return True
 
