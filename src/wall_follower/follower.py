@@ -73,11 +73,11 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.23, 'radius of the left turn onto a wall ahead, after its wide start'),
-    'wide_start_deg': (15.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'inner_corner_radius': (0.2, 'radius of the left turn onto a wall ahead, after its wide start'),
+    'wide_start_deg': (22.5, 'first part of that turn, flown at cruise speed on its widest arc'),
     'approach_range': (0.9, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
-    'inner_corner_distance': (0.24, 'distance from the wall ahead at which that turn ends'),
-    'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
+    'inner_corner_distance': (0.23, 'distance from the wall ahead at which that turn ends'),
+    'turn_lead': (0.015, 'start the turn this much early, for the scan and command delay'),
     'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
@@ -239,6 +239,19 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
             and abs(first[0] - second[0]) < max_distance)
 
 
+def from_centre(wall, laser_x):
+    """The (distance, angle) of a wall seen by the laser, as the rotation centre has it.
+
+    A turn is an arc of the rotation centre, so that is the distance it must
+    be planned by. Heading into a wall at angle, the centre is nearer it
+    than the laser by -laser_x * sin(angle): on a Burger (laser 32 mm
+    behind the centre) 32 mm when heading square at a wall ahead, nothing
+    once parallel. Angles past a right angle count as a right angle.
+    """
+    distance, angle = wall
+    return distance + laser_x * math.sin(min(angle, math.pi / 2)), angle
+
+
 def as_planned(ahead):
     """The (distance, angle) of a wall ahead that a left turn is planned for.
 
@@ -368,7 +381,7 @@ class WallFollower(object):
         p = self.params
         if not self._blocking(obs):
             return False
-        distance, angle = as_planned(obs.ahead)
+        distance, angle = from_centre(as_planned(obs.ahead), p.laser_x)
         return self.left_turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def _approach_dip(self, obs):
@@ -421,8 +434,8 @@ class WallFollower(object):
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
-            radius = max(p.min_arc_radius,
-                         self._arc_radius(distance - p.closest_distance + dip, angle))
+            room = from_centre(obs.wall, p.laser_x)[0] - p.closest_distance + dip
+            radius = max(p.min_arc_radius, self._arc_radius(room, angle))
             if radius * p.max_turn_rate < speed:
                 # That arc is flown at the full turn rate, the way it was planned.
                 speed, turn = radius * p.max_turn_rate, p.max_turn_rate
@@ -438,7 +451,7 @@ class WallFollower(object):
         p = self.params
         radius = p.inner_corner_radius
         if obs.ahead is not None:
-            distance, angle = as_planned(obs.ahead)
+            distance, angle = from_centre(as_planned(obs.ahead), p.laser_x)
             radius = self.left_turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0

@@ -110,6 +110,19 @@ def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
                                      EXACT.max_turn_rate))
 
 
+@pytest.mark.parametrize('laser_x', [-0.032, -0.064])
+def test_that_arc_is_the_rotation_centres_wherever_the_laser_sits(laser_x):
+    # The same pose of the rotation centre as above, seen by a laser behind
+    # it (Burger, Waffle): the laser is further from the wall, the arc is not.
+    params = FollowerParams(range_bias=0.0, laser_x=laser_x)
+    yaw = math.radians(-20.0)
+    laser = (laser_x * math.cos(yaw), laser_x * math.sin(yaw), yaw)
+    _, command = update(right_wall(params.closest_distance + 0.02), laser,
+                        controller=WallFollower(params))
+    radius = 0.02 / (1.0 - math.cos(math.radians(20.0)))
+    assert command == pytest.approx((radius * params.max_turn_rate, params.max_turn_rate), abs=0.01)
+
+
 @pytest.mark.parametrize('seed', range(5))
 def test_lds01_noise_and_dropouts_do_not_shake_it(seed):
     controller = WallFollower(EXACT)
@@ -155,6 +168,20 @@ def test_the_course_rule_turn_left_when_a_wall_is_within_half_a_metre(ahead):
     controller, command = update(corridor_end(ahead))
     assert controller.state == WALL_AHEAD
     assert command.angular > 0.4 and command.linear > 0.0
+
+
+@pytest.mark.parametrize('laser_x', [0.0, -0.032, -0.064])
+def test_a_left_turn_starts_where_its_arc_does_wherever_the_laser_sits(laser_x):
+    # The turn is an arc of the rotation centre, so it starts at the same
+    # distance of the centre from the wall ahead on a Burger (laser 32 mm
+    # behind it), a Waffle (64 mm) or a robot with the laser on the centre.
+    params = FollowerParams(range_bias=0.0, laser_x=laser_x)
+    turn = WallFollower(params).left_turn
+    start = turn.gap(math.pi / 2) + params.turn_lead + params.inner_corner_distance
+    for ahead, state in ((start + 0.01, FOLLOW), (start - 0.01, WALL_AHEAD)):
+        controller, _ = update(corridor_end(ahead), (laser_x, 0.0, 0.0),
+                               controller=WallFollower(params))
+        assert controller.state == state
 
 
 def test_a_distant_wall_ahead_is_not_turned_for_yet():
@@ -230,7 +257,9 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
     assert angle == pytest.approx(math.pi / 2)
     # So the turn starts where it would for a square wall at that crossing,
     # not sooner because the tilted line's foot is nearer.
-    for crossing, state in ((0.56, FOLLOW), (0.50, WALL_AHEAD)):
+    turn = WallFollower(EXACT).left_turn
+    start = turn.gap(math.pi / 2) + EXACT.turn_lead + EXACT.inner_corner_distance
+    for crossing, state in ((start + 0.03, FOLLOW), (start - 0.03, WALL_AHEAD)):
         assert update(corridor_end(crossing))[0].state == state
         assert update(tilted_end(crossing, 120.0))[0].state == state
 
