@@ -104,11 +104,13 @@ class OuterTurn(object):
     The tight arc's centre (`center`, for a CornerArc) is placed so that
     the turn starts and ends at `distance` from the walls, each wide arc
     meeting the tight one tangentially; `lead` is how far ahead of the
-    rotation centre the tip is where the turn starts.
+    rotation centre the tip is where the turn starts. tolerance: how far
+    inside the tight arc a wide start may still begin (see starts_wide).
     """
 
-    def __init__(self, radius, wide_radius, wide_start, wide_end, distance):
+    def __init__(self, radius, wide_radius, wide_start, wide_end, distance, tolerance=0.0):
         self.radius = float(radius)
+        self.tolerance = float(tolerance)
         self.distance = float(distance)
         self.wide_radius = float(wide_radius)
         self.wide_start = float(wide_start)
@@ -127,9 +129,13 @@ class OuterTurn(object):
 
         off_centre: the rotation centre's distance from the tight arc's
         centre. The wide start ends on meeting the tight arc, so a start
-        nearer the wall than planned tightens early.
+        well nearer the wall than planned tightens early; within tolerance
+        of it, a start goes on wide: the tip is seen only to a cell or so of
+        Stage's grid, and a robot a little nearer than planned is carried
+        out, not in, by the wide arc.
         """
-        return 0.0 < self.wide_start and turned < self.wide_start and off_centre > self.radius
+        return (0.0 < self.wide_start and turned < self.wide_start
+                and off_centre > self.radius - self.tolerance)
 
     def ends_wide(self, turned, past_tip):
         """True where the wide end goes on, turned (rad) so far and past_tip from the next wall.

@@ -84,7 +84,8 @@ PARAMETERS = {
     # Outer corners: the right wall ends
     'outer_corner_radius': (0.26, 'radius of the arc round a corner\'s tip, between wide arcs'),
     'outer_wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'outer_wide_end_deg': (30.0, 'last part of that turn as planned, flown the same way'),
+    'outer_wide_end_deg': (40.0, 'last part of that turn as planned, flown the same way'),
+    'outer_wide_tolerance': (0.04, 'the wide start is flown even this far inside the tip\'s arc'),
     'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
     'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
@@ -315,7 +316,8 @@ class WallFollower(object):
         self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg))
         self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius,
                                     math.radians(p.outer_wide_start_deg),
-                                    math.radians(p.outer_wide_end_deg), p.target_distance)
+                                    math.radians(p.outer_wide_end_deg), p.target_distance,
+                                    p.outer_wide_tolerance)
         self._stamp = None
 
     def update(self, view, stamp=None):

@@ -123,6 +123,13 @@ def test_a_turn_begun_nearer_the_wall_than_planned_tightens_as_soon_as_it_meets_
     assert not turn.starts_wide(math.radians(30.0), 0.28)
 
 
+def test_within_its_tolerance_of_the_tight_arc_a_turn_still_starts_wide():
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
+    assert turn.starts_wide(math.radians(5.0), 0.25)
+    assert not turn.starts_wide(math.radians(5.0), 0.23)
+    assert not turn.starts_wide(math.radians(30.0), 0.25)
+
+
 def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
     # With 25 degrees left to turn, the wide arc carries the robot
