@@ -129,10 +129,10 @@ class OuterTurn(object):
 
         off_centre: the rotation centre's distance from the tight arc's
         centre. The wide start ends on meeting the tight arc, so a start
-        well nearer the wall than planned tightens early; within tolerance
+        well nearer the wall than planned tightens early. Within tolerance
         of it, a start goes on wide: the tip is seen only to a cell or so of
-        Stage's grid, and a robot a little nearer than planned is carried
-        out, not in, by the wide arc.
+        Stage's grid, and a start that much nearer than planned only passes
+        the tip that much nearer.
         """
         return (0.0 < self.wide_start and turned < self.wide_start
                 and off_centre > self.radius - self.tolerance)
