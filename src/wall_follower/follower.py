@@ -481,9 +481,13 @@ class WallFollower(object):
 
         Without it (the corner comes up in the middle of a left turn, at
         the end of a short wall or a box's side) which way the corner points
-        is unknown, and the robot circles the nearest hit instead.
+        is unknown, and the robot circles the nearest hit instead. A wall
+        fitted far off parallel (beyond rejoin_angle_deg) is not the one
+        that ended either: mid-turn onto a box's short side, it is the wall
+        the turn left behind, and an arc pinned to its end would circle a
+        point nowhere near the corner.
         """
-        if obs.wall is None:
+        if obs.wall is None or abs(obs.wall[1]) > math.radians(self.params.rejoin_angle_deg):
             return None
         angle = obs.wall[1]
         return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.right_turn.center,

@@ -14,7 +14,8 @@ from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, sc
 from wall_follower import follower
 from wall_follower.corner import CornerArc
 from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    WallFollower, as_planned, consensus_line, unbiased)
+                                    Observation, WallFollower, as_planned, consensus_line,
+                                    unbiased)
 from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
 from wall_follower.scan import ScanView
 
@@ -356,6 +357,17 @@ def test_an_outer_corner_starts_wide_at_cruise_speed_and_tightens_round_its_tip(
     middle = [speed for turned, speed in turning if 35.0 < turned < 55.0]
     assert start and min(start) > 0.9 * EXACT.cruise_speed
     assert middle and max(middle) < 1.1 * EXACT.outer_corner_radius * EXACT.max_turn_rate
+
+
+@pytest.mark.parametrize('angle_deg, pinned', [(0.0, True), (-20.0, True), (-60.0, False),
+                                               (40.0, False)])
+def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
+    # Mid-turn onto a box's short side, the wall fitted on the right can be
+    # the one the turn left behind, 60 degrees off: its end is not the
+    # corner that came up, so the robot circles the nearest hit instead.
+    seen = Observation.__new__(Observation)
+    seen.wall, seen.wall_end = (0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
+    assert (WallFollower(EXACT)._corner_arc(seen) is not None) == pinned
 
 
 @pytest.mark.parametrize('before, starting_wide', [(FOLLOW, True), (WALL_AHEAD, False)])
