@@ -383,8 +383,12 @@ class WallFollower(object):
         p = self.params
         if not self._blocking(obs):
             return False
-        distance, angle = from_centre(as_planned(obs.ahead), p.laser_x)
+        distance, angle = self._ahead_as_planned(obs)
         return self.left_turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
+
+    def _ahead_as_planned(self, obs):
+        """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
+        return from_centre(as_planned(obs.ahead), self.params.laser_x)
 
     def _approach_dip(self, obs):
         """How much nearer to ride while a wall across the way is within approach_range.
@@ -453,7 +457,7 @@ class WallFollower(object):
         p = self.params
         radius = p.inner_corner_radius
         if obs.ahead is not None:
-            distance, angle = from_centre(as_planned(obs.ahead), p.laser_x)
+            distance, angle = self._ahead_as_planned(obs)
             radius = self.left_turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0
