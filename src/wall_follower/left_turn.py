@@ -3,8 +3,8 @@
 Turning at the full turn rate, time is lost only where the arc is tighter
 than cruise_speed / max_turn_rate (0.39 m at 0.19 m/s and 0.49 rad/s). The
 start of the turn can be wide: the wall ahead is still far, and the robot
-only drifts a little off the old wall (0.39 * (1 - cos 15 deg) = 13 mm for
-the first 15 degrees). Past that, the arc tightens to keep the wall on the
+only drifts a little off the old wall (0.39 * (1 - cos 20 deg) = 23 mm for
+the first 20 degrees). Past that, the arc tightens to keep the wall on the
 right within the band through the middle of the corner.
 
 A turn is planned by the angle still to turn, which is the angle of the
