@@ -240,6 +240,11 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
             and abs(first[0] - second[0]) < max_distance)
 
 
+def along_the_way(wall, max_angle_deg):
+    """True for a (distance, angle) wall within max_angle_deg of parallel; False for None."""
+    return wall is not None and abs(wall[1]) < math.radians(max_angle_deg)
+
+
 def from_centre(wall, laser_x):
     """The (distance, angle) of a wall seen by the laser, as the rotation centre has it.
 
@@ -420,9 +425,7 @@ class WallFollower(object):
 
     def _rejoined(self, obs, max_angle_deg):
         """True when a corner is over: a straight wall on the right, nearly parallel."""
-        p = self.params
-        return (obs.wall is not None and obs.wall_ahead > p.rejoin_ahead
-                and abs(obs.wall[1]) < math.radians(max_angle_deg))
+        return along_the_way(obs.wall, max_angle_deg) and obs.wall_ahead > self.params.rejoin_ahead
 
     def _steer(self, distance, angle, target):
         """PD turn rate holding a wall at distance target and parallel."""
@@ -491,7 +494,7 @@ class WallFollower(object):
         the turn left behind, and an arc pinned to its end would circle a
         point nowhere near the corner.
         """
-        if obs.wall is None or abs(obs.wall[1]) > math.radians(self.params.rejoin_angle_deg):
+        if not along_the_way(obs.wall, self.params.rejoin_angle_deg):
             return None
         angle = obs.wall[1]
         return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.right_turn.center,
