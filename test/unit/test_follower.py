@@ -171,14 +171,19 @@ def test_the_course_rule_turn_left_when_a_wall_is_within_half_a_metre(ahead):
     assert command.angular > 0.4 and command.linear > 0.0
 
 
+def turn_start(params):
+    """The rotation centre's distance from a square wall ahead at which the left turn starts."""
+    turn = WallFollower(params).left_turn
+    return turn.gap(math.pi / 2) + params.turn_lead + params.inner_corner_distance
+
+
 @pytest.mark.parametrize('laser_x', [0.0, -0.032, -0.064])
 def test_a_left_turn_starts_where_its_arc_does_wherever_the_laser_sits(laser_x):
     # The turn is an arc of the rotation centre, so it starts at the same
     # distance of the centre from the wall ahead on a Burger (laser 32 mm
     # behind it), a Waffle (64 mm) or a robot with the laser on the centre.
     params = FollowerParams(range_bias=0.0, laser_x=laser_x)
-    turn = WallFollower(params).left_turn
-    start = turn.gap(math.pi / 2) + params.turn_lead + params.inner_corner_distance
+    start = turn_start(params)
     for ahead, state in ((start + 0.01, FOLLOW), (start - 0.01, WALL_AHEAD)):
         controller, _ = update(corridor_end(ahead), (laser_x, 0.0, 0.0),
                                controller=WallFollower(params))
@@ -216,9 +221,7 @@ def test_a_wall_ahead_coming_up_is_approached_a_little_nearer():
 
 def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
     trail = drive(corridor_end(1.2), (0.0, 0.0, 0.0), 80)
-    # One step's travel is the command of that step (see drive).
-    speeds = [math.hypot(b[0] - a[0], b[1] - a[1]) / 0.1
-              for (_, a, _), (_, b, _) in zip(trail, trail[1:])]
+    speeds = step_speeds(trail)
     turning = [(math.degrees(pose[2]), speed)
                for (state, pose, _), speed in zip(trail, speeds) if state == WALL_AHEAD]
     start = [speed for yaw, speed in turning if yaw < 10.0]
@@ -258,8 +261,7 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
     assert angle == pytest.approx(math.pi / 2)
     # So the turn starts where it would for a square wall at that crossing,
     # not sooner because the tilted line's foot is nearer.
-    turn = WallFollower(EXACT).left_turn
-    start = turn.gap(math.pi / 2) + EXACT.turn_lead + EXACT.inner_corner_distance
+    start = turn_start(EXACT)
     for crossing, state in ((start + 0.03, FOLLOW), (start - 0.03, WALL_AHEAD)):
         assert update(corridor_end(crossing))[0].state == state
         assert update(tilted_end(crossing, 120.0))[0].state == state
@@ -348,9 +350,7 @@ def test_an_outer_corner_is_rounded_onto_the_next_wall():
 
 def test_an_outer_corner_starts_wide_at_cruise_speed_and_tightens_round_its_tip():
     trail = drive(convex_corner(0.6), (0.0, 0.0, 0.0), 90)
-    # One step's travel is the command of that step (see drive).
-    speeds = [math.hypot(b[0] - a[0], b[1] - a[1]) / 0.1
-              for (_, a, _), (_, b, _) in zip(trail, trail[1:])]
+    speeds = step_speeds(trail)
     turning = [(-math.degrees(pose[2]), speed)
                for (state, pose, _), speed in zip(trail, speeds) if state == OUTER_CORNER]
     start = [speed for turned, speed in turning if turned < 10.0]
@@ -497,6 +497,12 @@ def drive(world, pose, steps, dt=0.1):
         trail.append((controller.state, (x, y, yaw),
                       sector.min_range(-math.pi / 2, math.radians(30.0))))
     return trail
+
+
+def step_speeds(trail, dt=0.1):
+    """The speed of each step of a drive() trail: one step's travel is that step's command."""
+    return [math.hypot(b[0] - a[0], b[1] - a[1]) / dt
+            for (_, a, _), (_, b, _) in zip(trail, trail[1:])]
 
 
 def round_a_corner(world, steps, corner_state):
