@@ -28,7 +28,7 @@ def main(argv=None):
                          {True: 'yes', False: 'no'}.get(f.get('contact'), '-'),
                          fmt(f.get('lap_time'), '.1f'),
                          fmt(f.get('path_length'), '.2f'),
-                         fmt(f.get('lap_time_ratio'), '.2f'),
+                         fmt(f.get('lap_time_ratio'), '.3f'),
                          fmt(f.get('max_linear'), '.3f'),
                          fmt(f.get('max_angular'), '.3f')])
     print_table(['world', 'laser', 'in band %', 'RMS cm', 'min clearance m', 'contact',

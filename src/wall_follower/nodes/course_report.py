@@ -54,7 +54,7 @@ def format_summary(f):
         'min clearance %.3f m, contact: %s'
         % (100.0 * f['time_in_band'], 100.0 * f['rms_error'], f['min_clearance'],
            'yes' if f['contact'] else 'no'),
-        'lap: %.1f s for %.2f m (%.2f x the 0.19 m/s bound); highest commands %.3f m/s, %.3f rad/s'
+        'lap: %.1f s for %.2f m (%.3f x the 0.19 m/s bound); highest commands %.3f m/s, %.3f rad/s'
         % (f['lap_time'], f['path_length'], f['lap_time_ratio'], f['max_linear'],
            f['max_angular']),
     ]
