@@ -7,10 +7,12 @@ being a line fitted through many beams, which holds the band without the
 zig-zag of the bang-bang rule. Corners get their own states because a wall
 fit cannot see them coming:
 
-- a wall ahead (inner corner) is turned onto at the full turn rate, wide
-  at first and then on a tighter arc that ends parallel to it (see
-  left_turn.py); the speed is re-planned from the wall ahead at every scan,
-  so the turn is closed-loop, not timed. While such a wall comes up, the
+- a wall ahead (inner corner) is turned onto at the full turn rate: wide
+  at first, on a tighter arc past the corner, and wide again onto parallel
+  (see left_turn.py). The speed is re-planned from the wall ahead at every
+  scan, so the turn is closed-loop, not timed; its wide end, once the new
+  wall is on the right, is FOLLOW's slowed arc into a wall, which then
+  has room to be flown at cruise speed. While such a wall comes up, the
   robot rides a little nearer the old wall, by as much as the wide start
   will carry it off;
 - a wall that ends on the right (outer, convex corner) is rounded on a
@@ -58,7 +60,7 @@ PARAMETERS = {
     'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
     'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
     'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
-    'closest_distance': (0.24, 'heading into the wall, slow so as to turn parallel no nearer'),
+    'closest_distance': (0.235, 'heading into the wall, slow so as to turn parallel no nearer'),
     'min_arc_radius': (0.2, '... but never onto an arc tighter than this (no pivot on the spot)'),
     # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
@@ -73,11 +75,12 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.17, 'radius of the left turn onto a wall ahead, after its wide start'),
+    'inner_corner_radius': (0.15, 'radius of the left turn onto a wall ahead, after its wide start'),
     'wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'wide_end_deg': (25.0, 'last part of that turn, flown the same way'),
     'approach_range': (0.9, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
     'inner_corner_distance': (0.225, 'distance from the wall ahead at which that turn ends'),
-    'turn_lead': (0.015, 'start the turn this much early, for the scan and command delay'),
+    'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
     'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
@@ -318,7 +321,8 @@ class WallFollower(object):
         self.starting_wide = False
         p = self.params
         wide_radius = p.cruise_speed / p.max_turn_rate
-        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg))
+        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg),
+                                  math.radians(p.wide_end_deg))
         self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius,
                                     math.radians(p.outer_wide_start_deg),
                                     math.radians(p.outer_wide_end_deg), p.target_distance,

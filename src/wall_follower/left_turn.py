@@ -1,34 +1,42 @@
-"""The planned left turn onto a wall ahead (inner corner): a wide start, then a tight arc.
+"""The planned left turn onto a wall ahead (inner corner): wide, then tight, then wide again.
 
 Turning at the full turn rate, time is lost only where the arc is tighter
-than cruise_speed / max_turn_rate (0.39 m at 0.19 m/s and 0.49 rad/s). The
-start of the turn can be wide: the wall ahead is still far, and the robot
-only drifts a little off the old wall (0.39 * (1 - cos 20 deg) = 23 mm for
-the first 20 degrees). Past that, the arc tightens to keep the wall on the
-right within the band through the middle of the corner.
+than cruise_speed / max_turn_rate (0.39 m at 0.19 m/s and 0.49 rad/s). Both
+ends of the turn can be wide. At the start the wall ahead is still far,
+and the robot only drifts a little off the old wall (0.39 * (1 - cos 20
+deg) = 23 mm for the first 20 degrees). At the end the old wall is behind,
+and the last degrees only come nearer the new one (0.39 * (1 - cos 25
+deg) = 37 mm for the last 25). Only the middle, where the robot passes the
+corner itself, needs the tight arc that keeps both walls within the band.
 
 A turn is planned by the angle still to turn, which is the angle of the
 wall ahead: that is what each scan measures again. gap(angle) is how much
 nearer to the wall ahead the rest of the turn carries the robot, so the
-turn starts where the gap left equals it, and a gap that has run short
-(a late start, a wall seen late) shrinks every arc of the rest of the turn
-in proportion, which keeps its shape.
+turn starts where the gap left equals it, and a gap that has run short or
+long (a late or early start, a wall seen late) scales every arc of the rest
+of the turn in proportion, which keeps its shape and where it ends.
 """
 import math
 
 
 class LeftTurn(object):
-    """The left turn that starts with wide_angle (rad) on wide_radius, then goes on at radius."""
+    """Starts with wide_start (rad) and ends with wide_end (rad) on wide_radius, on radius between.
 
-    def __init__(self, radius, wide_radius, wide_angle):
+    The wide start is taken first: a turn through less than a right angle
+    has the wide start's share cut short, never the tight arc's.
+    """
+
+    def __init__(self, radius, wide_radius, wide_start, wide_end=0.0):
         self.radius = float(radius)
         self.wide_radius = float(wide_radius)
-        # The tight arc takes the turn's last angles, from here to parallel.
-        self._tight_from = math.pi / 2 - float(wide_angle)
+        # The tight arc takes the angles still to turn from here ...
+        self._tight_from = math.pi / 2 - float(wide_start)
+        # ... down to here.
+        self._tight_to = min(float(wide_end), self._tight_from)
 
     def arc_radius(self, angle):
         """Radius planned with angle (rad) still to turn."""
-        return self.wide_radius if angle > self._tight_from else self.radius
+        return self.radius if self._tight_to < angle <= self._tight_from else self.wide_radius
 
     def gap(self, angle):
         """How much nearer to the wall the turn from angle to parallel carries the robot.
@@ -38,17 +46,21 @@ class LeftTurn(object):
         count as a right angle (see follower.as_planned).
         """
         angle = min(max(angle, 0.0), math.pi / 2)
-        tight = min(angle, self._tight_from)
-        gap = self.radius * (1.0 - math.cos(tight))
-        if angle > tight:
-            gap += self.wide_radius * (math.cos(tight) - math.cos(angle))
+        arcs = ((self._tight_from, self.wide_radius), (self._tight_to, self.radius),
+                (0.0, self.wide_radius))
+        gap = 0.0
+        for end, radius in arcs:
+            if angle > end:
+                gap += radius * (math.cos(end) - math.cos(angle))
+                angle = end
         return gap
 
     def drift(self, angle):
         """How far the wide start of a turn through angle carries the robot off the wall it leaves.
 
         Only the part of a turn beyond the tight arc's share is wide: a
-        wall ahead at 45 degrees is turned onto on the tight arc alone.
+        wall ahead at 45 degrees is turned onto on the tight arc (and the
+        wide end) alone.
         """
         wide_part = max(0.0, min(angle, math.pi / 2) - self._tight_from)
         return self.wide_radius * (1.0 - math.cos(wide_part))
@@ -56,10 +68,10 @@ class LeftTurn(object):
     def radius_within(self, gap, angle):
         """Radius to fly now, with angle still to turn and gap left to the turn's end.
 
-        The planned radius, shrunk in proportion when the gap is shorter
-        than the plan needs; never widened, so a turn begun early simply
-        ends early.
+        The planned radius, scaled by how much longer or shorter the gap is
+        than the plan needs, so that the turn still ends where planned; but
+        never wider than wide_radius, which cruise speed allows.
         """
         needed = self.gap(angle)
-        scale = min(1.0, max(0.0, gap) / needed) if needed > 0.0 else 1.0
-        return self.arc_radius(angle) * scale
+        scale = max(0.0, gap) / needed if needed > 0.0 else 1.0
+        return min(self.wide_radius, self.arc_radius(angle) * scale)

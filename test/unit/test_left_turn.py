@@ -1,15 +1,15 @@
-"""The planned left turn onto a wall ahead: its gap, its arcs, and how it shrinks to fit."""
+"""The planned left turn onto a wall ahead: its gap, its arcs, and how it is scaled to fit."""
 import math
 
 import pytest
 
 from wall_follower.left_turn import LeftTurn
 
-TIGHT, WIDE, WIDE_ANGLE = 0.23, 0.19 / 0.49, math.radians(15.0)
+TIGHT, WIDE, WIDE_ANGLE, WIDE_END = 0.23, 0.19 / 0.49, math.radians(15.0), math.radians(25.0)
 
 
-def plan(wide_angle=WIDE_ANGLE):
-    return LeftTurn(TIGHT, WIDE, wide_angle)
+def plan(wide_angle=WIDE_ANGLE, wide_end=0.0):
+    return LeftTurn(TIGHT, WIDE, wide_angle, wide_end)
 
 
 @pytest.mark.parametrize('angle_deg', [10.0, 45.0, 90.0])
@@ -27,9 +27,28 @@ def test_a_square_turn_uses_the_wide_arc_first_then_the_tight_one():
     assert plan().arc_radius(math.radians(70.0)) == TIGHT
 
 
-def test_the_gap_grows_with_the_angle_left_and_has_no_jump():
+def test_a_wide_end_takes_the_turns_last_angles_on_the_wide_arc():
+    # Wide from 90 to 75 deg, tight from 75 to 25 deg, wide again to parallel.
+    turn = plan(wide_end=WIDE_END)
+    expected = (WIDE * math.sin(WIDE_ANGLE)
+                + TIGHT * (math.cos(WIDE_END) - math.sin(WIDE_ANGLE))
+                + WIDE * (1.0 - math.cos(WIDE_END)))
+    assert turn.gap(math.pi / 2) == pytest.approx(expected)
+    assert [turn.arc_radius(math.radians(a)) for a in (80.0, 50.0, 20.0)] == [WIDE, TIGHT, WIDE]
+    # A turn through less than the wide end's share is all wide.
+    assert turn.gap(math.radians(20.0)) == pytest.approx(WIDE * (1.0 - math.cos(math.radians(20.0))))
+
+
+def test_wide_ends_that_meet_leave_no_tight_arc():
+    turn = plan(math.radians(50.0), math.radians(60.0))
+    assert turn.gap(math.pi / 2) == pytest.approx(WIDE)
+    assert turn.arc_radius(math.radians(45.0)) == WIDE
+
+
+@pytest.mark.parametrize('wide_end', [0.0, WIDE_END])
+def test_the_gap_grows_with_the_angle_left_and_has_no_jump(wide_end):
     angles = [math.radians(a / 10.0) for a in range(0, 901)]
-    gaps = [plan().gap(a) for a in angles]
+    gaps = [plan(wide_end=wide_end).gap(a) for a in angles]
     assert gaps[0] == 0.0
     assert all(later > earlier for earlier, later in zip(gaps, gaps[1:]))
     assert max(later - earlier for earlier, later in zip(gaps, gaps[1:])) < 1e-3
@@ -52,12 +71,19 @@ def test_a_turn_short_of_the_tight_arcs_share_has_no_wide_start_and_no_drift():
 
 
 def test_with_the_gap_it_plans_the_turn_flies_the_planned_arc():
-    for angle_deg in (85.0, 60.0):
+    for angle_deg in (85.0, 60.0, 10.0):
         angle = math.radians(angle_deg)
-        turn = plan()
+        turn = plan(wide_end=WIDE_END)
         assert turn.radius_within(turn.gap(angle), angle) == turn.arc_radius(angle)
-        # More room than needed: the turn is not widened; it ends early.
-        assert turn.radius_within(2.0 * turn.gap(angle), angle) == turn.arc_radius(angle)
+
+
+def test_a_long_gap_widens_the_rest_of_the_turn_up_to_the_wide_arc():
+    # Begun early, the turn still ends where planned, as far as cruise speed allows.
+    angle = math.radians(60.0)
+    turn = plan()
+    assert turn.radius_within(1.2 * turn.gap(angle), angle) == pytest.approx(1.2 * TIGHT)
+    assert turn.radius_within(3.0 * turn.gap(angle), angle) == WIDE
+    assert turn.radius_within(1.2 * turn.gap(math.radians(85.0)), math.radians(85.0)) == WIDE
 
 
 def test_a_short_gap_shrinks_the_rest_of_the_turn_in_proportion():
