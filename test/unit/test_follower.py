@@ -230,6 +230,18 @@ def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
     assert middle and max(middle) < 1.1 * EXACT.inner_corner_radius * EXACT.max_turn_rate
 
 
+@pytest.mark.parametrize('wide_end_deg, ends_wide', [(EXACT.wide_end_deg, True), (0.0, False)])
+def test_a_left_turn_ends_wide_again_when_planned_to(wide_end_deg, ends_wide):
+    # Past the corner, the last degrees only bring the robot nearer the new
+    # wall: planned wide, the tight arc ends early enough for them to be
+    # flown near cruise speed.
+    params = FollowerParams(range_bias=0.0, laser_x=0.0, wide_end_deg=wide_end_deg)
+    trail = drive(corridor_end(1.2), (0.0, 0.0, 0.0), 80, params=params)
+    end = [speed for (_, (_, _, yaw), _), speed in zip(trail, step_speeds(trail))
+           if 60.0 < math.degrees(yaw) < 85.0]
+    assert end and (max(end) > 0.8 * EXACT.cruise_speed) == ends_wide
+
+
 def tilted_end(crossing, angle_deg, right=0.25):
     """A right wall that meets a wall crossing the way crossing metres ahead.
 
@@ -476,14 +488,14 @@ def test_consensus_line_ignores_stray_hits_that_would_tilt_a_fit():
 
 # --- a small kinematic loop ------------------------------------------------------------
 
-def drive(world, pose, steps, dt=0.1):
+def drive(world, pose, steps, dt=0.1, params=EXACT):
     """Laser pose stepped by the commands, one step late as in Stage.
 
     Returns (state, pose, distance to the nearest wall point on the right)
     for every step; the distance is measured exactly over +-30 deg of the
     right, as the benchmark scores it.
     """
-    controller = WallFollower(EXACT)
+    controller = WallFollower(params)
     x, y, yaw = pose
     command = Command(0.0, 0.0)
     trail = []
