@@ -11,10 +11,10 @@ fit cannot see them coming:
   at first, on a tighter arc past the corner, and wide again onto parallel
   (see left_turn.py). The speed is re-planned from the wall ahead at every
   scan, so the turn is closed-loop, not timed; its wide end, once the new
-  wall is on the right, is FOLLOW's slowed arc into a wall, which then
-  has room to be flown at cruise speed. While such a wall comes up, the
-  robot rides a little nearer the old wall, by as much as the wide start
-  will carry it off;
+  wall is on the right, is flown by FOLLOW's rule for heading into a
+  wall: at cruise speed as far as closest_distance allows. While such a
+  wall comes up, the robot rides a little nearer the old wall, by as much
+  as the wide start will carry it off;
 - a wall that ends on the right (outer, convex corner) is rounded on a
   wide arc, an arc round the corner's tip and a wide arc again (see
   corner.py); the middle arc is pinned to the tip at every scan, and the
