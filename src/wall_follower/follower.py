@@ -86,7 +86,7 @@ PARAMETERS = {
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
     'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
-    'outer_wide_start_deg': (30.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'outer_wide_start_deg': (25.0, 'first part of that turn, flown at cruise speed on its widest arc'),
     'outer_wide_end_deg': (40.0, 'last part of that turn as planned, flown the same way'),
     'outer_wide_tolerance': (0.03, 'the wide start is flown even this far inside the tip\'s arc'),
     'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
