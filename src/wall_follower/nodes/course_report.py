@@ -50,7 +50,7 @@ def format_summary(f):
         % (truth, 100.0 * (f['recorded_distance'] - truth) / truth, f['closing_gap']),
         'after find_wall: wall %.3f m on the right, heading off parallel by %.1f deg'
         % (f['found_distance'], abs(f['found_heading_error_deg'])),
-        'following: %.1f %% of the lap in [0.20, 0.30] m, RMS error %.1f cm, '
+        'following: %.1f %% of the lap in [0.20, 0.30] m, RMS error %.2f cm, '
         'min clearance %.3f m, contact: %s'
         % (100.0 * f['time_in_band'], 100.0 * f['rms_error'], f['min_clearance'],
            'yes' if f['contact'] else 'no'),
