@@ -75,7 +75,7 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.15, 'radius of the left turn onto a wall ahead, after its wide start'),
+    'inner_corner_radius': (0.15, 'radius of the left turn onto a wall ahead, between its wide arcs'),
     'wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
     'wide_end_deg': (25.0, 'last part of that turn, flown the same way'),
     'approach_range': (0.9, 'a wall ahead this near: ride nearer by the wide start\'s drift'),

@@ -22,8 +22,9 @@ import math
 class LeftTurn(object):
     """Starts with wide_start (rad) and ends with wide_end (rad) on wide_radius, on radius between.
 
-    The wide start is taken first: a turn through less than a right angle
-    has the wide start's share cut short, never the tight arc's.
+    A turn through less than a right angle (onto a wall ahead at 45
+    degrees, say) goes without its wide start first, then without part of
+    its tight arc; the wide end is always flown.
     """
 
     def __init__(self, radius, wide_radius, wide_start, wide_end=0.0):
