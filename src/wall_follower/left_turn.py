@@ -3,11 +3,13 @@
 Turning at the full turn rate, time is lost only where the arc is tighter
 than cruise_speed / max_turn_rate (0.39 m at 0.19 m/s and 0.49 rad/s). Both
 ends of the turn can be wide. At the start the wall ahead is still far,
-and the robot only drifts a little off the old wall (0.39 * (1 - cos 20
-deg) = 23 mm for the first 20 degrees). At the end the old wall is behind,
-and the last degrees only come nearer the new one (0.39 * (1 - cos 25
-deg) = 37 mm for the last 25). Only the middle, where the robot passes the
-corner itself, needs the tight arc that keeps both walls within the band.
+and the robot only drifts a little off the old wall (0.39 * (1 - cos 30
+deg) = 52 mm for the first 30 degrees). At the end the old wall is behind,
+and the last degrees only come nearer the new one (52 mm again for the
+last 30). Only the middle, where the robot passes the corner itself, needs
+the tight arc that keeps both walls within the band; as time is lost in
+proportion to how much tighter than the wide arc it is, a short near
+pivot there costs less than a longer arc of middling radius.
 
 A turn is planned by the angle still to turn, which is the angle of the
 wall ahead: that is what each scan measures again. gap(angle) is how much
@@ -30,10 +32,21 @@ class LeftTurn(object):
     def __init__(self, radius, wide_radius, wide_start, wide_end=0.0):
         self.radius = float(radius)
         self.wide_radius = float(wide_radius)
+        self.wide_start, self.wide_end = float(wide_start), float(wide_end)
         # The tight arc takes the angles still to turn from here ...
         self._tight_from = math.pi / 2 - float(wide_start)
         # ... down to here.
         self._tight_to = min(float(wide_end), self._tight_from)
+
+    def drifting_at_most(self, drift):
+        """This turn with its wide start cut short, to carry the robot at most drift off the wall.
+
+        A wide start through angle a drifts wide_radius * (1 - cos a) off
+        the wall it leaves; the tight arc takes over the angles cut off.
+        """
+        cosine = 1.0 - max(0.0, drift) / self.wide_radius
+        wide_start = min(self.wide_start, math.acos(max(-1.0, cosine)))
+        return LeftTurn(self.radius, self.wide_radius, wide_start, self.wide_end)
 
     def arc_radius(self, angle):
         """Radius planned with angle (rad) still to turn."""

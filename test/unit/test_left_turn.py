@@ -92,3 +92,16 @@ def test_a_short_gap_shrinks_the_rest_of_the_turn_in_proportion():
     assert turn.radius_within(0.5 * turn.gap(angle), angle) == pytest.approx(0.5 * WIDE)
     assert turn.radius_within(0.0, angle) == 0.0
     assert turn.radius_within(-0.1, angle) == 0.0
+
+
+def test_a_wide_start_cut_short_drifts_no_more_than_allowed():
+    turn = plan(wide_end=WIDE_END)
+    drift = WIDE * (1.0 - math.cos(math.radians(10.0)))
+    cut = turn.drifting_at_most(drift)
+    assert cut.wide_start == pytest.approx(math.radians(10.0))
+    assert cut.drift(math.pi / 2) == pytest.approx(drift)
+    # The tight arc takes over the angles cut off; the wide end stays.
+    assert [cut.arc_radius(math.radians(a)) for a in (85.0, 75.0, 20.0)] == [WIDE, TIGHT, WIDE]
+    assert turn.drifting_at_most(1.0).gap(math.pi / 2) == turn.gap(math.pi / 2)
+    no_start = turn.drifting_at_most(-0.01)
+    assert no_start.gap(math.pi / 2) == pytest.approx(plan(0.0, WIDE_END).gap(math.pi / 2))
