@@ -8,19 +8,23 @@ zig-zag of the bang-bang rule. Corners get their own states because a wall
 fit cannot see them coming:
 
 - a wall ahead (inner corner) is turned onto at the full turn rate: wide
-  at first, on a tighter arc past the corner, and wide again onto parallel
-  (see left_turn.py). The speed is re-planned from the wall ahead at every
+  at first, nearly pivoting past the corner, and wide again onto parallel
+  (see left_turn.py). Time is lost only in proportion to how much tighter
+  than the wide arc the robot turns, so a short pivot costs less than a
+  long tight arc. The speed is re-planned from the wall ahead at every
   scan, so the turn is closed-loop, not timed; its wide end, once the new
   wall is on the right, is flown by FOLLOW's rule for heading into a
   wall: at cruise speed as far as closest_distance allows. While such a
   wall comes up, the robot rides a little nearer the old wall, by as much
-  as the wide start will carry it off;
+  as the wide start will carry it off beyond wide_allowance. A turn begun
+  without that room (after a short wall) flies short_turn instead: a
+  shorter wide start and a tight arc rather than a pivot;
 - a wall that ends on the right (outer, convex corner) is rounded on a
   wide arc, an arc round the corner's tip and a wide arc again (see
   corner.py); the middle arc is pinned to the tip at every scan, and the
   last one starts where it will end at the planned distance from the next
-  wall. A corner that comes up with no wall fitted (the end of a box's
-  short side, mid-turn) is circled instead.
+  wall, and then goes on. A corner that comes up with no wall fitted (the
+  end of a box's short side, mid-turn) is circled instead.
 
 The turn rate, not the speed, is what limits a lap: a 90 degree corner
 takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
@@ -56,11 +60,11 @@ PARAMETERS = {
     'range_bias': (0.008, 'how much longer than true the laser reads (Stage ~0.008, LDS-01 0)'),
     'cruise_speed': (0.19, 'forward speed on a straight wall'),
     'max_turn_rate': (0.49, 'largest turn rate the controller asks for'),
-    'k_distance': (8.0, 'turn rate per metre of distance error (rad/s/m)'),
-    'k_angle': (2.5, 'turn rate per radian of heading into the wall (rad/s/rad)'),
+    'k_distance': (10.0, 'turn rate per metre of distance error (rad/s/m)'),
+    'k_angle': (3.0, 'turn rate per radian of heading into the wall (rad/s/rad)'),
     'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
     'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
-    'closest_distance': (0.235, 'heading into the wall, slow so as to turn parallel no nearer'),
+    'closest_distance': (0.215, 'heading into the wall, slow so as to turn parallel no nearer'),
     'min_arc_radius': (0.2, '... but never onto an arc tighter than this (no pivot on the spot)'),
     # Finding the wall on the right
     'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
@@ -75,25 +79,31 @@ PARAMETERS = {
     'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
     'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
     'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.15, 'radius of the left turn onto a wall ahead, between its wide arcs'),
-    'wide_start_deg': (20.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'wide_end_deg': (25.0, 'last part of that turn, flown the same way'),
-    'approach_range': (0.9, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
-    'inner_corner_distance': (0.225, 'distance from the wall ahead at which that turn ends'),
+    'inner_corner_radius': (0.09, 'radius of the left turn onto a wall ahead, between its wide arcs'),
+    'wide_start_deg': (30.0, 'first part of that turn, flown at cruise speed on its widest arc'),
+    'wide_end_deg': (30.0, 'last part of that turn, flown the same way'),
+    'wide_allowance': (0.02, 'the wide start may carry the robot this far past target_distance'),
+    'short_turn_cut_deg': (5.0, 'a wide start cut by more than this: fly the short-wall turn below'),
+    'short_turn_radius': (0.15, 'radius of that turn (after a short wall), between its wide arcs'),
+    'short_wide_start_deg': (20.0, 'first part of the short-wall turn, on its widest arc'),
+    'short_wide_end_deg': (25.0, 'last part of the short-wall turn, the same way'),
+    'approach_range': (0.8, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
+    'inner_corner_distance': (0.235, 'distance from the wall ahead at which that turn ends'),
     'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
-    'front_turn_distance': (0.35, 'anything nearer in the lane ahead starts the left turn'),
+    'front_turn_distance': (0.38, 'anything nearer in the lane ahead starts the left turn'),
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
     # Outer corners: the right wall ends
     'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
     'outer_wide_start_deg': (25.0, 'first part of that turn, flown at cruise speed on its widest arc'),
     'outer_wide_end_deg': (40.0, 'last part of that turn as planned, flown the same way'),
+    'outer_turn_lead': (-0.005, 'start the turn round a wall\'s end this much early (negative: late)'),
     'outer_wide_tolerance': (0.03, 'the wide start is flown even this far inside the tip\'s arc'),
     'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
     'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
     'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
     'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
-    'rejoin_angle_deg': (25.0, '... and within this angle of the heading'),
+    'rejoin_angle_deg': (40.0, '... and within this angle of the heading'),
     'arc_exit_angle_deg': (5.0, 'an outer corner arc ends this near parallel to the next wall'),
     # No wall near
     'search_speed': (0.15, 'forward speed while no wall is near'),
@@ -310,7 +320,12 @@ class WallFollower(object):
     robot will be when that command takes effect; arc is the CornerArc
     being driven round an outer corner, or None, and starting_wide whether
     that corner's turn is still in its wide start (only a turn begun from
-    following the wall has one, and once over it does not come back).
+    following the wall has one, and once over it does not come back),
+    ending_wide whether it has begun its wide end (which, once begun, goes
+    on: the tip's position jitters by a grid cell from scan to scan).
+    left_turn is the turn onto a wall ahead as configured, and turn the
+    one in force: planned afresh at each scan from the distance to the
+    right wall, and kept while it is flown.
     """
 
     def __init__(self, params=None):
@@ -319,14 +334,19 @@ class WallFollower(object):
         self.command = Command(0.0, 0.0)
         self.arc = None
         self.starting_wide = False
+        self.ending_wide = False
         p = self.params
         wide_radius = p.cruise_speed / p.max_turn_rate
         self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg),
                                   math.radians(p.wide_end_deg))
+        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius,
+                                   math.radians(p.short_wide_start_deg),
+                                   math.radians(p.short_wide_end_deg))
         self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius,
                                     math.radians(p.outer_wide_start_deg),
                                     math.radians(p.outer_wide_end_deg), p.target_distance,
                                     p.outer_wide_tolerance)
+        self.turn = self.left_turn
         self._stamp = None
 
     def update(self, view, stamp=None):
@@ -342,6 +362,8 @@ class WallFollower(object):
         dt = p.latency if stamp is None or self._stamp is None else stamp - self._stamp
         self._stamp = stamp
         obs = Observation(view, p, self.command)
+        if self.state != WALL_AHEAD:
+            self.turn = self._turn_from(obs)
         previous, self.state = self.state, self._next_state(obs)
         self._track_corner(obs, previous, dt)
         speed, turn = getattr(self, '_cmd_' + self.state.lower())(obs)
@@ -373,7 +395,8 @@ class WallFollower(object):
             exit_deg = p.arc_exit_angle_deg if self.arc is not None else p.rejoin_angle_deg
             if self._rejoined(obs, exit_deg):
                 return FOLLOW
-        elif obs.wall is not None and obs.wall_ahead + p.laser_x > self.right_turn.lead:
+        elif (obs.wall is not None
+              and obs.wall_ahead + p.laser_x > self.right_turn.lead + p.outer_turn_lead):
             # The wall goes on past where the arc round its end starts.
             return FOLLOW
         if near and self.state != SEARCH:
@@ -393,21 +416,41 @@ class WallFollower(object):
         if not self._blocking(obs):
             return False
         distance, angle = self._ahead_as_planned(obs)
-        return self.left_turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
+        return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def _ahead_as_planned(self, obs):
         """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
         return from_centre(as_planned(obs.ahead), self.params.laser_x)
 
+    def _turn_from(self, obs):
+        """The left turn to fly from here: its wide start ends at most wide_allowance past target.
+
+        A robot that has not ridden nearer first (a short wall left no
+        room) would cut the wide start of left_turn short, and then fly
+        its near pivot for most of the turn: short_turn, tight but not a
+        pivot, is faster there.
+        """
+        if obs.wall is None:
+            return self.left_turn
+        p = self.params
+        allowed = p.target_distance + p.wide_allowance - from_centre(obs.wall, p.laser_x)[0]
+        turn = self.left_turn.drifting_at_most(allowed)
+        if turn.wide_start < self.left_turn.wide_start - math.radians(p.short_turn_cut_deg):
+            turn = self.short_turn.drifting_at_most(allowed)
+        return turn
+
     def _approach_dip(self, obs):
         """How much nearer to ride while a wall across the way is within approach_range.
 
-        As much as the wide start of the turn onto that wall will drift.
+        As much as the wide start of the turn onto that wall will drift,
+        less what it may drift past target_distance (wide_allowance).
         """
         if not self._blocking(obs):
             return 0.0
         distance, angle = as_planned(obs.ahead)
-        return self.left_turn.drift(angle) if distance < self.params.approach_range else 0.0
+        if distance >= self.params.approach_range:
+            return 0.0
+        return max(0.0, self.left_turn.drift(angle) - self.params.wide_allowance)
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
@@ -465,7 +508,7 @@ class WallFollower(object):
         radius = p.inner_corner_radius
         if obs.ahead is not None:
             distance, angle = self._ahead_as_planned(obs)
-            radius = self.left_turn.radius_within(distance - p.inner_corner_distance, angle)
+            radius = self.turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
@@ -473,19 +516,23 @@ class WallFollower(object):
     def _track_corner(self, obs, previous, dt):
         """Start the arc round an outer corner, or move it on, or drop it after the corner.
 
-        The wide start, once over, stays over (see starting_wide).
+        The wide start, once over, stays over, and the wide end, once begun,
+        goes on (see starting_wide and ending_wide).
         """
         if self.state != OUTER_CORNER:
             self.arc = None
         elif previous != OUTER_CORNER:
             self.arc = self._corner_arc(obs)
             self.starting_wide = previous == FOLLOW
+            self.ending_wide = False
         elif self.arc is not None:
             self.arc.moved(self.command.linear * dt, self.command.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
         if self.arc is not None:
             self.starting_wide = self.starting_wide and self.right_turn.starts_wide(
                 self.arc.turned(), self.arc.offset()[0])
+            self.ending_wide = self.ending_wide or self.right_turn.ends_wide(
+                self.arc.turned(), self.arc.past_tip())
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
@@ -507,8 +554,7 @@ class WallFollower(object):
     def _cmd_outer_corner(self, obs):
         p = self.params
         if self.arc is not None:
-            if self.starting_wide or self.right_turn.ends_wide(self.arc.turned(),
-                                                               self.arc.past_tip()):
+            if self.starting_wide or self.ending_wide:
                 return Command(p.cruise_speed, -p.max_turn_rate)
             distance, bearing = self.arc.offset()
             radius, share = p.outer_corner_radius, 1.0

@@ -79,7 +79,8 @@ def test_inside_the_band_it_only_nudges():
     """Inside 0.2-0.3 m the turn is gentle, outside it is strong (the course's band)."""
     turns = dict((d, update(right_wall(d))[1].angular) for d in (0.17, 0.22, 0.25, 0.28, 0.33))
     assert turns[0.17] > turns[0.22] > turns[0.25] > turns[0.28] > turns[0.33]
-    assert abs(turns[0.22]) < 0.25 and abs(turns[0.28]) < 0.25
+    assert abs(turns[0.22]) < 0.7 * EXACT.max_turn_rate and abs(turns[0.28]) < 0.7 * EXACT.max_turn_rate
+    assert turns[0.17] == EXACT.max_turn_rate and turns[0.33] == -EXACT.max_turn_rate
     assert turns[0.17] >= 0.4 and turns[0.33] <= -0.4
 
 
@@ -98,15 +99,25 @@ def test_heading_into_the_wall_slows_down_to_turn_in_time():
     assert steep.linear < gentle.linear
 
 
+# Heading this far into a wall this near, the lane ahead meets it within
+# front_turn_distance, which starts a left turn (see the inner corners below):
+# the rule for heading into the wall is tested on its own.
+INTO_WALL = FollowerParams(range_bias=0.0, laser_x=0.0, front_turn_distance=0.2)
+
+
 def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
     # 2 cm outside closest_distance, 20 deg into the wall: the arc that turns
     # parallel just in time has radius 0.02 / (1 - cos 20 deg), flown at the full rate.
-    _, command = update(right_wall(EXACT.closest_distance + 0.02), (0.0, 0.0, math.radians(-20.0)))
+    controller = WallFollower(INTO_WALL)
+    _, command = update(right_wall(EXACT.closest_distance + 0.02), (0.0, 0.0, math.radians(-20.0)),
+                        controller=controller)
+    assert controller.state == FOLLOW
     radius = 0.02 / (1.0 - math.cos(math.radians(20.0)))
     assert command == pytest.approx((radius * EXACT.max_turn_rate, EXACT.max_turn_rate), abs=0.01)
     # Nearer still, that arc would be a pivot on the spot; it is never tighter
     # than min_arc_radius, so the robot keeps moving.
-    _, command = update(right_wall(EXACT.closest_distance + 0.002), (0.0, 0.0, math.radians(-15.0)))
+    _, command = update(right_wall(EXACT.closest_distance + 0.002), (0.0, 0.0, math.radians(-15.0)),
+                        controller=WallFollower(INTO_WALL))
     assert command == pytest.approx((EXACT.min_arc_radius * EXACT.max_turn_rate,
                                      EXACT.max_turn_rate))
 
@@ -115,7 +126,7 @@ def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
 def test_that_arc_is_the_rotation_centres_wherever_the_laser_sits(laser_x):
     # The same pose of the rotation centre as above, seen by a laser behind
     # it (Burger, Waffle): the laser is further from the wall, the arc is not.
-    params = FollowerParams(range_bias=0.0, laser_x=laser_x)
+    params = FollowerParams(range_bias=0.0, laser_x=laser_x, front_turn_distance=0.2)
     yaw = math.radians(-20.0)
     laser = (laser_x * math.cos(yaw), laser_x * math.sin(yaw), yaw)
     _, command = update(right_wall(params.closest_distance + 0.02), laser,
@@ -171,9 +182,16 @@ def test_the_course_rule_turn_left_when_a_wall_is_within_half_a_metre(ahead):
     assert command.angular > 0.4 and command.linear > 0.0
 
 
-def turn_start(params):
+def planned_turn(params, right=0.25):
+    """The left turn a robot right metres from the right wall plans (see WallFollower.turn)."""
+    controller = WallFollower(params)
+    update(corridor_end(1.5, right), (params.laser_x, 0.0, 0.0), controller=controller)
+    return controller.turn
+
+
+def turn_start(params, right=0.25):
     """The rotation centre's distance from a square wall ahead at which the left turn starts."""
-    turn = WallFollower(params).left_turn
+    turn = planned_turn(params, right)
     return turn.gap(math.pi / 2) + params.turn_lead + params.inner_corner_distance
 
 
@@ -188,6 +206,43 @@ def test_a_left_turn_starts_where_its_arc_does_wherever_the_laser_sits(laser_x):
         controller, _ = update(corridor_end(ahead), (laser_x, 0.0, 0.0),
                                controller=WallFollower(params))
         assert controller.state == state
+
+
+def test_a_turn_begun_farther_from_the_wall_starts_less_wide_and_later():
+    # After a short wall there is no time to ride nearer first: the wide
+    # start then drifts only wide_allowance past the target, and the tight
+    # arc takes the rest of the turn, which so starts nearer the wall ahead.
+    drifts, starts = [], []
+    for right in (EXACT.target_distance - 0.03, EXACT.target_distance + 0.01):
+        start = turn_start(EXACT, right)
+        starts.append(start)
+        controller, _ = update(corridor_end(start + 0.01, right))
+        assert controller.state == FOLLOW
+        allowed = EXACT.target_distance + EXACT.wide_allowance - right
+        assert controller.turn.drift(math.pi / 2) <= max(0.0, allowed) + 1e-9
+        drifts.append(controller.turn.drift(math.pi / 2))
+        controller, _ = update(corridor_end(start - 0.01, right), controller=controller)
+        assert controller.state == WALL_AHEAD
+    assert drifts[1] < drifts[0] and starts[1] < starts[0]
+
+
+def test_a_turn_begun_without_room_to_ride_nearer_is_the_short_wall_turn():
+    # Having ridden nearer, the robot flies the turn with the wide start
+    # and the near pivot; still at the target distance (a short wall), its
+    # wide start would be cut short, and it flies the short-wall turn.
+    dip = WallFollower(EXACT).left_turn.drift(math.pi / 2) - EXACT.wide_allowance
+    assert planned_turn(EXACT, EXACT.target_distance - dip).radius == EXACT.inner_corner_radius
+    short = planned_turn(EXACT, EXACT.target_distance)
+    assert short.radius == EXACT.short_turn_radius
+    assert short.drift(math.pi / 2) <= EXACT.wide_allowance + 1e-9
+
+
+def test_a_turn_once_begun_keeps_its_plan():
+    controller, _ = update(corridor_end(0.4))
+    assert controller.state == WALL_AHEAD
+    planned = controller.turn
+    update(corridor_end(0.38, 0.3), controller=controller)
+    assert controller.turn is planned
 
 
 def test_a_distant_wall_ahead_is_not_turned_for_yet():
@@ -209,14 +264,15 @@ def test_the_nearer_the_wall_ahead_the_tighter_the_turn():
 
 def test_a_wall_ahead_coming_up_is_approached_a_little_nearer():
     # The wide start of the turn will carry the robot off this wall by its
-    # drift; riding that much nearer first keeps the turn's middle in band.
+    # drift; riding nearer first by all of it that wide_allowance does not
+    # cover keeps the turn's middle in band.
     _, far = update(corridor_end(1.5))
     controller, near = update(corridor_end(0.8))
     assert controller.state == FOLLOW
     assert far.angular == pytest.approx(0.0, abs=0.01)
-    drift = controller.left_turn.drift(math.pi / 2)
-    assert 0.005 < drift < 0.03
-    assert near.angular == pytest.approx(-EXACT.k_distance * drift, rel=0.05)
+    dip = controller.left_turn.drift(math.pi / 2) - EXACT.wide_allowance
+    assert 0.005 < dip < 0.04
+    assert near.angular == pytest.approx(-EXACT.k_distance * dip, rel=0.05)
 
 
 def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
@@ -237,8 +293,8 @@ def test_a_left_turn_ends_wide_again_when_planned_to(wide_end_deg, ends_wide):
     # flown near cruise speed.
     params = FollowerParams(range_bias=0.0, laser_x=0.0, wide_end_deg=wide_end_deg)
     trail = drive(corridor_end(1.2), (0.0, 0.0, 0.0), 80, params=params)
-    end = [speed for (_, (_, _, yaw), _), speed in zip(trail, step_speeds(trail))
-           if 60.0 < math.degrees(yaw) < 85.0]
+    end = [speed for (state, (_, _, yaw), _), speed in zip(trail, step_speeds(trail))
+           if state == WALL_AHEAD and math.degrees(yaw) > 60.0]
     assert end and (max(end) > 0.8 * EXACT.cruise_speed) == ends_wide
 
 
@@ -261,7 +317,8 @@ def test_a_wall_ahead_turned_onto_on_the_tight_arc_alone_is_not_approached_neare
     controller, command = update(tilted_end(1.0, 45.0))
     assert controller.state == FOLLOW and abs(command.angular) < 0.01
     # With a wide start of 60 degrees the same turn would start wide.
-    wide = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0, wide_start_deg=60.0))
+    wide = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0, wide_start_deg=60.0,
+                                       wide_allowance=0.0))
     _, command = update(tilted_end(1.0, 45.0), controller=wide)
     assert command.angular < -0.05
 
@@ -318,6 +375,54 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
                                  controller=controller)
     assert controller.state == OUTER_CORNER
     assert command.angular < -0.3 and command.linear > 0.05
+
+
+@pytest.mark.parametrize('outer_turn_lead', [0.0, 0.06])
+def test_the_turn_round_a_walls_end_starts_outer_turn_lead_early(outer_turn_lead):
+    params = FollowerParams(range_bias=0.0, laser_x=0.0, outer_turn_lead=outer_turn_lead)
+    start = WallFollower(params).right_turn.lead + outer_turn_lead
+    for end_x, state in ((start + 0.025, FOLLOW), (start - 0.025, OUTER_CORNER)):
+        controller = WallFollower(params)
+        controller.state = FOLLOW
+        assert update(convex_corner(end_x), controller=controller)[0].state == state
+
+
+def rounding(tip_distance, turned_deg, ending_wide=False):
+    """A controller on the arc round convex_corner(0.0)'s tip, tip_distance from it, turned so far.
+
+    Returns it with the robot's pose.
+    """
+    heading = -math.radians(turned_deg)
+    x, y = (tip_distance * math.cos(heading + math.pi / 2),
+            -0.25 + tip_distance * math.sin(heading + math.pi / 2))
+    controller = WallFollower(EXACT)
+    tip = (-x * math.cos(heading) + (-0.25 - y) * math.sin(heading),
+           x * math.sin(heading) + (-0.25 - y) * math.cos(heading))
+    along = (math.cos(heading), -math.sin(heading))
+    controller.state = OUTER_CORNER
+    controller.arc = CornerArc(tip, along, controller.right_turn.center)
+    controller.ending_wide = ending_wide
+    return controller, (x, y, heading)
+
+
+def test_a_wide_end_once_begun_goes_on():
+    # Here the wide end would land a little far from the next wall ...
+    controller, pose = rounding(0.25, 60.0)
+    _, command = update(convex_corner(0.0), pose, controller=controller)
+    assert not controller.ending_wide
+    assert command.linear < 0.9 * EXACT.cruise_speed
+    # ... but the tip is seen only to a grid cell or so, and a wide end
+    # begun a scan before goes on rather than tighten again.
+    controller, pose = rounding(0.25, 60.0, ending_wide=True)
+    _, command = update(convex_corner(0.0), pose, controller=controller)
+    assert command == pytest.approx((EXACT.cruise_speed, -EXACT.max_turn_rate))
+
+
+def test_a_wide_end_begins_where_it_lands_at_the_target_distance():
+    controller, pose = rounding(0.2, 60.0)
+    _, command = update(convex_corner(0.0), pose, controller=controller)
+    assert controller.ending_wide
+    assert command == pytest.approx((EXACT.cruise_speed, -EXACT.max_turn_rate))
 
 
 @pytest.mark.parametrize('period', [0.1, 0.2])
