@@ -20,10 +20,10 @@ ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world
 SPEED = 0.19    # m/s along x, one ground truth per 0.1 s
 
 
-def _truth(stamp):
+def _truth(stamp, x=None):
     msg = Odometry()
     msg.header.stamp = rospy.Time.from_sec(stamp)
-    msg.pose.pose.position.x = SPEED * stamp
+    msg.pose.pose.position.x = SPEED * stamp if x is None else x
     msg.pose.pose.orientation.w = 1.0
     return msg
 
@@ -62,5 +62,24 @@ def test_true_distance_runs_from_the_first_recorded_point_to_the_last(result_fir
         if not result_first:
             monitor._on_result(result)
         assert monitor.truth_at_result == pytest.approx(SPEED * 1.0)
+    finally:
+        monitor.close()
+
+
+def test_a_point_where_the_robot_passed_before_is_placed_at_its_later_pass():
+    """Out along x and back: the last point lies where the first was taken, 1.6 s later."""
+    def there(stamp):
+        return SPEED * min(stamp, 4.0 - stamp)
+
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        monitor._on_goal(_goal(1.0))
+        for tenth in range(10, 31):
+            monitor._on_truth(_truth(tenth / 10.0, there(tenth / 10.0)))
+        result = _result(3.0, 1.2, 2.8)
+        result.result.list_of_odoms = [Point(x=there(t)) for t in (1.2, 2.0, 2.8)]
+        monitor._on_result(result)
+        assert monitor.recorded_stamps == pytest.approx([1.2, 2.0, 2.8])
+        assert monitor.truth_at_result == pytest.approx(SPEED * 1.6)
     finally:
         monitor.close()

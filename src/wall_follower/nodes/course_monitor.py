@@ -65,29 +65,50 @@ class CourseMonitor(object):
 
     @property
     def truth_at_result(self):
-        """True distance from the first recorded point to the last (None before the result).
+        """True distance from the first recorded point to the last (None before the result)."""
+        with self.lock:
+            matches = self._recorded_indices()
+            if matches is None:
+                return None
+            if len(matches) < 2:
+                return 0.0
+            steps = np.diff(np.array(self.trail[matches[0]:matches[-1] + 1]), axis=0)
+            return float(np.hypot(steps[:, 0], steps[:, 1]).sum())
 
-        The points are odometry poses, true poses under the worlds' "gps"
-        localization, so they are looked up on the ground-truth trail: the
-        first in the trail's first half, the last in its second half, up to
-        the result's stamp. The goal's and the result's stamps alone would
-        not do: in lockstep the simulator runs many times faster than real
-        time, and the recorder starts and answers seconds of driving late.
+    @property
+    def recorded_stamps(self):
+        """The ground-truth stamps at which the recorded points were taken (None before the result).
+
+        The goal's and the result's stamps alone would not tell: in lockstep
+        the simulator runs many times faster than real time, and the
+        recorder starts and answers seconds of driving late.
         """
         with self.lock:
-            if not self.result:
+            matches = self._recorded_indices()
+            if matches is None:
                 return None
-            stamps = np.array(self._trail_stamps)
-            before = stamps <= self.result_time
-            stamps, trail = stamps[before], np.array(self.trail)[before]
-            if len(trail) < 2:
-                return 0.0
-            half = int(np.searchsorted(stamps, (stamps[0] + stamps[-1]) / 2.0))
-            half = min(max(half, 1), len(trail) - 1)
-            first = _nearest(trail[:half], self.result[0])
-            last = half + _nearest(trail[half:], self.result[-1])
-            steps = np.diff(trail[first:last + 1], axis=0)
-            return float(np.hypot(steps[:, 0], steps[:, 1]).sum())
+            return [self._trail_stamps[index] for index in matches]
+
+    def _recorded_indices(self):
+        """Where on the ground-truth trail each recorded point was taken, in order.
+
+        The points are odometry poses, true poses under the worlds' "gps"
+        localization, so each is the trail position nearest to it after the
+        previous point's, up to the result's stamp: searching forward keeps
+        a point near the start from matching the lap's end.
+        """
+        if not self.result:
+            return None
+        recorded = int(np.searchsorted(self._trail_stamps, self.result_time, side='right'))
+        trail = np.array(self.trail[:recorded]).reshape(-1, 2)
+        if not len(trail):
+            return []
+        matches = []
+        start = 0
+        for point in self.result:
+            start += _nearest(trail[start:], point)
+            matches.append(start)
+        return matches
 
     @property
     def scoring(self):

@@ -21,12 +21,11 @@ def course_figures(monitor):
     """The run's figures: the action's result next to the ground-truth score."""
     figures = monitor.summary()
     points = monitor.result or []
+    stamps = monitor.recorded_stamps
     nan = float('nan')
     figures.update({
         'points': len(points),
-        'recording_time': (monitor.result_time - monitor.goal_time
-                           if monitor.result_time is not None and monitor.goal_time is not None
-                           else nan),
+        'recording_time': stamps[-1] - stamps[0] if stamps else nan,
         'recorded_distance': monitor.feedback[-1] if monitor.feedback else nan,
         'true_distance': monitor.truth_at_result or nan,
         'closing_gap': (math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1])

@@ -44,6 +44,9 @@ rate: how often (Hz, ROS time) the goal loop checks for new points, the
 
 LAP_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_error')
 
+# Odometry messages held while the node is busy: a minute and a half at 10 Hz.
+ODOM_QUEUE = 1000
+
 
 class OdomRecorderNode(object):
     """Serves record_odom: one recording per goal, fed from the odom topic."""
@@ -55,7 +58,9 @@ class OdomRecorderNode(object):
         self._frame_id = ''
         self._last_odom_time = None
         self.path_pub = rospy.Publisher('record_odom/path', Path, queue_size=1, latch=True)
-        self.odom_sub = rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=50)
+        # Every pose counts toward the distance and may be the one a sample is due at;
+        # a fast simulator can outrun this node for a while, and a full queue drops some.
+        self.odom_sub = rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=ODOM_QUEUE)
         self.server = actionlib.SimpleActionServer(
             'record_odom', OdomRecordAction, execute_cb=self._execute, auto_start=False)
         self.server.start()
