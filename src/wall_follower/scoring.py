@@ -213,3 +213,25 @@ def true_lap_length(trail, start, leave_radius=0.5, near=0.3):
         if gaps[i] <= near and gaps[i] <= gaps[i - 1] and gaps[i] <= gaps[i + 1]:
             return float(lengths[i])
     return None
+
+
+def places_on_trail(trail, points):
+    """Index of each recorded point on a ground-truth trail, in order.
+
+    Recorded points are odometry poses, true poses under the worlds' "gps"
+    localization, so each is the trail position nearest to it at or after
+    the previous point's: searching forward keeps a point near the start
+    from matching the lap's end, where the trail passes again. Timing the
+    points this way, rather than by the messages around them, holds however
+    late a loaded machine lets the recorder start or answer.
+    """
+    xy = np.asarray(trail, dtype=float).reshape(-1, 2)
+    places = []
+    start = 0
+    if not len(xy):
+        return places
+    for point in points:
+        rest = xy[start:]
+        start += int(np.argmin(np.hypot(rest[:, 0] - point[0], rest[:, 1] - point[1])))
+        places.append(start)
+    return places

@@ -10,6 +10,7 @@ import time
 import unittest
 
 import actionlib
+import numpy as np
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
@@ -18,6 +19,7 @@ from std_srvs.srv import Empty
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import pose_of
+from wall_follower.scoring import places_on_trail
 
 POLL = 0.1
 # Wall seconds: polling for the goal to be taken while the world is paused, and the limit.
@@ -36,10 +38,12 @@ class RecordOdomGoals(unittest.TestCase):
     def setUpClass(cls):
         cls.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         assert cls.client.wait_for_server(rospy.Duration(30.0)), 'no record_odom server'
+        cls.period = rospy.get_param('/odom_recorder/sample_period', 1.0)
         cls.truths = []
         cls.pause = rospy.ServiceProxy('pause_physics', Empty)
         cls.unpause = rospy.ServiceProxy('unpause_physics', Empty)
-        rospy.Subscriber('base_pose_ground_truth', Odometry, cls._on_truth, queue_size=50)
+        rospy.Subscriber('base_pose_ground_truth', Odometry, cls._on_truth,
+                         queue_size=10000)
 
     @classmethod
     def _on_truth(cls, msg):
@@ -73,16 +77,25 @@ class RecordOdomGoals(unittest.TestCase):
             rospy.sleep(POLL)
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
-        elapsed = rospy.get_time() - started
-        return started, elapsed, feedback, self.client.get_state(), self.client.get_result()
+        return started, feedback, self.client.get_state(), self.client.get_result()
+
+    def stamps_of(self, points, since):
+        """When each recorded point was taken, from where ground truth passed it after `since`."""
+        truths = [(t, pose) for t, pose in list(self.truths) if t >= since]
+        places = places_on_trail([pose[:2] for _, pose in truths], [(p.x, p.y) for p in points])
+        return [truths[place][0] for place in places]
 
     def test_cancel_returns_points_and_next_goal_starts_clean(self):
-        _, elapsed, _, state, result = self.record(until_distance=FIRST_GOAL_DISTANCE)
+        started, _, state, result = self.record(until_distance=FIRST_GOAL_DISTANCE)
         self.assertEqual(state, GoalStatus.PREEMPTED)
-        self.assertAlmostEqual(len(result.list_of_odoms), elapsed + 1, delta=2)
+        stamps = self.stamps_of(result.list_of_odoms, since=started)
+        self.assertGreater(len(stamps), 5)
+        gaps = np.diff(stamps)
+        self.assertTrue(np.allclose(gaps, self.period, atol=1e-3),
+                        'points %s s apart' % np.round(gaps, 3).tolist())
         first_run_start = result.list_of_odoms[0]
 
-        started, _, feedback, state, result = self.record(until_distance=SECOND_GOAL_DISTANCE)
+        started, feedback, state, result = self.record(until_distance=SECOND_GOAL_DISTANCE)
         self.assertEqual(state, GoalStatus.PREEMPTED)
         # Carried over, the total would start at the first goal's distance or more; the
         # recorder's first feedback can come a second or so of driving after the goal.

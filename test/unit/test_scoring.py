@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from wall_follower.geometry import polygon_clearance
-from wall_follower.scoring import CourseMap, RunScore, true_lap_length
+from wall_follower.scoring import CourseMap, RunScore, places_on_trail, true_lap_length
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2]; laser 32 mm behind the axle.
@@ -135,3 +135,16 @@ def test_finish_ends_the_lap_where_the_recorder_said(room):
     assert figures['lap_time'] == pytest.approx(1.2)
     assert figures['path_length'] == pytest.approx(12 * 0.019)
     assert figures['time_in_band'] == pytest.approx(1.0)
+
+
+def test_a_recorded_point_on_a_stretch_driven_twice_is_placed_on_its_own_pass():
+    """Out along x and back: the third point lies where the first was, on the way back."""
+    trail = [(0.1 * min(step, 20 - step), 0.0) for step in range(21)]
+    points = [(0.2, 0.0), (1.0, 0.0), (0.2, 0.0)]
+    assert places_on_trail(trail, points) == [2, 10, 18]
+
+
+def test_places_on_trail_takes_the_nearest_pose_to_an_inexact_point():
+    trail = [(0.1 * step, 0.0) for step in range(10)]
+    assert places_on_trail(trail, [(0.32, 0.01), (0.68, -0.01)]) == [3, 7]
+    assert places_on_trail([], [(0.0, 0.0)]) == []

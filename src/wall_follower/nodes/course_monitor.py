@@ -18,7 +18,7 @@ from actionlib_msgs.msg import GoalStatusArray
 
 from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
-from wall_follower.scoring import RunScore
+from wall_follower.scoring import RunScore, places_on_trail
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.
@@ -90,25 +90,11 @@ class CourseMonitor(object):
             return [self._trail_stamps[index] for index in matches]
 
     def _recorded_indices(self):
-        """Where on the ground-truth trail each recorded point was taken, in order.
-
-        The points are odometry poses, true poses under the worlds' "gps"
-        localization, so each is the trail position nearest to it after the
-        previous point's, up to the result's stamp: searching forward keeps
-        a point near the start from matching the lap's end.
-        """
+        """Where on the ground-truth trail, up to the result, each recorded point was taken."""
         if not self.result:
             return None
         recorded = int(np.searchsorted(self._trail_stamps, self.result_time, side='right'))
-        trail = np.array(self.trail[:recorded]).reshape(-1, 2)
-        if not len(trail):
-            return []
-        matches = []
-        start = 0
-        for point in self.result:
-            start += _nearest(trail[start:], point)
-            matches.append(start)
-        return matches
+        return places_on_trail(self.trail[:recorded], self.result)
 
     @property
     def scoring(self):
@@ -227,7 +213,3 @@ class CourseMonitor(object):
         for sub in self._subs:
             sub.unregister()
 
-
-def _nearest(trail, point):
-    """Index of the trail position nearest to a recorded (x, y, z) point."""
-    return int(np.argmin(np.hypot(trail[:, 0] - point[0], trail[:, 1] - point[1])))
