@@ -14,7 +14,10 @@ fit cannot see them coming:
   long tight arc. The speed is re-planned from the wall ahead at every
   scan, so the turn is closed-loop, not timed; its wide end, once the new
   wall is on the right, is flown by FOLLOW's rule for heading into a
-  wall: at cruise speed as far as closest_distance allows. While such a
+  wall: at cruise speed as far as closest_distance allows. That lands it
+  nearer than target_distance on purpose, an error well above the laser's
+  noise, so for settle_time after the turn the distance gain is raised by
+  settle_gain to bring it back out sooner. While such a
   wall comes up, the robot rides a little nearer the old wall, by as much
   as the wide start will carry it off beyond wide_allowance. A turn begun
   without that room (after a short wall) flies short_turn instead: a
@@ -90,6 +93,8 @@ PARAMETERS = {
     'approach_range': (0.8, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
     'inner_corner_distance': (0.235, 'distance from the wall ahead at which that turn ends'),
     'turn_lead': (0.01, 'start the turn this much early, for the scan and command delay'),
+    'settle_time': (3.0, 'after that turn, the distance gain is raised for this long (s) ...'),
+    'settle_gain': (1.5, '... by this factor, to bring the robot back out to target_distance'),
     'front_turn_distance': (0.38, 'anything nearer in the lane ahead starts the left turn'),
     'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
     'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
@@ -347,6 +352,7 @@ class WallFollower(object):
                                     math.radians(p.outer_wide_end_deg), p.target_distance,
                                     p.outer_wide_tolerance)
         self.turn = self.left_turn
+        self.settling = 0.0   # seconds left of settle_gain after a turn onto a wall ahead
         self._stamp = None
 
     def update(self, view, stamp=None):
@@ -365,6 +371,7 @@ class WallFollower(object):
         if self.state != WALL_AHEAD:
             self.turn = self._turn_from(obs)
         previous, self.state = self.state, self._next_state(obs)
+        self.settling = p.settle_time if self.state == WALL_AHEAD else max(0.0, self.settling - dt)
         self._track_corner(obs, previous, dt)
         speed, turn = getattr(self, '_cmd_' + self.state.lower())(obs)
         self.command = Command(min(max(speed, 0.0), p.cruise_speed),
@@ -474,10 +481,10 @@ class WallFollower(object):
         """True when a corner is over: a straight wall on the right, nearly parallel."""
         return along_the_way(obs.wall, max_angle_deg) and obs.wall_ahead > self.params.rejoin_ahead
 
-    def _steer(self, distance, angle, target):
-        """PD turn rate holding a wall at distance target and parallel."""
+    def _steer(self, distance, angle, target, gain=1.0):
+        """PD turn rate holding a wall at distance target and parallel (gain: on the distance)."""
         p = self.params
-        return -p.k_distance * (distance - target) + p.k_angle * angle
+        return -gain * p.k_distance * (distance - target) + p.k_angle * angle
 
     def _cmd_follow(self, obs):
         p = self.params
@@ -485,7 +492,8 @@ class WallFollower(object):
         # The wide start of a left turn carries the robot off this wall:
         # riding that much nearer before it keeps the turn's middle in band.
         dip = self._approach_dip(obs)
-        turn = self._steer(distance, angle, p.target_distance - dip)
+        gain = p.settle_gain if self.settling > 0.0 else 1.0
+        turn = self._steer(distance, angle, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns

@@ -298,6 +298,26 @@ def test_a_left_turn_ends_wide_again_when_planned_to(wide_end_deg, ends_wide):
     assert end and (max(end) > 0.8 * EXACT.cruise_speed) == ends_wide
 
 
+
+def test_after_a_turn_onto_a_wall_ahead_it_steers_back_out_harder_for_a_while():
+    """The turn lands the robot near closest_distance on purpose, an error well above the
+    laser's noise: for settle_time the distance gain is raised by settle_gain."""
+    near = scan_view(right_wall(0.22), (0.0, 0.0, 0.0), STAGE)
+    turns = {}
+    for settle_time in (EXACT.settle_time, 0.0):
+        controller = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0,
+                                                 settle_time=settle_time))
+        controller.update(scan_view(corridor_end(0.45), (0.0, 0.0, 0.0), STAGE), 0.0)
+        assert controller.state == WALL_AHEAD
+        turns[settle_time] = controller.update(near, 0.1).angular
+        assert controller.state == FOLLOW
+        assert controller.settling == pytest.approx(max(0.0, settle_time - 0.1))
+    assert EXACT.settle_gain > 1.0
+    extra = (EXACT.settle_gain - 1.0) * EXACT.k_distance * 0.03
+    assert turns[EXACT.settle_time] - turns[0.0] == pytest.approx(extra, rel=0.2)
+    controller.update(near, 0.1 + EXACT.settle_time)
+    assert controller.settling == 0.0
+
 def tilted_end(crossing, angle_deg, right=0.25):
     """A right wall that meets a wall crossing the way crossing metres ahead.
 
