@@ -226,10 +226,10 @@ def places_on_trail(trail, points):
     late a loaded machine lets the recorder start or answer.
     """
     xy = np.asarray(trail, dtype=float).reshape(-1, 2)
+    if not len(xy):
+        return []
     places = []
     start = 0
-    if not len(xy):
-        return places
     for point in points:
         rest = xy[start:]
         start += int(np.argmin(np.hypot(rest[:, 0] - point[0], rest[:, 1] - point[1])))

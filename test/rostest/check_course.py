@@ -60,7 +60,7 @@ class Course(unittest.TestCase):
         self.assertGreater(len(points), 10)
         # The last point is the closing pose, taken when the lap ends, off the grid.
         gaps = np.diff(stamps[:-1])
-        self.assertTrue(np.allclose(gaps, self.period, atol=1e-3), 
+        self.assertTrue(np.allclose(gaps, self.period, atol=1e-3),
                         'points %s s apart' % np.round(gaps, 3).tolist())
         self.assertLessEqual(stamps[-1] - stamps[-2], self.period + 1e-3)
         gap = math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1])
