@@ -212,4 +212,3 @@ class CourseMonitor(object):
     def close(self):
         for sub in self._subs:
             sub.unregister()
-
