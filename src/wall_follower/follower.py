@@ -276,7 +276,7 @@ def from_centre(wall, laser_x):
     return distance + laser_x * math.sin(min(angle, math.pi / 2)), angle
 
 
-def as_planned(ahead):
+def as_planned(ahead, wall=None):
     """The (distance, angle) of a wall ahead that a left turn is planned for.
 
     A wall ahead at more than a right angle is rare in rooms, but common in
@@ -284,12 +284,18 @@ def as_planned(ahead):
     the uncertain part: the hits pin down where the wall crosses the way
     ahead, while a tilted fit brings its foot (the perpendicular distance)
     nearer, and would start the turn early. Such a wall counts as a square
-    wall where its line crosses the way.
+    wall where its line crosses the way: square to the way itself, or, when
+    the robot heads into the (distance, angle) wall on its right, square to
+    that wall. That is common after an outer corner, whose arc hands over
+    still turning right: the turn then has those degrees more to go, and
+    flown at the start, wide, they carry the robot nearer the wall ahead
+    (see LeftTurn.gap).
     """
     distance, angle = ahead
     if angle <= math.pi / 2:
         return distance, angle
-    return distance / max(math.sin(angle), 1e-6), math.pi / 2
+    into = max(0.0, wall[1]) if wall is not None else 0.0
+    return distance / max(math.sin(angle), 1e-6) * math.cos(into), math.pi / 2 + into
 
 
 def second_smallest(values):
@@ -427,7 +433,16 @@ class WallFollower(object):
 
     def _ahead_as_planned(self, obs):
         """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
-        return from_centre(as_planned(obs.ahead), self.params.laser_x)
+        return from_centre(self._ahead_square_to_right(obs), self.params.laser_x)
+
+    def _ahead_square_to_right(self, obs):
+        """as_planned of the wall ahead, squared to the wall on the right if that is along the way.
+
+        A right wall fitted farther off parallel is mid-corner, not the
+        wall the one ahead meets.
+        """
+        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle_deg) else None
+        return as_planned(obs.ahead, wall)
 
     def _turn_from(self, obs):
         """The left turn to fly from here: its wide start ends at most wide_allowance past target.
@@ -454,7 +469,7 @@ class WallFollower(object):
         """
         if not self._blocking(obs):
             return 0.0
-        distance, angle = as_planned(obs.ahead)
+        distance, angle = self._ahead_square_to_right(obs)
         if distance >= self.params.approach_range:
             return 0.0
         return max(0.0, self.left_turn.drift(angle) - self.params.wide_allowance)

@@ -56,10 +56,11 @@ class LeftTurn(object):
         """How much nearer to the wall the turn from angle to parallel carries the robot.
 
         An arc of radius r turning from a to b (b < a, angles to the wall)
-        comes r * (cos b - cos a) nearer to it. Angles past a right angle
-        count as a right angle (see follower.as_planned).
+        comes r * (cos b - cos a) nearer to it. An angle past a right angle
+        (the robot heading into the wall it leaves) is turned through on the
+        first arc too, which then comes nearer by more than its radius.
         """
-        angle = min(max(angle, 0.0), math.pi / 2)
+        angle = min(max(angle, 0.0), math.pi)
         arcs = ((self._tight_from, self.wide_radius), (self._tight_to, self.radius),
                 (0.0, self.wide_radius))
         gap = 0.0

@@ -356,6 +356,26 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
         assert update(tilted_end(crossing, 120.0))[0].state == state
 
 
+def test_heading_into_the_right_wall_a_wall_ahead_is_planned_square_to_it():
+    into = math.radians(8.0)
+    distance, angle = as_planned((0.45, math.pi / 2 + into), (0.25, into))
+    assert angle == pytest.approx(math.pi / 2 + into)
+    assert distance == pytest.approx(0.45)
+    # Parallel to the right wall, or heading away from it, it is square to the way.
+    for wall in (None, (0.25, 0.0), (0.25, -into)):
+        assert as_planned((0.45, math.pi / 2 + into), wall) == pytest.approx(
+            (0.45 / math.cos(into), math.pi / 2))
+
+
+def test_heading_into_the_right_wall_the_left_turn_starts_sooner():
+    # Turning back to square first, on the wide arc, carries the robot
+    # nearer the wall ahead by that arc's radius * sin(8 deg) as well.
+    into = math.radians(8.0)
+    start = turn_start(EXACT) + planned_turn(EXACT, 0.25).wide_radius * math.sin(into)
+    for ahead, state in ((start + 0.01, FOLLOW), (start - 0.01, WALL_AHEAD)):
+        assert update(corridor_end(ahead), (0.0, 0.0, -into))[0].state == state
+
+
 @pytest.mark.parametrize('angle_deg', [110.0, 135.0])
 def test_an_acute_corner_is_still_turned_onto_in_the_band(angle_deg):
     trail = drive(tilted_end(1.5, angle_deg), (0.0, 0.0, 0.0), 120)

@@ -54,8 +54,15 @@ def test_the_gap_grows_with_the_angle_left_and_has_no_jump(wide_end):
     assert max(later - earlier for earlier, later in zip(gaps, gaps[1:])) < 1e-3
 
 
-def test_angles_past_a_right_angle_count_as_one():
-    assert plan().gap(math.radians(120.0)) == plan().gap(math.pi / 2)
+def test_angles_past_a_right_angle_are_turned_on_the_first_arc():
+    # Heading 30 deg into the wall it leaves, the wide start first turns
+    # back to square, coming WIDE * sin(30 deg) nearer the wall ahead.
+    past = plan().gap(math.radians(120.0)) - plan().gap(math.pi / 2)
+    assert past == pytest.approx(WIDE * 0.5)
+    # Even without a wide start: turning back to square only comes nearer
+    # the old wall, so those degrees are flown wide.
+    assert plan(0.0).gap(math.radians(120.0)) == pytest.approx(WIDE * 0.5 + TIGHT)
+    assert plan(0.0).arc_radius(math.radians(100.0)) == WIDE
     assert plan().gap(-0.1) == 0.0
 
 
