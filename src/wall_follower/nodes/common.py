@@ -64,16 +64,22 @@ class VelocityCommander(object):
 class LatestScan(object):
     """Keeps the newest scan as a ScanView and knows when it has gone stale.
 
-    Age is measured in ROS time, so it follows simulated time in simulation.
+    Age is measured in ROS time from the scan's arrival, so it follows
+    simulated time in simulation and does not depend on the laser host's
+    clock. The time a scan was taken is its header stamp: the arrival
+    time would race the /clock message of the same simulated step, and
+    jitter by a step.
     """
 
     def __init__(self, topic='scan'):
-        self._latest = (None, None)   # (view, arrival time), replaced as one
+        self._latest = (None, None, None)   # (view, arrival, taken), replaced as one
         self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
 
     def _on_scan(self, msg):
-        self._latest = (ScanView.from_msg(msg), rospy.Time.now())
+        arrival = rospy.Time.now()
+        taken = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
+        self._latest = (ScanView.from_msg(msg), arrival, taken)
         with self._arrived:
             self._arrived.notify_all()
 
@@ -93,11 +99,11 @@ class LatestScan(object):
         return self.fresh_stamped(timeout)[0]
 
     def fresh_stamped(self, timeout):
-        """(view, arrival time in s) of the latest scan if younger than timeout s, else (None, None)."""
-        view, stamp = self._latest
-        if view is None or (rospy.Time.now() - stamp).to_sec() > timeout:
+        """(view, time taken in s) of the latest scan if it arrived within timeout s, else (None, None)."""
+        view, arrival, taken = self._latest
+        if view is None or (rospy.Time.now() - arrival).to_sec() > timeout:
             return None, None
-        return view, stamp.to_sec()
+        return view, taken.to_sec()
 
 
 def world_path(world):
