@@ -286,10 +286,10 @@ def as_planned(ahead, wall=None):
     nearer, and would start the turn early. Such a wall counts as a square
     wall where its line crosses the way: square to the way itself, or, when
     the robot heads into the (distance, angle) wall on its right, square to
-    that wall. That is common after an outer corner, whose arc hands over
-    still turning right: the turn then has those degrees more to go, and
-    flown at the start, wide, they carry the robot nearer the wall ahead
-    (see LeftTurn.gap).
+    that wall. That is common while riding nearer before the turn, and
+    after an outer corner, whose arc hands over still turning right: the
+    turn then has those degrees more to go, and flown at its start, wide,
+    they carry the robot nearer the wall ahead (see LeftTurn.gap).
     """
     distance, angle = ahead
     if angle <= math.pi / 2:
