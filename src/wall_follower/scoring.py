@@ -223,15 +223,42 @@ def places_on_trail(trail, points):
     the previous point's: searching forward keeps a point near the start
     from matching the lap's end, where the trail passes again. Timing the
     points this way, rather than by the messages around them, holds however
-    late a loaded machine lets the recorder start or answer.
+    late a loaded machine lets the recorder start or answer. A point taken
+    while the robot stood still is placed at the first pose of that
+    stand-still (see stretches_on_trail).
+    """
+    return [first for first, _ in stretches_on_trail(trail, points)]
+
+
+def stretches_on_trail(trail, points):
+    """(first, last) index of the trail stretch where each recorded point was taken, in order.
+
+    Where the robot stood still, the trail holds one pose many times over,
+    and a point taken there may have been taken at any of them; elsewhere
+    first == last. See places_on_trail for the search.
     """
     xy = np.asarray(trail, dtype=float).reshape(-1, 2)
     if not len(xy):
         return []
-    places = []
+    stretches = []
     start = 0
     for point in points:
         rest = xy[start:]
-        start += int(np.argmin(np.hypot(rest[:, 0] - point[0], rest[:, 1] - point[1])))
-        places.append(start)
-    return places
+        distance = np.hypot(rest[:, 0] - point[0], rest[:, 1] - point[1])
+        nearest = int(np.argmin(distance))
+        after = np.flatnonzero(np.any(rest[nearest:] != rest[nearest], axis=1))
+        same = int(after[0]) if after.size else len(rest) - nearest
+        start += nearest
+        stretches.append((start, start + same - 1))
+    return stretches
+
+
+def taken_every(spans, period, tolerance):
+    """True when points taken in these (earliest, latest) time spans can be period apart each.
+
+    A point taken while the robot stood still has a span of times rather
+    than one (see stretches_on_trail); each next point must be able to
+    follow its previous one by period, within tolerance.
+    """
+    return all(later[0] - earlier[1] - tolerance <= period <= later[1] - earlier[0] + tolerance
+               for earlier, later in zip(spans, spans[1:]))

@@ -19,7 +19,7 @@ from std_srvs.srv import Empty
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import pose_of
-from wall_follower.scoring import places_on_trail
+from wall_follower.scoring import stretches_on_trail, taken_every
 
 POLL = 0.1
 # Wall seconds: polling for the goal to be taken while the world is paused, and the limit.
@@ -79,20 +79,23 @@ class RecordOdomGoals(unittest.TestCase):
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
         return started, feedback, self.client.get_state(), self.client.get_result()
 
-    def stamps_of(self, points, since):
-        """When each recorded point was taken, from where ground truth passed it after `since`."""
+    def spans_of(self, points, since):
+        """(earliest, latest) time each recorded point may have been taken, from ground truth after `since`.
+
+        The two differ only while the robot stood still (see scoring.stretches_on_trail).
+        """
         truths = [(t, pose) for t, pose in list(self.truths) if t >= since]
-        places = places_on_trail([pose[:2] for _, pose in truths], [(p.x, p.y) for p in points])
-        return [truths[place][0] for place in places]
+        stretches = stretches_on_trail([pose[:2] for _, pose in truths],
+                                       [(p.x, p.y) for p in points])
+        return [(truths[first][0], truths[last][0]) for first, last in stretches]
 
     def test_cancel_returns_points_and_next_goal_starts_clean(self):
         started, _, state, result = self.record(until_distance=FIRST_GOAL_DISTANCE)
         self.assertEqual(state, GoalStatus.PREEMPTED)
-        stamps = self.stamps_of(result.list_of_odoms, since=started)
-        self.assertGreater(len(stamps), 5)
-        gaps = np.diff(stamps)
-        self.assertTrue(np.allclose(gaps, self.period, atol=1e-3),
-                        'points %s s apart' % np.round(gaps, 3).tolist())
+        spans = self.spans_of(result.list_of_odoms, since=started)
+        self.assertGreater(len(spans), 5)
+        self.assertTrue(taken_every(spans, self.period, 1e-3),
+                        'points taken at %s s' % np.round(spans, 3).tolist())
         first_run_start = result.list_of_odoms[0]
 
         started, feedback, state, result = self.record(until_distance=SECOND_GOAL_DISTANCE)

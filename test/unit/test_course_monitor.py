@@ -6,6 +6,7 @@ callbacks are called here.
 """
 import os
 
+import numpy as np
 import pytest
 import rospy
 from actionlib_msgs.msg import GoalID
@@ -81,5 +82,22 @@ def test_a_point_where_the_robot_passed_before_is_placed_at_its_later_pass():
         monitor._on_result(result)
         assert monitor.recorded_stamps == pytest.approx([1.2, 2.0, 2.8])
         assert monitor.truth_at_result == pytest.approx(SPEED * 1.6)
+    finally:
+        monitor.close()
+
+
+def test_a_point_taken_while_the_robot_stood_still_spans_the_stand_still():
+    """Standing at the origin until 1.5 s, then along x: the first point, taken there, may
+    have been taken at any time from the first truth (1.0 s) to the last still one (1.4 s)."""
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        monitor._on_goal(_goal(1.0))
+        for tenth in range(10, 31):
+            monitor._on_truth(_truth(tenth / 10.0, SPEED * max(0.0, tenth / 10.0 - 1.4)))
+        result = _result(3.0, 1.2, 2.8)
+        result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.4)) for t in (1.2, 2.2)]
+        monitor._on_result(result)
+        assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.4, 2.2, 2.2])
+        assert monitor.recorded_stamps == pytest.approx([1.0, 2.2])
     finally:
         monitor.close()

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from wall_follower.geometry import polygon_clearance
-from wall_follower.scoring import CourseMap, RunScore, places_on_trail, true_lap_length
+from wall_follower.scoring import (CourseMap, RunScore, places_on_trail, stretches_on_trail,
+                                   taken_every, true_lap_length)
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2]; laser 32 mm behind the axle.
@@ -148,3 +149,20 @@ def test_places_on_trail_takes_the_nearest_pose_to_an_inexact_point():
     trail = [(0.1 * step, 0.0) for step in range(10)]
     assert places_on_trail(trail, [(0.32, 0.01), (0.68, -0.01)]) == [3, 7]
     assert places_on_trail([], [(0.0, 0.0)]) == []
+
+
+def test_a_point_taken_while_standing_still_may_have_been_taken_any_time_then():
+    """Three poses at the origin (standing still), then along x."""
+    trail = [(0.0, 0.0)] * 3 + [(0.1 * step, 0.0) for step in range(1, 10)]
+    points = [(0.0, 0.0), (0.5, 0.0)]
+    assert stretches_on_trail(trail, points) == [(0, 2), (7, 7)]
+    assert places_on_trail(trail, points) == [0, 7]
+    assert stretches_on_trail([], points) == []
+
+
+def test_points_are_taken_every_period_if_their_time_spans_allow_it():
+    # The first one taken while standing still, some time from 0.2 to 0.4 s.
+    assert taken_every([(0.2, 0.4), (1.3, 1.3), (2.3, 2.3)], 1.0, 1e-3)
+    assert taken_every([(0.0, 0.0), (1.0005, 1.0005)], 1.0, 1e-3)
+    assert not taken_every([(0.0, 0.2), (1.3, 1.3)], 1.0, 1e-3)
+    assert not taken_every([(0.0, 0.0), (1.0, 1.0), (2.2, 2.2)], 1.0, 1e-3)

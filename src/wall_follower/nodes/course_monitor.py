@@ -18,7 +18,7 @@ from actionlib_msgs.msg import GoalStatusArray
 
 from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
-from wall_follower.scoring import RunScore, places_on_trail
+from wall_follower.scoring import RunScore, stretches_on_trail
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.
@@ -83,18 +83,31 @@ class CourseMonitor(object):
         the simulator runs many times faster than real time, and the
         recorder starts and answers seconds of driving late.
         """
+        spans = self.recorded_spans
+        return None if spans is None else [earliest for earliest, _ in spans]
+
+    @property
+    def recorded_spans(self):
+        """(earliest, latest) ground-truth stamp at which each recorded point may have been taken.
+
+        The two differ only for a point taken while the robot stood still
+        (see scoring.stretches_on_trail). None before the result.
+        """
         with self.lock:
-            matches = self._recorded_indices()
-            if matches is None:
+            if not self.result:
                 return None
-            return [self._trail_stamps[index] for index in matches]
+            stamps = self._trail_stamps
+            return [(stamps[first], stamps[last]) for first, last in self._recorded_stretches()]
 
     def _recorded_indices(self):
         """Where on the ground-truth trail, up to the result, each recorded point was taken."""
         if not self.result:
             return None
+        return [first for first, _ in self._recorded_stretches()]
+
+    def _recorded_stretches(self):
         recorded = int(np.searchsorted(self._trail_stamps, self.result_time, side='right'))
-        return places_on_trail(self.trail[:recorded], self.result)
+        return stretches_on_trail(self.trail[:recorded], self.result)
 
     @property
     def scoring(self):
