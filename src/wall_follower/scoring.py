@@ -215,27 +215,18 @@ def true_lap_length(trail, start, leave_radius=0.5, near=0.3):
     return None
 
 
-def places_on_trail(trail, points):
-    """Index of each recorded point on a ground-truth trail, in order.
+def stretches_on_trail(trail, points):
+    """(first, last) index of the trail stretch where each recorded point was taken, in order.
 
     Recorded points are odometry poses, true poses under the worlds' "gps"
     localization, so each is the trail position nearest to it at or after
     the previous point's: searching forward keeps a point near the start
     from matching the lap's end, where the trail passes again. Timing the
     points this way, rather than by the messages around them, holds however
-    late a loaded machine lets the recorder start or answer. A point taken
-    while the robot stood still is placed at the first pose of that
-    stand-still (see stretches_on_trail).
-    """
-    return [first for first, _ in stretches_on_trail(trail, points)]
-
-
-def stretches_on_trail(trail, points):
-    """(first, last) index of the trail stretch where each recorded point was taken, in order.
-
-    Where the robot stood still, the trail holds one pose many times over,
-    and a point taken there may have been taken at any of them; elsewhere
-    first == last. See places_on_trail for the search.
+    late a loaded machine lets the recorder start or answer. Where the
+    robot stood still, the trail holds one pose many times over, and a
+    point taken there may have been taken at any of them; elsewhere
+    first == last.
     """
     xy = np.asarray(trail, dtype=float).reshape(-1, 2)
     if not len(xy):

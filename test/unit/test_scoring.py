@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from wall_follower.geometry import polygon_clearance
-from wall_follower.scoring import (CourseMap, RunScore, places_on_trail, stretches_on_trail,
-                                   taken_every, true_lap_length)
+from wall_follower.scoring import (CourseMap, RunScore, stretches_on_trail, taken_every,
+                                   true_lap_length)
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2]; laser 32 mm behind the axle.
@@ -136,6 +136,11 @@ def test_finish_ends_the_lap_where_the_recorder_said(room):
     assert figures['lap_time'] == pytest.approx(1.2)
     assert figures['path_length'] == pytest.approx(12 * 0.019)
     assert figures['time_in_band'] == pytest.approx(1.0)
+
+
+def places_on_trail(trail, points):
+    """The first index of each point's stretch (a moving robot's stretch is one pose)."""
+    return [first for first, _ in stretches_on_trail(trail, points)]
 
 
 def test_a_recorded_point_on_a_stretch_driven_twice_is_placed_on_its_own_pass():

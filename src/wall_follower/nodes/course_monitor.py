@@ -67,12 +67,12 @@ class CourseMonitor(object):
     def truth_at_result(self):
         """True distance from the first recorded point to the last (None before the result)."""
         with self.lock:
-            matches = self._recorded_indices()
-            if matches is None:
+            if not self.result:
                 return None
-            if len(matches) < 2:
+            stretches = self._recorded_stretches()
+            if len(stretches) < 2:
                 return 0.0
-            steps = np.diff(np.array(self.trail[matches[0]:matches[-1] + 1]), axis=0)
+            steps = np.diff(np.array(self.trail[stretches[0][0]:stretches[-1][0] + 1]), axis=0)
             return float(np.hypot(steps[:, 0], steps[:, 1]).sum())
 
     @property
@@ -99,13 +99,8 @@ class CourseMonitor(object):
             stamps = self._trail_stamps
             return [(stamps[first], stamps[last]) for first, last in self._recorded_stretches()]
 
-    def _recorded_indices(self):
-        """Where on the ground-truth trail, up to the result, each recorded point was taken."""
-        if not self.result:
-            return None
-        return [first for first, _ in self._recorded_stretches()]
-
     def _recorded_stretches(self):
+        """Where on the ground-truth trail, up to the result, each recorded point was taken."""
         recorded = int(np.searchsorted(self._trail_stamps, self.result_time, side='right'))
         return stretches_on_trail(self.trail[:recorded], self.result)
 
