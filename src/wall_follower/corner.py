@@ -137,14 +137,14 @@ class OuterTurn(object):
         return (0.0 < self.wide_start and turned < self.wide_start
                 and off_centre > self.radius - self.tolerance)
 
-    def ends_wide(self, turned, past_tip):
+    def ends_wide(self, turned, past_tip, nearer=0.0):
         """True where the wide end goes on, turned (rad) so far and past_tip from the next wall.
 
         It starts no earlier than planned, and only where it will end at
-        `distance` from the next wall, so an arc flown wide of the tight
-        one turns out later.
+        `distance` (less nearer) from the next wall, so an arc flown wide of
+        the tight one turns out later.
         """
         if not self.wide_end or abs(turned - math.pi / 2) > self.wide_end:
             return False
         landing = past_tip + self.wide_radius * (1.0 - math.cos(math.pi / 2 - turned))
-        return landing <= self.distance
+        return landing <= self.distance - nearer

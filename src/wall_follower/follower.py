@@ -26,8 +26,9 @@ fit cannot see them coming:
   wide arc, an arc round the corner's tip and a wide arc again (see
   corner.py); the middle arc is pinned to the tip at every scan, and the
   last one starts where it will end at the planned distance from the next
-  wall, and then goes on. A corner that comes up with no wall fitted (the
-  end of a box's short side, mid-turn) is circled instead.
+  wall (nearer, by the dip, when that wall is a short side with a wall
+  across its end), and then goes on. A corner that comes up with no wall
+  fitted (the end of a box's short side, mid-turn) is circled instead.
 
 The turn rate, not the speed, is what limits a lap: a 90 degree corner
 takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
@@ -461,18 +462,20 @@ class WallFollower(object):
             turn = self.short_turn.drifting_at_most(allowed)
         return turn
 
-    def _approach_dip(self, obs):
+    def _approach_dip(self, obs, still_turning=0.0):
         """How much nearer to ride while a wall across the way is within approach_range.
 
         As much as the wide start of the turn onto that wall will drift,
         less what it may drift past target_distance (wide_allowance).
+        still_turning: how far (rad) the robot turns right before that turn
+        starts, which adds to the wall's angle.
         """
         if not self._blocking(obs):
             return 0.0
         distance, angle = self._ahead_square_to_right(obs)
         if distance >= self.params.approach_range:
             return 0.0
-        return max(0.0, self.left_turn.drift(angle) - self.params.wide_allowance)
+        return max(0.0, self.left_turn.drift(angle + still_turning) - self.params.wide_allowance)
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
@@ -554,8 +557,12 @@ class WallFollower(object):
         if self.arc is not None:
             self.starting_wide = self.starting_wide and self.right_turn.starts_wide(
                 self.arc.turned(), self.arc.offset()[0])
+            # A wall across the way just past the corner (beyond a pillar's
+            # short side) leaves no room to ride nearer before the turn onto
+            # it: the corner lands that much nearer the side instead.
+            nearer = self._approach_dip(obs, math.pi / 2 - self.arc.turned())
             self.ending_wide = self.ending_wide or self.right_turn.ends_wide(
-                self.arc.turned(), self.arc.past_tip())
+                self.arc.turned(), self.arc.past_tip(), nearer)
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.

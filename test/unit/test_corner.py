@@ -140,3 +140,10 @@ def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
     assert not turn.ends_wide(math.radians(65.0), 0.25 - carried + 0.01)
     # Never before the planned angle, wherever the robot is.
     assert not turn.ends_wide(math.radians(45.0), 0.0)
+
+
+def test_a_wide_end_asked_to_land_nearer_begins_that_much_later():
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
+    carried = 0.39 * (1.0 - math.cos(math.radians(25.0)))
+    assert not turn.ends_wide(math.radians(65.0), 0.25 - carried - 0.002, nearer=0.02)
+    assert turn.ends_wide(math.radians(65.0), 0.25 - carried - 0.022, nearer=0.02)

@@ -519,6 +519,27 @@ def test_an_outer_corner_starts_wide_at_cruise_speed_and_tightens_round_its_tip(
     assert middle and max(middle) < 1.1 * EXACT.outer_corner_radius * EXACT.max_turn_rate
 
 
+def step_down(end_x, depth, right=0.25):
+    """A right wall that steps down by depth at end_x: an outer corner, then a wall across."""
+    return [((-5.0, -right), (end_x, -right)), ((end_x, -right), (end_x, -right - depth)),
+            ((end_x, -right - depth), (end_x + 5.0, -right - depth))]
+
+
+def test_an_outer_corner_lands_nearer_a_short_side_that_ends_at_a_wall_across():
+    # Past a short side (a pillar's) the turn onto the wall across comes up
+    # at once, with no room to ride nearer first: the outer corner lands
+    # nearer the side instead.
+    landings = {}
+    for depth in (0.6, 3.0):
+        trail = drive(step_down(0.6, depth), (0.0, 0.0, 0.0), 150)
+        states = [state for state, _, _ in trail]
+        landed = states.index(FOLLOW, states.index(OUTER_CORNER))
+        landings[depth] = trail[landed][1][0] - 0.6
+        assert all(0.2 < distance < 0.3 for _, _, distance in trail[landed:])
+    assert landings[3.0] == pytest.approx(EXACT.target_distance, abs=0.005)
+    assert landings[0.6] < landings[3.0] - 0.005
+
+
 @pytest.mark.parametrize('angle_deg, pinned', [(0.0, True), (-20.0, True), (-60.0, False),
                                                (40.0, False)])
 def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
