@@ -101,3 +101,26 @@ def test_a_point_taken_while_the_robot_stood_still_spans_the_stand_still():
         assert monitor.recorded_stamps == pytest.approx([1.0, 2.2])
     finally:
         monitor.close()
+
+
+def test_the_lap_is_scored_only_once_ground_truth_up_to_the_result_has_come():
+    """The result (stamped 2.6 s) overtakes ground truth from 2.0 s on: until that truth
+    has come the figures would miss the lap's end, with a shorter path in a longer lap."""
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        monitor._on_goal(_goal(1.0))
+        for tenth in range(10, 20):
+            monitor._on_truth(_truth(tenth / 10.0))
+        monitor._on_result(_result(2.6, 1.2, 2.2))
+        assert monitor.done.is_set() and not monitor.caught_up()
+        early = monitor.summary()
+        for tenth in range(20, 27):
+            monitor._on_truth(_truth(tenth / 10.0))
+        assert monitor.caught_up() and monitor.wait()
+        figures = monitor.summary()
+        assert figures['lap_time'] == pytest.approx(early['lap_time']) == pytest.approx(1.6)
+        assert figures['path_length'] == pytest.approx(SPEED * 1.6)
+        assert early['path_length'] < figures['path_length'] - 0.1
+    finally:
+        monitor.close()
+

@@ -178,16 +178,41 @@ class CourseMonitor(object):
         with self.lock:
             return self.score.summary()
 
-    def wait(self):
+    def wait(self, catch_up=10.0):
         """Block until the run ends (result, or lap on ground truth); False on shutdown.
 
-        There is no time-out here: rostest's time-limit and the launch's
-        own end bound every run.
+        Then, up to catch_up wall seconds, until ground truth has been heard
+        up to the result's stamp too (see caught_up). There is no time-out
+        for the run itself: rostest's time-limit and the launch's own end
+        bound every run.
         """
-        while not rospy.is_shutdown():
-            if self.done.wait(0.1):
-                return True
-        return False
+        while not self.done.wait(0.1):
+            if rospy.is_shutdown():
+                return False
+        deadline = time.monotonic() + catch_up
+        while not self.caught_up():
+            if rospy.is_shutdown():
+                return False
+            if time.monotonic() > deadline:
+                rospy.logwarn('course monitor: no ground truth up to the result after %.0f s; '
+                              'scoring what came', catch_up)
+                break
+            time.sleep(0.01)
+        return True
+
+    def caught_up(self):
+        """Whether ground truth has been heard up to the end of the run.
+
+        The result comes on a connection of its own and can overtake the
+        ground truth stamped before it, by a second of simulated time when
+        lockstep runs fast: figures taken at once would miss the lap's last
+        steps, and show a shorter path in a longer lap.
+        """
+        with self.lock:
+            score = self.score
+            if score.lap.closed or self.result_time is None:
+                return score.finished
+            return score.end_time is not None and score.end_time >= self.result_time
 
     def connected(self):
         """Whether every topic that the simulator or the recorder publishes is connected."""
