@@ -126,6 +126,11 @@ class RunScore(object):
         if self.lap.closed:
             self.lap_time = stamp - self.start_time
 
+    def begin(self, stamp):
+        """Start the run's clock at time stamp (s), if no pose has started it yet."""
+        if self.start_time is None:
+            self.start_time = stamp
+
     def finish(self, stamp):
         """End the lap at time stamp (s); poses stamped up to it still count when they come."""
         if self._end is None and not self.lap.closed:

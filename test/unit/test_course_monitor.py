@@ -124,3 +124,16 @@ def test_the_lap_is_scored_only_once_ground_truth_up_to_the_result_has_come():
     finally:
         monitor.close()
 
+
+
+@pytest.mark.parametrize('first_heard', (1.0, 1.1))
+def test_the_lap_time_runs_from_the_goal_whichever_ground_truth_is_heard_first(first_heard):
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        monitor._on_goal(_goal(1.0))
+        for tenth in range(int(round(first_heard * 10)), 27):
+            monitor._on_truth(_truth(tenth / 10.0))
+        monitor._on_result(_result(2.6, 1.2, 2.2))
+        assert monitor.summary()['lap_time'] == pytest.approx(1.6)
+    finally:
+        monitor.close()

@@ -133,6 +133,10 @@ class CourseMonitor(object):
             if self.goal_time is not None:
                 return
             self.goal_time = goal_id.stamp.to_sec()
+            # The lap's time runs from the goal, not from whichever pose was
+            # heard first: the simulator's very first one may come before
+            # the monitor's connection does.
+            self.score.begin(self.goal_time)
             since = [(stamp, pose) for stamp, pose in self._backlog if stamp >= self.goal_time]
             self._backlog = []
             for stamp, pose in since:
