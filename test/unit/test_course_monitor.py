@@ -137,3 +137,22 @@ def test_the_lap_time_runs_from_the_goal_whichever_ground_truth_is_heard_first(f
         assert monitor.summary()['lap_time'] == pytest.approx(1.6)
     finally:
         monitor.close()
+
+
+def test_a_first_point_taken_just_before_the_goal_is_placed_there():
+    """Odometry is the pose before each step: the first point, from the odometry stamped
+    1.1 s, is where the robot stood at 1.0 s, before the goal (1.05 s). It stood still
+    until 1.1 s, so that point may have been taken at 1.0 s as well as at 1.1 s."""
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        for tenth in range(5, 31):
+            stamp = tenth / 10.0
+            if stamp > 1.0:
+                monitor._on_goal(_goal(1.05))
+            monitor._on_truth(_truth(stamp, SPEED * max(0.0, stamp - 1.1)))
+        result = _result(3.0, 1.2, 2.8)
+        result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.1)) for t in (1.0, 2.0)]
+        monitor._on_result(result)
+        assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.1, 2.0, 2.0])
+    finally:
+        monitor.close()
