@@ -156,3 +156,17 @@ def test_a_first_point_taken_just_before_the_goal_is_placed_there():
         assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.1, 2.0, 2.0])
     finally:
         monitor.close()
+
+
+def test_a_result_stamped_between_two_steps_is_caught_up_by_the_next_one():
+    monitor = CourseMonitor(CourseMap(ROOM))
+    try:
+        monitor._on_goal(_goal(1.0))
+        for tenth in range(10, 27):
+            monitor._on_truth(_truth(tenth / 10.0))
+        monitor._on_result(_result(2.65, 1.2, 2.2))
+        assert not monitor.caught_up()
+        monitor._on_truth(_truth(2.7))
+        assert monitor.caught_up()
+    finally:
+        monitor.close()

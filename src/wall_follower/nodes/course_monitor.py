@@ -221,10 +221,10 @@ class CourseMonitor(object):
         steps, and show a shorter path in a longer lap.
         """
         with self.lock:
-            score = self.score
-            if score.lap.closed or self.result_time is None:
-                return score.finished
-            return score.end_time is not None and score.end_time >= self.result_time
+            if self.score.lap.closed:
+                return True
+            heard = self._trail_stamps[-1] if self._trail_stamps else None
+            return None not in (heard, self.result_time) and heard >= self.result_time
 
     def connected(self):
         """Whether every topic that the simulator or the recorder publishes is connected."""
