@@ -44,129 +44,106 @@ def _result(stamp, first, last):
     return msg
 
 
+@pytest.fixture
+def monitor():
+    watching = CourseMonitor(CourseMap(ROOM))
+    yield watching
+    watching.close()
+
+
+def _hear(monitor, first, end, goal=1.0):
+    """The goal at `goal` s (None: none), then ground truth along x, tenths first to end - 1."""
+    if goal is not None:
+        monitor._on_goal(_goal(goal))
+    for tenth in range(first, end):
+        monitor._on_truth(_truth(tenth / 10.0))
+
+
 @pytest.mark.parametrize('result_first', (True, False), ids=('result first', 'truth first'))
-def test_true_distance_runs_from_the_first_recorded_point_to_the_last(result_first):
+def test_true_distance_runs_from_the_first_recorded_point_to_the_last(result_first, monitor):
     """The recorder takes its first point 0.2 s after the goal and answers 0.6 s after its
     last point (1.0 s later), and ground truth stamped after the answer may arrive first:
     the true distance is still that between the first and the last point."""
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 27):
-            monitor._on_truth(_truth(tenth / 10.0))
-        late = [_truth(tenth / 10.0) for tenth in range(27, 35)]   # stamped after the result
-        result = _result(2.6, 1.2, 2.2)
-        if result_first:
-            monitor._on_result(result)
-        for msg in late:
-            monitor._on_truth(msg)
-        if not result_first:
-            monitor._on_result(result)
-        assert monitor.truth_at_result == pytest.approx(SPEED * 1.0)
-    finally:
-        monitor.close()
+    _hear(monitor, 10, 27)
+    late = [_truth(tenth / 10.0) for tenth in range(27, 35)]   # stamped after the result
+    result = _result(2.6, 1.2, 2.2)
+    if result_first:
+        monitor._on_result(result)
+    for msg in late:
+        monitor._on_truth(msg)
+    if not result_first:
+        monitor._on_result(result)
+    assert monitor.truth_at_result == pytest.approx(SPEED * 1.0)
 
 
-def test_a_point_where_the_robot_passed_before_is_placed_at_its_later_pass():
+def test_a_point_where_the_robot_passed_before_is_placed_at_its_later_pass(monitor):
     """Out along x and back: the last point lies where the first was taken, 1.6 s later."""
     def there(stamp):
         return SPEED * min(stamp, 4.0 - stamp)
 
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 31):
-            monitor._on_truth(_truth(tenth / 10.0, there(tenth / 10.0)))
-        result = _result(3.0, 1.2, 2.8)
-        result.result.list_of_odoms = [Point(x=there(t)) for t in (1.2, 2.0, 2.8)]
-        monitor._on_result(result)
-        assert monitor.recorded_stamps == pytest.approx([1.2, 2.0, 2.8])
-        assert monitor.truth_at_result == pytest.approx(SPEED * 1.6)
-    finally:
-        monitor.close()
+    monitor._on_goal(_goal(1.0))
+    for tenth in range(10, 31):
+        monitor._on_truth(_truth(tenth / 10.0, there(tenth / 10.0)))
+    result = _result(3.0, 1.2, 2.8)
+    result.result.list_of_odoms = [Point(x=there(t)) for t in (1.2, 2.0, 2.8)]
+    monitor._on_result(result)
+    assert monitor.recorded_stamps == pytest.approx([1.2, 2.0, 2.8])
+    assert monitor.truth_at_result == pytest.approx(SPEED * 1.6)
 
 
-def test_a_point_taken_while_the_robot_stood_still_spans_the_stand_still():
+def test_a_point_taken_while_the_robot_stood_still_spans_the_stand_still(monitor):
     """Standing at the origin until 1.5 s, then along x: the first point, taken there, may
     have been taken at any time from the first truth (1.0 s) to the last still one (1.4 s)."""
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 31):
-            monitor._on_truth(_truth(tenth / 10.0, SPEED * max(0.0, tenth / 10.0 - 1.4)))
-        result = _result(3.0, 1.2, 2.8)
-        result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.4)) for t in (1.2, 2.2)]
-        monitor._on_result(result)
-        assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.4, 2.2, 2.2])
-        assert monitor.recorded_stamps == pytest.approx([1.0, 2.2])
-    finally:
-        monitor.close()
+    monitor._on_goal(_goal(1.0))
+    for tenth in range(10, 31):
+        monitor._on_truth(_truth(tenth / 10.0, SPEED * max(0.0, tenth / 10.0 - 1.4)))
+    result = _result(3.0, 1.2, 2.8)
+    result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.4)) for t in (1.2, 2.2)]
+    monitor._on_result(result)
+    assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.4, 2.2, 2.2])
+    assert monitor.recorded_stamps == pytest.approx([1.0, 2.2])
 
 
-def test_the_lap_is_scored_only_once_ground_truth_up_to_the_result_has_come():
+def test_the_lap_is_scored_only_once_ground_truth_up_to_the_result_has_come(monitor):
     """The result (stamped 2.6 s) overtakes ground truth from 2.0 s on: until that truth
     has come the figures would miss the lap's end, with a shorter path in a longer lap."""
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 20):
-            monitor._on_truth(_truth(tenth / 10.0))
-        monitor._on_result(_result(2.6, 1.2, 2.2))
-        assert monitor.done.is_set() and not monitor.caught_up()
-        early = monitor.summary()
-        for tenth in range(20, 27):
-            monitor._on_truth(_truth(tenth / 10.0))
-        assert monitor.caught_up() and monitor.wait()
-        figures = monitor.summary()
-        assert figures['lap_time'] == pytest.approx(early['lap_time']) == pytest.approx(1.6)
-        assert figures['path_length'] == pytest.approx(SPEED * 1.6)
-        assert early['path_length'] < figures['path_length'] - 0.1
-    finally:
-        monitor.close()
-
+    _hear(monitor, 10, 20)
+    monitor._on_result(_result(2.6, 1.2, 2.2))
+    assert monitor.done.is_set() and not monitor.caught_up()
+    early = monitor.summary()
+    _hear(monitor, 20, 27, goal=None)
+    assert monitor.caught_up() and monitor.wait()
+    figures = monitor.summary()
+    assert figures['lap_time'] == pytest.approx(early['lap_time']) == pytest.approx(1.6)
+    assert figures['path_length'] == pytest.approx(SPEED * 1.6)
+    assert early['path_length'] < figures['path_length'] - 0.1
 
 
 @pytest.mark.parametrize('first_heard', (1.0, 1.1))
-def test_the_lap_time_runs_from_the_goal_whichever_ground_truth_is_heard_first(first_heard):
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(int(round(first_heard * 10)), 27):
-            monitor._on_truth(_truth(tenth / 10.0))
-        monitor._on_result(_result(2.6, 1.2, 2.2))
-        assert monitor.summary()['lap_time'] == pytest.approx(1.6)
-    finally:
-        monitor.close()
+def test_the_lap_time_runs_from_the_goal_whatever_truth_comes_first(first_heard, monitor):
+    _hear(monitor, int(round(first_heard * 10)), 27)
+    monitor._on_result(_result(2.6, 1.2, 2.2))
+    assert monitor.summary()['lap_time'] == pytest.approx(1.6)
 
 
-def test_a_first_point_taken_just_before_the_goal_is_placed_there():
+def test_a_first_point_taken_just_before_the_goal_is_placed_there(monitor):
     """Odometry is the pose before each step: the first point, from the odometry stamped
     1.1 s, is where the robot stood at 1.0 s, before the goal (1.05 s). It stood still
     until 1.1 s, so that point may have been taken at 1.0 s as well as at 1.1 s."""
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        for tenth in range(5, 31):
-            stamp = tenth / 10.0
-            if stamp > 1.0:
-                monitor._on_goal(_goal(1.05))
-            monitor._on_truth(_truth(stamp, SPEED * max(0.0, stamp - 1.1)))
-        result = _result(3.0, 1.2, 2.8)
-        result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.1)) for t in (1.0, 2.0)]
-        monitor._on_result(result)
-        assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.1, 2.0, 2.0])
-    finally:
-        monitor.close()
+    for tenth in range(5, 31):
+        stamp = tenth / 10.0
+        if stamp > 1.0:
+            monitor._on_goal(_goal(1.05))
+        monitor._on_truth(_truth(stamp, SPEED * max(0.0, stamp - 1.1)))
+    result = _result(3.0, 1.2, 2.8)
+    result.result.list_of_odoms = [Point(x=SPEED * max(0.0, t - 1.1)) for t in (1.0, 2.0)]
+    monitor._on_result(result)
+    assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.1, 2.0, 2.0])
 
 
-def test_a_result_stamped_between_two_steps_is_caught_up_by_the_next_one():
-    monitor = CourseMonitor(CourseMap(ROOM))
-    try:
-        monitor._on_goal(_goal(1.0))
-        for tenth in range(10, 27):
-            monitor._on_truth(_truth(tenth / 10.0))
-        monitor._on_result(_result(2.65, 1.2, 2.2))
-        assert not monitor.caught_up()
-        monitor._on_truth(_truth(2.7))
-        assert monitor.caught_up()
-    finally:
-        monitor.close()
+def test_a_result_stamped_between_two_steps_is_caught_up_by_the_next_one(monitor):
+    _hear(monitor, 10, 27)
+    monitor._on_result(_result(2.65, 1.2, 2.2))
+    assert not monitor.caught_up()
+    monitor._on_truth(_truth(2.7))
+    assert monitor.caught_up()
