@@ -115,9 +115,14 @@ class LapRecorder(object):
     first point, appends the latest pose whenever a sample is due, and
     appends the closing pose when the lap ends. Points are (x, y, yaw).
     The lap parameters are those of LapDetector.
+
+    start: poses stamped before this time (s) are skipped. A recorder that
+    has fallen behind its odometry still holds poses from before it was
+    asked to record; they are not part of the recording.
     """
 
-    def __init__(self, sample_period=1.0, **lap_params):
+    def __init__(self, sample_period=1.0, start=None, **lap_params):
+        self.start = start
         self.sampler = PeriodicSampler(sample_period)
         self.length = PathLength()
         self.lap_params = lap_params
@@ -132,9 +137,13 @@ class LapRecorder(object):
     def closed(self):
         return self.lap is not None and self.lap.closed
 
+    def takes(self, stamp):
+        """True for a pose stamped at or after the recording's start."""
+        return self.start is None or stamp >= self.start
+
     def add(self, stamp, x, y, yaw):
         """Feed one pose at time stamp (s); True when a point was appended."""
-        if self.closed:
+        if self.closed or not self.takes(stamp):
             return False
         pose = (x, y, yaw)
         travelled = self.length.add(x, y)

@@ -110,6 +110,18 @@ def test_samples_once_per_second_of_the_given_clock():
     assert recorder.points[0] == (0.0, 0.0, 0.5)
 
 
+def test_poses_stamped_before_the_start_are_not_recorded():
+    recorder = LapRecorder(sample_period=1.0, start=2.0)
+    # A recorder that fell behind still reads poses from before the goal's stamp.
+    poses = walk([(0.0, 0.0), (1.0, 0.0)])
+    for pose in poses:
+        recorder.add(*pose)
+    at_start = next(pose for pose in poses if pose[0] >= 2.0)
+    assert recorder.points[0] == at_start[1:]
+    assert recorder.total_distance == pytest.approx(1.0 - at_start[1], abs=1e-9)
+    assert [recorder.takes(t) for t in (1.99, 2.0, 2.1)] == [False, True, True]
+
+
 def test_sampler_keeps_to_its_grid_and_skips_gaps():
     sampler = PeriodicSampler(1.0)
     stamps = [0.0, 0.5, 0.98, 1.0, 1.5, 2.04, 5.3, 5.9, 6.02]

@@ -36,8 +36,10 @@ DEFAULTS = {
 sample_period: a point is recorded every this many seconds (ROS time).
 min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
     counts as closed (m, m, m, rad); see wall_follower.lap.LapDetector.
-timeout: a goal is aborted when no odometry has arrived for this long
-    (ROS s), whether at its start or later.
+timeout: a goal is aborted when no odometry stamped since the goal has
+    arrived for this long (ROS s), whether at its start or later; a client
+    whose clock is far ahead of the odometry's (say, wall time against
+    simulated time) is told so this way rather than left waiting.
 rate: how often (Hz, ROS time) the goal loop checks for new points, the
     lap's end, cancellation and the odometry time-out.
 """
@@ -85,13 +87,16 @@ class OdomRecorderNode(object):
     def _on_odom(self, msg):
         stamp = msg.header.stamp.to_sec() or rospy.get_time()
         with self._lock:
-            self._last_odom_time = rospy.get_time()
             self._frame_id = msg.header.frame_id
-            if self._recording is not None:
+            if self._recording is not None and self._recording.takes(stamp):
+                self._last_odom_time = rospy.get_time()
                 self._recording.add(stamp, *pose_of(msg))
 
     def _execute(self, _goal):
-        recording = LapRecorder(self.params['sample_period'],
+        # The recording starts when the goal was sent (its stamp, on the client's clock),
+        # or, for a goal sent without a stamp, now.
+        start = self.server.current_goal.get_goal_id().stamp.to_sec() or rospy.get_time()
+        recording = LapRecorder(self.params['sample_period'], start=start,
                                 **{name: self.params[name] for name in LAP_PARAMS})
         with self._lock:
             self._recording = recording
@@ -133,8 +138,8 @@ class OdomRecorderNode(object):
                 return
             silent_since = started if last_odom is None or last_odom < started else last_odom
             if rospy.get_time() - silent_since > self.params['timeout']:
-                text = 'no odometry on %s for %.1f s' % (
-                    rospy.resolve_name('odom'), self.params['timeout'])
+                text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
+                    rospy.resolve_name('odom'), recording.start, self.params['timeout'])
                 rospy.logerr('record_odom: aborted: %s', text)
                 self.server.set_aborted(_result(points), text)
                 return
