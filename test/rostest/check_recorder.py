@@ -22,9 +22,13 @@ from wall_follower.nodes.common import pose_of
 from wall_follower.scoring import stretches_on_trail, taken_every
 
 POLL = 0.1
-# Wall seconds: polling for the goal to be taken while the world is paused, and the limit.
+# Wall seconds: polling for the goal to be taken while the world is paused, and the limit;
+# also the limit on waiting for ground truth to catch up with a result.
 WALL_POLL = 0.01
 ACCEPT_LIMIT = 10.0
+# Metres: a recorded point is this near the true pose it was taken at (odometry is exact
+# here, localization gps); a step at full speed moves some twenty times as far.
+SAME_POSE = 1e-3
 # Simulated seconds around a goal's sending in which its first point must lie.
 FIRST_POINT_WINDOW = (-0.5, 2.0)
 # Metres driven before each goal is cancelled.
@@ -77,14 +81,36 @@ class RecordOdomGoals(unittest.TestCase):
             rospy.sleep(POLL)
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
-        return started, feedback, self.client.get_state(), self.client.get_result()
+        result = self.client.get_result()
+        self.wait_for_truth_at(result.list_of_odoms[-1], since=started)
+        return started, feedback, self.client.get_state(), result
+
+    def wait_for_truth_at(self, point, since):
+        """Wait until ground truth after `since` has passed through the recorded point.
+
+        The result comes on a connection of its own and can overtake the
+        ground truth of the steps before it; timing the points on a trail
+        that lacks the last steps would place the last point too early.
+        """
+        def heard():
+            return any(t >= since and math.hypot(x - point.x, y - point.y) < SAME_POSE
+                       for t, (x, y, _) in list(self.truths))
+        deadline = time.time() + ACCEPT_LIMIT
+        while not heard() and time.time() < deadline:
+            time.sleep(WALL_POLL)
+        self.assertTrue(heard(), 'no ground truth through the last recorded point (%.3f, %.3f)'
+                        % (point.x, point.y))
 
     def spans_of(self, points, since):
         """(earliest, latest) time each recorded point may have been taken, from ground truth after `since`.
 
         The two differ only while the robot stood still (see scoring.stretches_on_trail).
+        Odometry stamped at a step holds the pose before it, so a point stamped
+        at `since` is the truth one step earlier: the trail starts there.
         """
-        truths = [(t, pose) for t, pose in list(self.truths) if t >= since]
+        truths = list(self.truths)
+        after = next((i for i, (t, _) in enumerate(truths) if t >= since), len(truths))
+        truths = truths[max(after - 1, 0):]
         stretches = stretches_on_trail([pose[:2] for _, pose in truths],
                                        [(p.x, p.y) for p in points])
         return [(truths[first][0], truths[last][0]) for first, last in stretches]
