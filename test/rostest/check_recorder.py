@@ -3,6 +3,7 @@
 
 A cancel mid-lap returns the points so far; a second goal starts from zero
 at the robot's pose of that moment, carrying nothing over from the first.
+Each recording starts exactly at its goal's stamp.
 """
 import math
 import sys
@@ -17,20 +18,18 @@ from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
-from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecordGoal
 from wall_follower.nodes.common import pose_of
 from wall_follower.scoring import stretches_on_trail, taken_every
 
 POLL = 0.1
 # Wall seconds: polling for the goal to be taken while the world is paused, and the limit;
-# also the limit on waiting for ground truth to catch up with a result.
+# also the limit on waiting for messages on other connections to catch up.
 WALL_POLL = 0.01
-ACCEPT_LIMIT = 10.0
+WAIT_LIMIT = 10.0
 # Metres: a recorded point is this near the true pose it was taken at (odometry is exact
 # here, localization gps); a step at full speed moves some twenty times as far.
 SAME_POSE = 1e-3
-# Simulated seconds around a goal's sending in which its first point must lie.
-FIRST_POINT_WINDOW = (-0.5, 2.0)
 # Metres driven before each goal is cancelled.
 FIRST_GOAL_DISTANCE = 2.0
 SECOND_GOAL_DISTANCE = 0.5
@@ -44,18 +43,27 @@ class RecordOdomGoals(unittest.TestCase):
         assert cls.client.wait_for_server(rospy.Duration(30.0)), 'no record_odom server'
         cls.period = rospy.get_param('/odom_recorder/sample_period', 1.0)
         cls.truths = []
+        cls.goal_stamps = []
         cls.pause = rospy.ServiceProxy('pause_physics', Empty)
         cls.unpause = rospy.ServiceProxy('unpause_physics', Empty)
         rospy.Subscriber('base_pose_ground_truth', Odometry, cls._on_truth,
                          queue_size=10000)
+        rospy.Subscriber('record_odom/goal', OdomRecordActionGoal, cls._on_goal)
 
     @classmethod
     def _on_truth(cls, msg):
         cls.truths.append((msg.header.stamp.to_sec(), pose_of(msg)))
 
-    def truths_near(self, stamp):
-        low, high = FIRST_POINT_WINDOW
-        return [pose for t, pose in list(self.truths) if stamp + low <= t <= stamp + high]
+    @classmethod
+    def _on_goal(cls, msg):
+        cls.goal_stamps.append(msg.goal_id.stamp.to_sec())
+
+    def wait_until(self, condition, message):
+        """Wait (wall time, bounded) for a message on another connection to come."""
+        deadline = time.time() + WAIT_LIMIT
+        while not condition() and time.time() < deadline:
+            time.sleep(WALL_POLL)
+        self.assertTrue(condition(), message)
 
     def record(self, until_distance):
         """Send a goal, cancel it once the feedback reaches until_distance.
@@ -64,77 +72,81 @@ class RecordOdomGoals(unittest.TestCase):
         the server has taken it: the simulator runs many times faster than
         real time, and the wall milliseconds the goal spends in transit would
         otherwise be simulated seconds of driving.
+
+        Returns the goal's stamp, the feedback, the final state and the result.
         """
         feedback = []
-        while not self.truths:
+        # Ground truth from before the goal on, to know the pose at the goal.
+        while not (self.truths and self.truths[0][0] < rospy.get_time()):
             rospy.sleep(POLL)
+        goals_before = len(self.goal_stamps)
         self.pause()
-        started = rospy.get_time()
         self.client.send_goal(OdomRecordGoal(),
                               feedback_cb=lambda fb: feedback.append(fb.current_total))
-        deadline = time.time() + ACCEPT_LIMIT
-        while self.client.get_state() != GoalStatus.ACTIVE and time.time() < deadline:
-            time.sleep(WALL_POLL)   # simulated time stands still while paused
-        self.assertEqual(self.client.get_state(), GoalStatus.ACTIVE, 'record_odom took no goal')
+        self.wait_until(lambda: self.client.get_state() == GoalStatus.ACTIVE,
+                        'record_odom took no goal')
         self.unpause()
         while not feedback or feedback[-1] < until_distance:
             rospy.sleep(POLL)
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
         result = self.client.get_result()
-        self.wait_for_truth_at(result.list_of_odoms[-1], since=started)
-        return started, feedback, self.client.get_state(), result
+        self.wait_until(lambda: len(self.goal_stamps) > goals_before, 'the goal was not heard')
+        # The result comes on a connection of its own and can overtake the ground
+        # truth of the steps before it.
+        last = result.list_of_odoms[-1]
+        self.wait_until(lambda: self.heard_at(last),
+                        'no ground truth through the last point (%.3f, %.3f)' % (last.x, last.y))
+        return self.goal_stamps[-1], feedback, self.client.get_state(), result
 
-    def wait_for_truth_at(self, point, since):
-        """Wait until ground truth after `since` has passed through the recorded point.
+    def heard_at(self, point):
+        """True once ground truth has passed through the recorded point."""
+        return any(math.hypot(x - point.x, y - point.y) < SAME_POSE
+                   for _, (x, y, _) in list(self.truths))
 
-        The result comes on a connection of its own and can overtake the
-        ground truth of the steps before it; timing the points on a trail
-        that lacks the last steps would place the last point too early.
-        """
-        def heard():
-            return any(t >= since and math.hypot(x - point.x, y - point.y) < SAME_POSE
-                       for t, (x, y, _) in list(self.truths))
-        deadline = time.time() + ACCEPT_LIMIT
-        while not heard() and time.time() < deadline:
-            time.sleep(WALL_POLL)
-        self.assertTrue(heard(), 'no ground truth through the last recorded point (%.3f, %.3f)'
-                        % (point.x, point.y))
+    def odometry_at(self, stamp):
+        """(x, y) of the odometry stamped at this step: the true pose before the step."""
+        return [pose[:2] for t, pose in list(self.truths) if t < stamp][-1]
 
-    def spans_of(self, points, since):
-        """(earliest, latest) time each recorded point may have been taken, from ground truth after `since`.
+    def spans_of(self, points, goal_stamp):
+        """(earliest, latest) time each recorded point may have been taken, from ground truth.
 
         The two differ only while the robot stood still (see scoring.stretches_on_trail).
-        Odometry stamped at a step holds the pose before it, so a point stamped
-        at `since` is the truth one step earlier: the trail starts there.
+        The trail starts at the step before the goal, whose pose the odometry
+        stamped at the goal holds.
         """
         truths = list(self.truths)
-        after = next((i for i, (t, _) in enumerate(truths) if t >= since), len(truths))
+        after = next((i for i, (t, _) in enumerate(truths) if t >= goal_stamp), len(truths))
         truths = truths[max(after - 1, 0):]
         stretches = stretches_on_trail([pose[:2] for _, pose in truths],
                                        [(p.x, p.y) for p in points])
         return [(truths[first][0], truths[last][0]) for first, last in stretches]
 
+    def assert_starts_at_goal(self, result, goal_stamp):
+        first = result.list_of_odoms[0]
+        x, y = self.odometry_at(goal_stamp)
+        self.assertLess(math.hypot(first.x - x, first.y - y), SAME_POSE,
+                        'the first point (%.3f, %.3f) is not the pose at the goal (%.3f, %.3f)'
+                        % (first.x, first.y, x, y))
+
     def test_cancel_returns_points_and_next_goal_starts_clean(self):
-        started, _, state, result = self.record(until_distance=FIRST_GOAL_DISTANCE)
+        goal_stamp, _, state, result = self.record(until_distance=FIRST_GOAL_DISTANCE)
         self.assertEqual(state, GoalStatus.PREEMPTED)
-        spans = self.spans_of(result.list_of_odoms, since=started)
+        self.assert_starts_at_goal(result, goal_stamp)
+        spans = self.spans_of(result.list_of_odoms, goal_stamp)
         self.assertGreater(len(spans), 5)
         self.assertTrue(taken_every(spans, self.period, 1e-3),
                         'points taken at %s s' % np.round(spans, 3).tolist())
         first_run_start = result.list_of_odoms[0]
 
-        started, feedback, state, result = self.record(until_distance=SECOND_GOAL_DISTANCE)
+        goal_stamp, feedback, state, result = self.record(until_distance=SECOND_GOAL_DISTANCE)
         self.assertEqual(state, GoalStatus.PREEMPTED)
         # Carried over, the total would start at the first goal's distance or more; the
         # recorder's first feedback can come a second or so of driving after the goal.
         self.assertLess(feedback[0], FIRST_GOAL_DISTANCE / 2.0,
                         'the second goal did not start from zero')
+        self.assert_starts_at_goal(result, goal_stamp)
         first = result.list_of_odoms[0]
-        # Odometry is exact here (localization gps): the first point is the
-        # true pose of a step just after the goal was sent.
-        gap = min(math.hypot(first.x - x, first.y - y) for x, y, _ in self.truths_near(started))
-        self.assertLess(gap, 0.01)
         self.assertGreater(math.hypot(first.x - first_run_start.x, first.y - first_run_start.y),
                            1.0, 'the second goal kept the first goal\'s start')
 

@@ -1,7 +1,9 @@
 """The record_odom action server: records the robot's path for one lap.
 
-Each goal starts a fresh LapRecorder. The odometry callback feeds it every
-pose (so the distance is integrated at the odometry rate); the goal's own
+Each goal starts a fresh LapRecorder at the goal's stamp. The odometry
+callback feeds it every pose (so the distance is integrated at the odometry
+rate), and the poses heard lately are replayed to it first: odometry stamped
+after the goal may have come before the goal did. The goal's own
 loop publishes feedback and the growing path whenever a point is added, and
 ends the goal when the lap closes (succeeded), when the client cancels
 (preempted, with the points so far) or when odometry stops coming
@@ -12,6 +14,7 @@ frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
 import math
 import threading
+from collections import deque
 
 import actionlib
 import rospy
@@ -48,6 +51,9 @@ LAP_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_erro
 
 # Odometry messages held while the node is busy: a minute and a half at 10 Hz.
 ODOM_QUEUE = 1000
+# Poses kept for a goal that comes after odometry stamped since it: ten seconds
+# of the TurtleBot3's 30 Hz odometry.
+RECENT_POSES = 300
 
 
 class OdomRecorderNode(object):
@@ -59,6 +65,7 @@ class OdomRecorderNode(object):
         self._recording = None
         self._frame_id = ''
         self._last_odom_time = None
+        self._recent = deque(maxlen=RECENT_POSES)
         self.path_pub = rospy.Publisher('record_odom/path', Path, queue_size=1, latch=True)
         # Every pose counts toward the distance and may be the one a sample is due at;
         # a fast simulator can outrun this node for a while, and a full queue drops some.
@@ -86,11 +93,18 @@ class OdomRecorderNode(object):
 
     def _on_odom(self, msg):
         stamp = msg.header.stamp.to_sec() or rospy.get_time()
+        pose = pose_of(msg)
         with self._lock:
             self._frame_id = msg.header.frame_id
-            if self._recording is not None and self._recording.takes(stamp):
-                self._last_odom_time = rospy.get_time()
-                self._recording.add(stamp, *pose_of(msg))
+            self._recent.append((stamp, pose))
+            if self._recording is not None:
+                self._take(stamp, pose)
+
+    def _take(self, stamp, pose):
+        """Feed the recording a pose if it is stamped since the goal (lock held)."""
+        if self._recording.takes(stamp):
+            self._last_odom_time = rospy.get_time()
+            self._recording.add(stamp, *pose)
 
     def _execute(self, _goal):
         # The recording starts when the goal was sent (its stamp, on the client's clock),
@@ -100,6 +114,8 @@ class OdomRecorderNode(object):
                                 **{name: self.params[name] for name in LAP_PARAMS})
         with self._lock:
             self._recording = recording
+            for stamp, pose in self._recent:
+                self._take(stamp, pose)
         rospy.loginfo('record_odom: recording started')
         try:
             self._serve(recording)
