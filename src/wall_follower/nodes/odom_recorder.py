@@ -3,7 +3,9 @@
 Each goal starts a fresh LapRecorder at the goal's stamp. The odometry
 callback feeds it every pose (so the distance is integrated at the odometry
 rate), and the poses heard lately are replayed to it first: odometry stamped
-after the goal may have come before the goal did. The goal's own
+after the goal may have come before the goal did. On wall time the goal's
+stamp is moved onto the odometry's clock, which on a robot is another
+machine's and need not agree with this one's. The goal's own
 loop publishes feedback and the growing path whenever a point is added, and
 ends the goal when the lap closes (succeeded), when the client cancels
 (preempted, with the points so far) or when odometry stops coming
@@ -41,7 +43,7 @@ min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
     counts as closed (m, m, m, rad); see wall_follower.lap.LapDetector.
 timeout: a goal is aborted when no odometry stamped since the goal has
     arrived for this long (ROS s), whether at its start or later; a client
-    whose clock is far ahead of the odometry's (say, wall time against
+    whose clock is far ahead of this node's (say, wall time against
     simulated time) is told so this way rather than left waiting.
 rate: how often (Hz, ROS time) the goal loop checks for new points, the
     lap's end, cancellation and the odometry time-out.
@@ -54,6 +56,8 @@ ODOM_QUEUE = 1000
 # Poses kept for a goal that comes after odometry stamped since it: ten seconds
 # of the TurtleBot3's 30 Hz odometry.
 RECENT_POSES = 300
+# Seconds between the odometry's clock and this machine's past which a goal warns.
+CLOCK_WARNING = 1.0
 
 
 class OdomRecorderNode(object):
@@ -65,7 +69,10 @@ class OdomRecorderNode(object):
         self._recording = None
         self._frame_id = ''
         self._last_odom_time = None
+        # (stamp, pose, lag behind this node's clock on arrival) of the latest poses.
         self._recent = deque(maxlen=RECENT_POSES)
+        # On simulated time every node, the odometry's publisher too, reads /clock.
+        self._one_clock = rospy.get_param('/use_sim_time', False)
         self.path_pub = rospy.Publisher('record_odom/path', Path, queue_size=1, latch=True)
         # Every pose counts toward the distance and may be the one a sample is due at;
         # a fast simulator can outrun this node for a while, and a full queue drops some.
@@ -92,11 +99,12 @@ class OdomRecorderNode(object):
             pass  # a tick that was publishing has now finished
 
     def _on_odom(self, msg):
-        stamp = msg.header.stamp.to_sec() or rospy.get_time()
+        now = rospy.get_time()
+        stamp = msg.header.stamp.to_sec() or now
         pose = pose_of(msg)
         with self._lock:
             self._frame_id = msg.header.frame_id
-            self._recent.append((stamp, pose))
+            self._recent.append((stamp, pose, now - stamp))
             if self._recording is not None:
                 self._take(stamp, pose)
 
@@ -106,15 +114,35 @@ class OdomRecorderNode(object):
             self._last_odom_time = rospy.get_time()
             self._recording.add(stamp, *pose)
 
-    def _execute(self, _goal):
-        # The recording starts when the goal was sent (its stamp, on the client's clock),
-        # or, for a goal sent without a stamp, now.
+    def _recording_start(self):
+        """When the goal was sent, on the odometry's clock (lock held).
+
+        The goal's stamp is on the client's clock, taken to be this node's
+        (the same machine, or synchronized ones); a goal sent without one
+        starts now. On wall time the odometry may be stamped by a robot whose
+        clock is off by seconds or hours. Its poses would then be skipped
+        until its clock reached the goal's stamp, or replayed from long
+        before the goal; so the stamp is shifted by the odometry's least lag
+        behind this clock on arrival: the clocks' offset, plus the smallest
+        delivery delay.
+        """
         start = self.server.current_goal.get_goal_id().stamp.to_sec() or rospy.get_time()
-        recording = LapRecorder(self.params['sample_period'], start=start,
-                                **{name: self.params[name] for name in LAP_PARAMS})
+        if self._one_clock or not self._recent:
+            return start
+        offset = min(lag for _, _, lag in self._recent)
+        if abs(offset) > CLOCK_WARNING:
+            rospy.logwarn('record_odom: odometry on %s is stamped %.1f s %s this clock; '
+                          'recording from the goal by this clock (synchronize the clocks, '
+                          'e.g. with chrony, for tf and rviz)', rospy.resolve_name('odom'),
+                          abs(offset), 'behind' if offset > 0.0 else 'ahead of')
+        return start - offset
+
+    def _execute(self, _goal):
         with self._lock:
+            recording = LapRecorder(self.params['sample_period'], start=self._recording_start(),
+                                    **{name: self.params[name] for name in LAP_PARAMS})
             self._recording = recording
-            for stamp, pose in self._recent:
+            for stamp, pose, _ in self._recent:
                 self._take(stamp, pose)
         rospy.loginfo('record_odom: recording started')
         try:
