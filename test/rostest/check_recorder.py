@@ -7,7 +7,6 @@ Each recording starts exactly at its goal's stamp.
 """
 import math
 import sys
-import time
 import unittest
 
 import actionlib
@@ -22,10 +21,11 @@ from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecord
 from wall_follower.nodes.common import pose_of
 from wall_follower.scoring import stretches_on_trail, taken_every
 
+from waiting import wait_until
+
 POLL = 0.1
-# Wall seconds: polling for the goal to be taken while the world is paused, and the limit;
-# also the limit on waiting for messages on other connections to catch up.
-WALL_POLL = 0.01
+# Wall seconds to wait for the goal to be taken while the world is paused, or for
+# messages on other connections to catch up.
 WAIT_LIMIT = 10.0
 # Metres: a recorded point is this near the true pose it was taken at (odometry is exact
 # here, localization gps); a step at full speed moves some twenty times as far.
@@ -58,13 +58,6 @@ class RecordOdomGoals(unittest.TestCase):
     def _on_goal(cls, msg):
         cls.goal_stamps.append(msg.goal_id.stamp.to_sec())
 
-    def wait_until(self, condition, message):
-        """Wait (wall time, bounded) for a message on another connection to come."""
-        deadline = time.time() + WAIT_LIMIT
-        while not condition() and time.time() < deadline:
-            time.sleep(WALL_POLL)
-        self.assertTrue(condition(), message)
-
     def record(self, until_distance):
         """Send a goal, cancel it once the feedback reaches until_distance.
 
@@ -83,19 +76,20 @@ class RecordOdomGoals(unittest.TestCase):
         self.pause()
         self.client.send_goal(OdomRecordGoal(),
                               feedback_cb=lambda fb: feedback.append(fb.current_total))
-        self.wait_until(lambda: self.client.get_state() == GoalStatus.ACTIVE,
-                        'record_odom took no goal')
+        self.assertTrue(wait_until(lambda: self.client.get_state() == GoalStatus.ACTIVE,
+                                   WAIT_LIMIT), 'record_odom took no goal')
         self.unpause()
         while not feedback or feedback[-1] < until_distance:
             rospy.sleep(POLL)
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(rospy.Duration(10.0)))
         result = self.client.get_result()
-        self.wait_until(lambda: len(self.goal_stamps) > goals_before, 'the goal was not heard')
+        self.assertTrue(wait_until(lambda: len(self.goal_stamps) > goals_before, WAIT_LIMIT),
+                        'the goal was not heard')
         # The result comes on a connection of its own and can overtake the ground
         # truth of the steps before it.
         last = result.list_of_odoms[-1]
-        self.wait_until(lambda: self.heard_at(last),
+        self.assertTrue(wait_until(lambda: self.heard_at(last), WAIT_LIMIT),
                         'no ground truth through the last point (%.3f, %.3f)' % (last.x, last.y))
         return self.goal_stamps[-1], feedback, self.client.get_state(), result
 

@@ -8,7 +8,6 @@ published raw, as only then can its stamp be chosen. actionlib then takes
 no goal stamped before this one, hence a launch of its own.
 """
 import sys
-import time
 import unittest
 
 import rospy
@@ -17,9 +16,10 @@ from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.msg import OdomRecordActionGoal, OdomRecordActionResult
 
+from waiting import wait_until
+
 POLL = 0.1
-# Wall seconds: polling for the recorder to subscribe, and the limit.
-WALL_POLL = 0.01
+# Wall seconds to wait for the recorder to subscribe.
 CONNECT_LIMIT = 30.0
 # Seconds the goal's stamp is ahead of this clock.
 CLOCK_AHEAD = 1000.0
@@ -32,10 +32,8 @@ class GoalStampedAhead(unittest.TestCase):
         results = []
         rospy.Subscriber('record_odom/result', OdomRecordActionResult, results.append)
         goals = rospy.Publisher('record_odom/goal', OdomRecordActionGoal, queue_size=1)
-        deadline = time.time() + CONNECT_LIMIT
-        while goals.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(WALL_POLL)
-        self.assertGreater(goals.get_num_connections(), 0, 'no record_odom server')
+        self.assertTrue(wait_until(lambda: goals.get_num_connections() > 0, CONNECT_LIMIT),
+                        'no record_odom server')
         goal = OdomRecordActionGoal()
         goal.goal_id.id = GOAL_ID
         goal.goal_id.stamp = rospy.Time.now() + rospy.Duration(CLOCK_AHEAD)

@@ -10,7 +10,6 @@ time, stamped off its own clock by a fixed amount.
 """
 import sys
 import threading
-import time
 import unittest
 
 import actionlib
@@ -20,6 +19,8 @@ from nav_msgs.msg import Odometry
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 
+from waiting import wait_until
+
 # Seconds the robot's clock is off this machine's, per recorder namespace.
 BEHIND = -100.0
 AHEAD = 100.0
@@ -27,18 +28,11 @@ RATE = 10.0             # odometry messages per second
 STEP = 0.05             # metres along x between two poses
 BEFORE_GOAL = 3.0       # seconds of odometry before the goal is sent
 AFTER_GOAL = 2.5        # and after it, before the goal is cancelled
-# Wall seconds: polling, and the limit on waiting for the recorder.
-POLL = 0.01
+# Wall seconds to wait for the recorder.
 WAIT_LIMIT = 30.0
 
 
 class RobotOnAnotherClock(unittest.TestCase):
-
-    def wait_until(self, condition, message):
-        deadline = time.time() + WAIT_LIMIT
-        while not condition() and time.time() < deadline:
-            time.sleep(POLL)
-        self.assertTrue(condition(), message)
 
     def record_from(self, namespace, clock_offset):
         """Publish odometry on namespace/odom, and record with a goal sent in between.
@@ -49,7 +43,8 @@ class RobotOnAnotherClock(unittest.TestCase):
         odom = rospy.Publisher(namespace + '/odom', Odometry, queue_size=100)
         client = actionlib.SimpleActionClient(namespace + '/record_odom', OdomRecordAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(WAIT_LIMIT)), 'no record_odom')
-        self.wait_until(lambda: odom.get_num_connections() > 0, 'record_odom is not on odom')
+        self.assertTrue(wait_until(lambda: odom.get_num_connections() > 0, WAIT_LIMIT),
+                        'record_odom is not on odom')
         published = []
         stop = threading.Event()
 
@@ -68,12 +63,14 @@ class RobotOnAnotherClock(unittest.TestCase):
         robot = threading.Thread(target=drive)
         robot.start()
         try:
-            self.wait_until(lambda: published[-1][0] - published[0][0] >= BEFORE_GOAL,
-                            'no odometry published')
+            self.assertTrue(wait_until(lambda: published and
+                                       published[-1][0] - published[0][0] >= BEFORE_GOAL,
+                                       WAIT_LIMIT), 'no odometry published')
             before = rospy.get_time()
             client.send_goal(OdomRecordGoal())
             after = rospy.get_time()
-            self.wait_until(lambda: published[-1][0] >= after + AFTER_GOAL, 'odometry stopped')
+            self.assertTrue(wait_until(lambda: published[-1][0] >= after + AFTER_GOAL,
+                                       WAIT_LIMIT), 'odometry stopped')
             client.cancel_goal()
             self.assertTrue(client.wait_for_result(rospy.Duration(WAIT_LIMIT)))
         finally:

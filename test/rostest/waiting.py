@@ -1,0 +1,16 @@
+"""Bounded waits of the rostests, for what comes on another connection.
+
+A passing test goes on as soon as the condition holds; the limit only
+bounds how long a failing one takes.
+"""
+import time
+
+POLL = 0.01  # wall seconds
+
+
+def wait_until(condition, limit):
+    """Poll condition() until it holds or `limit` wall seconds have passed; its last value."""
+    deadline = time.time() + limit
+    while not condition() and time.time() < deadline:
+        time.sleep(POLL)
+    return condition()
