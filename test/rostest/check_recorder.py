@@ -86,17 +86,18 @@ class RecordOdomGoals(unittest.TestCase):
         result = self.client.get_result()
         self.assertTrue(wait_until(lambda: len(self.goal_stamps) > goals_before, WAIT_LIMIT),
                         'the goal was not heard')
+        goal_stamp = self.goal_stamps[-1]
         # The result comes on a connection of its own and can overtake the ground
         # truth of the steps before it.
         last = result.list_of_odoms[-1]
-        self.assertTrue(wait_until(lambda: self.heard_at(last), WAIT_LIMIT),
+        self.assertTrue(wait_until(lambda: self.heard_at(last, goal_stamp), WAIT_LIMIT),
                         'no ground truth through the last point (%.3f, %.3f)' % (last.x, last.y))
-        return self.goal_stamps[-1], feedback, self.client.get_state(), result
+        return goal_stamp, feedback, self.client.get_state(), result
 
-    def heard_at(self, point):
-        """True once ground truth has passed through the recorded point."""
-        return any(math.hypot(x - point.x, y - point.y) < SAME_POSE
-                   for _, (x, y, _) in list(self.truths))
+    def heard_at(self, point, since):
+        """True once ground truth stamped since `since` has passed through the recorded point."""
+        return any(t >= since and math.hypot(x - point.x, y - point.y) < SAME_POSE
+                   for t, (x, y, _) in list(self.truths))
 
     def odometry_at(self, stamp):
         """(x, y) of the odometry stamped at this step: the true pose before the step."""
