@@ -3,7 +3,8 @@ from setuptools import setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
 setup(**generate_distutils_setup(
-    packages=['wall_follower', 'wall_follower.sim', 'wall_follower.nodes',
-              'wall_follower.benchmarks'],
+    packages=['wall_follower', 'wall_follower.control', 'wall_follower.sim', 'wall_follower.nodes',
+              'wall_follower.evaluation',
+              'wall_follower.evaluation.benchmarks'],
     package_dir={'': 'src'},
 ))

@@ -19,7 +19,7 @@ import rostest
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.scoring import CourseMap, taken_every, true_lap_length
+from wall_follower.evaluation.scoring import CourseMap, taken_every, true_lap_length
 
 # Ground truth is kept this long after the result, to see the true return.
 AFTER_RESULT = 10.0

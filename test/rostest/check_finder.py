@@ -11,7 +11,7 @@ import unittest
 import rospy
 import rostest
 
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.nodes.find_trials import FindTrials
 
 LIMIT_SLACK = 1e-6

@@ -11,10 +11,10 @@ import unittest
 import rospy
 import rostest
 
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.scoring import CourseMap
+from wall_follower.evaluation.scoring import CourseMap
 
 # Commands are floats on the wire; allow their rounding, nothing more.
 LIMIT_SLACK = 1e-6

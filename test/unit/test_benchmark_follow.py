@@ -1,7 +1,7 @@
 """How `benchmark follow` turns several laps of one world and laser into its row."""
 import pytest
 
-from wall_follower.benchmarks.follow import combined
+from wall_follower.evaluation.benchmarks.follow import combined
 
 
 def lap(ratio, band=0.98, clearance=0.12, contact=False, max_linear=0.19):

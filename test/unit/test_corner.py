@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.corner import CornerArc, OuterTurn
-from wall_follower.motion import seen_after_move
+from wall_follower.control.corner import CornerArc, OuterTurn
+from wall_follower.control.motion import seen_after_move
 
 RADIUS, ROUNDING = 0.30, 0.05
 KEPT = RADIUS - ROUNDING   # distance kept from the rounded-off corner

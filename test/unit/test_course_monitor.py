@@ -15,7 +15,7 @@ from nav_msgs.msg import Odometry
 
 from wall_follower.msg import OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.scoring import CourseMap
+from wall_follower.evaluation.scoring import CourseMap
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 SPEED = 0.19    # m/s along x, one ground truth per 0.1 s

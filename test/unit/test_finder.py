@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
-from wall_follower import finder
-from wall_follower.finder import WallFinder
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
-from wall_follower.scan import ScanView
+from wall_follower.control import finder
+from wall_follower.control.finder import WallFinder
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
+from wall_follower.control.scan import ScanView
 
 LASER_X = -0.032  # TurtleBot3 Burger: the laser 32 mm behind the axle
 ROOM = box(-2.0, -1.5, 2.0, 1.5)

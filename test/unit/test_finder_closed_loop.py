@@ -9,10 +9,10 @@ import os
 
 import pytest
 
-from wall_follower.finder import WallFinder
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, clamp
-from wall_follower.scan import ScanView
-from wall_follower.scoring import CourseMap
+from wall_follower.control.finder import WallFinder
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
+from wall_follower.control.scan import ScanView
+from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 

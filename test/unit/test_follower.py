@@ -11,13 +11,13 @@ import pytest
 import yaml
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
-from wall_follower import follower
-from wall_follower.corner import CornerArc
-from wall_follower.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
+from wall_follower.control import follower
+from wall_follower.control.corner import CornerArc
+from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
                                     Observation, WallFollower, as_planned, consensus_line,
                                     unbiased)
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
-from wall_follower.scan import ScanView
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
+from wall_follower.control.scan import ScanView
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]

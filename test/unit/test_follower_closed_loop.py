@@ -5,10 +5,10 @@ map as the benchmark scores it. A few seconds, so it runs with every test.
 """
 import os
 
-from wall_follower.follower import WallFollower
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, clamp
-from wall_follower.scan import ScanView
-from wall_follower.scoring import CourseMap, RunScore
+from wall_follower.control.follower import WallFollower
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
+from wall_follower.control.scan import ScanView
+from wall_follower.evaluation.scoring import CourseMap, RunScore
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 

@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from wall_follower.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
+from wall_follower.control.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
 
 RATE = 10.0  # odometry messages per second
 SPEED = 0.19

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, REVERSED, box, cast, scan_view
-from wall_follower.scan import FRONT, LEFT, RIGHT, ScanView, fit_line, wrap_angle
+from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView, fit_line, wrap_angle
 
 ALL = CONVENTIONS + [REVERSED]
 

@@ -5,8 +5,8 @@ import os
 import numpy as np
 import pytest
 
-from wall_follower.geometry import polygon_clearance
-from wall_follower.scoring import (CourseMap, RunScore, stretches_on_trail, taken_every,
+from wall_follower.evaluation.geometry import polygon_clearance
+from wall_follower.evaluation.scoring import (CourseMap, RunScore, stretches_on_trail, taken_every,
                                    true_lap_length)
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')

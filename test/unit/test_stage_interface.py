@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from wall_follower.stage_interface import (parse_pose, quit_report, rate_in_quit_report,
+from wall_follower.sim.stage_interface import (parse_pose, quit_report, rate_in_quit_report,
                                            robot_prefix)
 
 

@@ -6,7 +6,7 @@ things slower), and waits that should end early are given generous limits.
 import threading
 import time
 
-from wall_follower.step_pacer import StepPacer
+from wall_follower.sim.step_pacer import StepPacer
 
 
 def run_steps(pacer, count, driving=(False,)):

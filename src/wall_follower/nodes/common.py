@@ -7,8 +7,8 @@ import rospy
 from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
-from wall_follower.scan import ScanView
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
+from wall_follower.control.scan import ScanView
 
 
 def private_params(defaults):

@@ -2,7 +2,7 @@
 
 It listens to what the simulator knows and the robot does not (ground
 truth, stalls) and to what the nodes say (cmd_vel, the record_odom action's
-goal, feedback and result), and scores the run with wall_follower.scoring.
+goal, feedback and result), and scores the run with wall_follower.evaluation.scoring.
 """
 import threading
 import time
@@ -18,7 +18,7 @@ from actionlib_msgs.msg import GoalStatusArray
 
 from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
-from wall_follower.scoring import RunScore, stretches_on_trail
+from wall_follower.evaluation.scoring import RunScore, stretches_on_trail
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.

@@ -12,8 +12,8 @@ import rospy
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.plot import plot_course
-from wall_follower.scoring import CourseMap
+from wall_follower.evaluation.plot import plot_course
+from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.sim.worldfile import WorldFileError
 
 

@@ -13,7 +13,7 @@ from geometry_msgs.msg import Pose
 
 from wall_follower.nodes.common import pose_message, world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.scoring import CourseMap
+from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.srv import FindWall
 
 # Simulated time for the scan and ground truth to show a new pose.

@@ -23,7 +23,7 @@ import rospy
 from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
-from wall_follower.lap import LapRecorder
+from wall_follower.control.lap import LapRecorder
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
 from wall_follower.nodes.common import pose_of, private_params
 
@@ -40,7 +40,7 @@ DEFAULTS = {
 
 sample_period: a point is recorded every this many seconds (ROS time).
 min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
-    counts as closed (m, m, m, rad); see wall_follower.lap.LapDetector.
+    counts as closed (m, m, m, rad); see wall_follower.control.lap.LapDetector.
 timeout: a goal is aborted when no odometry stamped since the goal has
     arrived for this long (ROS s), whether at its start or later; a client
     whose clock is far ahead of this node's (say, wall time against

@@ -67,8 +67,8 @@ from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.worldfile import WorldFileError, load_world
-from wall_follower.stage_interface import parse_pose, quit_report, robot_prefix
-from wall_follower.step_pacer import StepPacer
+from wall_follower.sim.stage_interface import parse_pose, quit_report, robot_prefix
+from wall_follower.sim.step_pacer import StepPacer
 
 DEFAULTS = {
     'base_watchdog_timeout': 0.2,

@@ -11,8 +11,8 @@ import threading
 
 import rospy
 
-from wall_follower.finder import DEFAULTS as FINDER_DEFAULTS
-from wall_follower.finder import WallFinder
+from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
+from wall_follower.control.finder import WallFinder
 from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
 from wall_follower.srv import FindWall, FindWallResponse
 

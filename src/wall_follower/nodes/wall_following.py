@@ -20,7 +20,7 @@ from actionlib.action_client import CommState
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
-from wall_follower.follower import FollowerParams, WallFollower
+from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
 from wall_follower.srv import FindWall

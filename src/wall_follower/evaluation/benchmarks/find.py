@@ -5,7 +5,7 @@ ground-truth figures of each trial.
 """
 import argparse
 
-from wall_follower.benchmarks.launching import WORLDS, fmt, print_table, run_launch
+from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, run_launch
 
 
 def main(argv=None):

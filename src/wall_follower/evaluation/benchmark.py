@@ -26,7 +26,7 @@ def main(argv=None):
     for part in parts:
         print('\n## %s: %s\n' % (part, PARTS[part]))
         sys.stdout.flush()
-        module = importlib.import_module('wall_follower.benchmarks.' + part)
+        module = importlib.import_module('wall_follower.evaluation.benchmarks.' + part)
         status = module.main(rest) or status
     return status
 

@@ -6,7 +6,7 @@ scan with a cmd_vel), as the course nodes do. Every command carries a
 distinct angular speed, so a step whose odometry twist repeats the previous
 one ran without a fresh command: that is a missed control step.
 
-    /usr/bin/python3 -m wall_follower.benchmarks.sim [--world arena] [--seconds 5]
+    /usr/bin/python3 -m wall_follower.evaluation.benchmarks.sim [--world arena] [--seconds 5]
 """
 import argparse
 import os
@@ -23,11 +23,11 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
 import wall_follower
-from wall_follower.benchmarks.launching import WORLDS, fmt, free_port, print_table
+from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, free_port, print_table
 from wall_follower.nodes.common import world_path
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
-from wall_follower.stage_interface import rate_in_quit_report
+from wall_follower.sim.stage_interface import rate_in_quit_report
 
 HELD_SPEEDUP = 20.0
 GOAL_FREE_RUN = 500.0

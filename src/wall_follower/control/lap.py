@@ -13,7 +13,7 @@ heading, heading roughly the way it started, close enough to the start.
 """
 import math
 
-from wall_follower.scan import wrap_angle
+from wall_follower.control.scan import wrap_angle
 
 
 class PathLength(object):

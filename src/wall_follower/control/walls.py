@@ -12,7 +12,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.scan import line_through, wrap_angle
+from wall_follower.control.scan import line_through, wrap_angle
 
 # A hit this much (m) nearer than the end of a run hides what lies beyond it.
 OCCLUSION_STEP = 0.05

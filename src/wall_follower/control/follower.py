@@ -44,10 +44,10 @@ import math
 
 import numpy as np
 
-from wall_follower.corner import CornerArc, OuterTurn
-from wall_follower.left_turn import LeftTurn
-from wall_follower.motion import Command, seen_after_move
-from wall_follower.scan import RIGHT, fit_line, wrap_angle
+from wall_follower.control.corner import CornerArc, OuterTurn
+from wall_follower.control.left_turn import LeftTurn
+from wall_follower.control.motion import Command, seen_after_move
+from wall_follower.control.scan import RIGHT, fit_line, wrap_angle
 
 FOLLOW = 'FOLLOW'
 WALL_AHEAD = 'WALL_AHEAD'

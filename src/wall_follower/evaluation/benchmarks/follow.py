@@ -10,7 +10,7 @@ sample, not a figure: its row is the mean over --seeds laps (seeds 0, 1,
 """
 import argparse
 
-from wall_follower.benchmarks.launching import WORLDS, fmt, print_table, run_launch
+from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, run_launch
 
 PROFILES = ('stage', 'lds01')
 NOISE_FREE = ('stage',)

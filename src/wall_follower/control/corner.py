@@ -26,8 +26,8 @@ import math
 
 import numpy as np
 
-from wall_follower.motion import seen_after_move
-from wall_follower.scan import wrap_angle
+from wall_follower.control.motion import seen_after_move
+from wall_follower.control.scan import wrap_angle
 
 
 class CornerArc(object):

@@ -1,0 +1,1 @@
+"""The robot's behaviours: scan reading, walls, the follower and its manoeuvres, the finder, the lap."""

@@ -1,0 +1,1 @@
+"""Evaluation: scoring from ground truth, course reports, plots and benchmarks."""
