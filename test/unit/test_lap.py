@@ -170,9 +170,11 @@ def path_length(poses):
     return sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(poses, poses[1:]))
 
 
-def test_a_reset_to_the_start_is_not_travel_and_the_lap_ends_a_lap_later():
-    """reset_positions mid-lap: back at the start pose, the jump is left out."""
-    before = walk(RECTANGLE)[:60]              # 5.9 s: 1 m along x, then 0.14 m up
+def test_a_reset_to_the_spawn_pose_is_not_travel_and_the_lap_ends_a_lap_later():
+    """reset_positions mid-lap: the robot is back at its spawn pose, 0.19 m behind
+    the start line (it drove 1 s before the goal came); the jump is left out."""
+    spawned = walk(RECTANGLE)
+    before = spawned[10:150]                   # 14 s from x = 0.19: round the first corner
     after = walk(RECTANGLE, start_time=before[-1][0] + 0.1)
     recorder = LapRecorder()
     closing = feed(recorder, before + after)
@@ -180,9 +182,10 @@ def test_a_reset_to_the_start_is_not_travel_and_the_lap_ends_a_lap_later():
     stamp, distance = recorder.jumps[0]
     assert stamp == after[0][0]
     assert distance == pytest.approx(math.hypot(before[-1][1], before[-1][2]))
-    # The lap ends a whole lap after the reset, at the start line, and not before.
+    # Not as the robot drives off over the start line, but a whole lap after the reset.
+    start_x = before[0][1]
     corner = after.index(next(p for p in after if p[1:3] == (-1.0, 0.0)))
-    assert closing == next(p for p in after[corner:] if p[1] >= 0.0)
+    assert closing == next(p for p in after[corner:] if p[1] >= start_x)
     assert recorder.total_distance == pytest.approx(
         path_length(before) + path_length(after[:after.index(closing) + 1]), abs=1e-9)
     assert recorder.points[0] == before[0][1:]

@@ -10,6 +10,18 @@ Here a lap can end only after the robot has both travelled a minimum
 distance and been well away from the start, and it ends when the robot
 crosses the line through the start point, perpendicular to the start
 heading, heading roughly the way it started, close enough to the start.
+
+Odometry can jump: a simulator's reset_positions puts the robot back at its
+spawn pose, and a real robot's odometry can be reset to zero. A pose
+further from the one before than the robot can drive in the time between
+them is a jump, not travel: it is not counted, and the recording goes on
+from the new pose with the lap's start kept where it was. The lap is armed
+afresh, as at the start: it can end only once the robot has travelled the
+minimum distance again and been away from the start, so a reset to a spawn
+pose just behind the start line does not end the lap as the robot drives
+off; no crossing is seen across the jump itself. After a simulator's reset
+the lap so ends a full lap later; after a real robot's odometry reset the
+start line keeps its coordinates, which now mark another place.
 """
 import math
 
@@ -128,6 +140,7 @@ class LapDetector(object):
         self.left_start = False
         self.closed = False
         self._previous = self._frame(self.x0, self.y0)
+        self._travelled_before = 0.0   # path length (m) before the latest jump
 
     def _frame(self, x, y):
         """(along, across) position relative to the start pose's heading."""
@@ -135,9 +148,14 @@ class LapDetector(object):
         c, s = math.cos(self.yaw0), math.sin(self.yaw0)
         return dx * c + dy * s, -dx * s + dy * c
 
-    def resume_at(self, x, y):
-        """Go on from (x, y) after a jump: the jump itself crosses no line."""
+    def resume_at(self, x, y, travelled):
+        """Go on from (x, y) after a jump, `travelled` metres into the recording.
+
+        The jump itself crosses no line, and the lap is armed afresh.
+        """
         self._previous = self._frame(x, y)
+        self._travelled_before = travelled
+        self.left_start = False
 
     def update(self, x, y, yaw, travelled):
         """Feed the next pose and the distance travelled so far; True once the lap is closed."""
@@ -148,7 +166,7 @@ class LapDetector(object):
         self._previous = (along, across)
         if math.hypot(along, across) >= self.leave_radius:
             self.left_start = True
-        if not (self.left_start and travelled >= self.min_travel):
+        if not (self.left_start and travelled - self._travelled_before >= self.min_travel):
             return False
         if not (previous_along < 0.0 <= along):
             return False
@@ -209,7 +227,7 @@ class LapRecorder(object):
         if jump is not None:
             self.jumps.append((stamp, jump))
             self.length.jump_to(x, y)
-            self.lap.resume_at(x, y)
+            self.lap.resume_at(x, y, self.length.total)
         travelled = self.length.add(x, y)
         if self.lap is None:
             self.lap = LapDetector(pose, **self.lap_params)
