@@ -28,6 +28,7 @@ from collections import deque
 
 import actionlib
 import rospy
+from actionlib.server_goal_handle import ServerGoalHandle
 from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
@@ -77,6 +78,35 @@ CLOCK_WARNING = 1.0
 MALFORMED_WARNING_PERIOD = 5.0
 
 
+class RecordOdomServer(actionlib.SimpleActionServer):
+    """A SimpleActionServer that can forget the goal it last served.
+
+    It takes a goal only if stamped no earlier than the goals it took last
+    (current and next, which stay set once done): once ROS time has moved
+    backwards, every new goal would be refused for as long as the jump. before_goal() is called as each goal arrives,
+    before that check, so that the node can forget the old clock's goal.
+    """
+
+    def __init__(self, name, action_spec, execute_cb, before_goal):
+        self._before_goal = before_goal
+        actionlib.SimpleActionServer.__init__(self, name, action_spec, execute_cb=execute_cb,
+                                              auto_start=False)
+
+    def internal_goal_callback(self, goal):
+        self._before_goal()
+        actionlib.SimpleActionServer.internal_goal_callback(self, goal)
+
+    def forget_finished_goal(self):
+        """Forget the goals served, and the cancel requests; False while one is active or due."""
+        with self.lock:
+            if self.is_active() or self.is_new_goal_available():
+                return False
+            self.current_goal = ServerGoalHandle()
+            self.next_goal = ServerGoalHandle()
+            self.action_server.last_cancel = rospy.Time()
+            return True
+
+
 class OdomRecorderNode(object):
     """Serves record_odom: one recording per goal, fed from the odom topic."""
 
@@ -96,6 +126,8 @@ class OdomRecorderNode(object):
         self._latest_time = None
         # How far (s) ROS time moved back under the current recording, if it did.
         self._time_moved_back = None
+        # True from ROS time moving back until the goal served on the old clock is forgotten.
+        self._goal_on_old_clock = False
         # (stamp, pose, lag behind this node's clock on arrival) of the latest poses.
         self._recent = deque(maxlen=RECENT_POSES)
         # On simulated time every node, the odometry's publisher too, reads /clock.
@@ -104,8 +136,8 @@ class OdomRecorderNode(object):
         # Every pose counts toward the distance and may be the one a sample is due at;
         # a fast simulator can outrun this node for a while, and a full queue drops some.
         self.odom_sub = rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=ODOM_QUEUE)
-        self.server = actionlib.SimpleActionServer(
-            'record_odom', OdomRecordAction, execute_cb=self._execute, auto_start=False)
+        self.server = RecordOdomServer('record_odom', OdomRecordAction, self._execute,
+                                       self._before_goal)
         self.server.start()
         self._restart_status_timer()
         rospy.on_shutdown(self._stop_status_timer)
@@ -173,10 +205,18 @@ class OdomRecorderNode(object):
                           '; the goal in progress ends' if self._recording is not None else '')
             self._recent.clear()
             self._last_odom_time = None
+            self._goal_on_old_clock = True
             if self._recording is not None:
                 self._time_moved_back = back
         self._latest_time = now
         return now
+
+    def _before_goal(self):
+        """As a goal arrives: see whether ROS time moved back, and forget the old clock's goal."""
+        with self._lock:
+            self._now()
+            if self._goal_on_old_clock and self.server.forget_finished_goal():
+                self._goal_on_old_clock = False
 
     def _take(self, stamp, pose):
         """Feed the recording a pose if it is stamped since the goal (lock held)."""
