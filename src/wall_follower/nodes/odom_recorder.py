@@ -83,8 +83,9 @@ class RecordOdomServer(actionlib.SimpleActionServer):
 
     It takes a goal only if stamped no earlier than the goals it took last
     (current and next, which stay set once done): once ROS time has moved
-    backwards, every new goal would be refused for as long as the jump. before_goal() is called as each goal arrives,
-    before that check, so that the node can forget the old clock's goal.
+    backwards, every new goal would be refused for as long as the jump.
+    before_goal() is called as each goal arrives, before that check, so
+    that the node can forget the goals of the old clock.
     """
 
     def __init__(self, name, action_spec, execute_cb, before_goal):
@@ -307,7 +308,7 @@ class OdomRecorderNode(object):
             if time_moved_back is not None:
                 text = ('ROS time moved back %.2f s: the recording is on the old clock; '
                         'send a new goal' % time_moved_back)
-                rospy.logerr('record_odom: aborted: %s', text)
+                rospy.loginfo('record_odom: aborted: %s', text)  # warned of already
                 self.server.set_aborted(_result(points), text)
                 return
             if self.server.is_preempt_requested():
