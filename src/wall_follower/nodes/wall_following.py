@@ -10,7 +10,6 @@ Exit status: 0 after a recorded lap (with ~stop_after_lap) or a plain
 shutdown; 1 when find_wall or record_odom is missing, or find_wall fails.
 """
 import threading
-import time
 
 import actionlib
 from actionlib.action_client import CommState
@@ -19,7 +18,8 @@ from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
+from wall_follower.nodes.common import (LatestScan, VelocityCommander, init_node, private_params,
+                                        wait_in_wall_time)
 from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.srv import FindWall
 
@@ -102,11 +102,16 @@ class WallFollowingNode(object):
         return True
 
     def _wait_for_recorder(self):
-        """Wait up to service_wait seconds of wall time, whatever the ROS clock does."""
-        deadline = time.monotonic() + self.node['service_wait']
-        while not rospy.is_shutdown() and time.monotonic() < deadline:
-            if self._recorder.wait_for_server(rospy.Duration(0.1)):
-                return True
+        """Wait up to service_wait seconds of wall time, whatever the ROS clock does.
+
+        actionlib's own time-out is counted in ROS time, which stands still
+        on simulated time until a /clock comes: that wait never ended.
+        """
+        if wait_in_wall_time(self._recorder.wait_for_server, self.node['service_wait']):
+            return True
+        if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
+            rospy.logerr('wall_following: /use_sim_time is set and no /clock has come; '
+                         'is the simulator running?')
         return False
 
     def _on_feedback(self, _goal, feedback):
