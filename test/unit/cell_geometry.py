@@ -1,11 +1,43 @@
 """Plain geometry on the simulator's grid: the yardsticks its Stage-like readings
-are measured against in the tests.
+and collisions are measured against in the tests.
 
-exact_ranges follows the exact ray, unlike Stage's cell walk.
+exact_ranges follows the exact ray, unlike Stage's cell walk; footprint_clearance
+measures how close the robot's body box comes to the occupied cells.
 """
 import math
 
 import numpy as np
+
+from wall_follower.sim.grid import footprint_collides, footprint_corners
+
+# Corners of a cell's square, in cells from its lower-left corner, in order round it.
+_SQUARE = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+
+
+def footprint_clearance(grid, spec, pose):
+    """Smallest distance [m] between the body box at `pose` and any occupied cell's square.
+
+    0 on contact or overlap; inf on a grid without occupied cells. Between two convex
+    polygons apart, the smallest distance is from a corner of one to an edge of the other.
+    """
+    if footprint_collides(grid, spec, pose):
+        return 0.0
+    rows, cols = np.nonzero(grid.occupied)
+    if not len(rows):
+        return float('inf')
+    corners = footprint_corners(spec, pose)[None]
+    squares = (np.stack([cols + grid.ix0, rows + grid.iy0], axis=1)[:, None, :] + _SQUARE) * \
+        grid.resolution
+    return float(min(_corner_to_edge(corners, squares), _corner_to_edge(squares, corners)))
+
+
+def _corner_to_edge(points, polygons):
+    """Smallest distance from any of `points` [..., P, 2] to an edge of `polygons` [..., E, 2]."""
+    start = polygons[..., None, :, :]
+    edge = np.roll(polygons, -1, axis=-2)[..., None, :, :] - start
+    offset = points[..., :, None, :] - start
+    along = np.clip((offset * edge).sum(axis=-1) / (edge * edge).sum(axis=-1), 0.0, 1.0)
+    return np.hypot(*np.moveaxis(offset - along[..., None] * edge, -1, 0)).min()
 
 
 def exact_ranges(grid, x, y, angles, range_max):
