@@ -63,7 +63,6 @@ def stage_ranges(grid, x, y, angles, range_max, height=None, robot_cells=(), oth
     A beam that hits nothing reads range_max exactly with intensity 0. Raises
     compiled_raytrace.LibraryMissing when the library is not built.
     """
-    compiled_raytrace.require()
     static = _static_layers(grid, height)
     visible, returns = static.visible, grid.ranger_return
     others = [c for c in other_cells if len(c[0])]
