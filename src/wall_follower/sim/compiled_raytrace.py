@@ -23,19 +23,18 @@ MISSING = ("the simulator's laser needs %s (built from src/stage_raytrace.c by c
 
 _INT = ctypes.c_int64
 _DOUBLE = ctypes.c_double
-_BYTES = ctypes.POINTER(ctypes.c_uint8)
-_DOUBLES = ctypes.POINTER(ctypes.c_double)
-_INTS = ctypes.POINTER(ctypes.c_int64)
+# A pointer field, set from a numpy array's address (cheaper per scan than a typed pointer).
+_ADDRESS = ctypes.c_void_p
 
 
 class LibraryMissing(RuntimeError):
     """The raytrace library is not where the dynamic loader looks; MISSING says how to build it."""
 
 
-def _pointer(array, dtype, pointer_type):
-    """`array` as the C-contiguous `dtype` array a field points into, and that pointer."""
+def _address(array, dtype):
+    """`array` as the C-contiguous `dtype` array a field points into, and its address."""
     array = np.ascontiguousarray(array, dtype=dtype)
-    return array, array.ctypes.data_as(pointer_type)
+    return array, array.ctypes.data
 
 
 class GridTables(ctypes.Structure):
@@ -47,16 +46,16 @@ class GridTables(ctypes.Structure):
     cell by cell. Outside them nothing is visible and no region populated.
     """
 
-    _fields_ = [('visible', _BYTES), ('returns', _DOUBLES),
+    _fields_ = [('visible', _ADDRESS), ('returns', _ADDRESS),
                 ('width', _INT), ('height', _INT), ('cx0', _INT), ('cy0', _INT),
-                ('populated', _BYTES),
+                ('populated', _ADDRESS),
                 ('region_cols', _INT), ('region_rows', _INT), ('rx0', _INT), ('ry0', _INT),
                 ('ppm', _DOUBLE)]
 
     def __init__(self, visible, returns, cell_origin, populated, region_origin, ppm):
-        visible, visible_pointer = _pointer(visible, np.uint8, _BYTES)
-        returns, returns_pointer = _pointer(returns, np.float64, _DOUBLES)
-        populated, populated_pointer = _pointer(populated, np.uint8, _BYTES)
+        visible, visible_pointer = _address(visible, np.uint8)
+        returns, returns_pointer = _address(returns, np.float64)
+        populated, populated_pointer = _address(populated, np.uint8)
         if returns.shape != visible.shape:
             raise ValueError('returns %s and visible %s differ in shape'
                              % (returns.shape, visible.shape))
@@ -78,22 +77,22 @@ class Beams(ctypes.Structure):
     """
 
     _fields_ = [('count', _INT),
-                ('cosa', _DOUBLES), ('sina', _DOUBLES), ('tana', _DOUBLES),
-                ('ax', _INTS), ('ay', _INTS),
+                ('cosa', _ADDRESS), ('sina', _ADDRESS), ('tana', _ADDRESS),
+                ('ax', _ADDRESS), ('ay', _ADDRESS),
                 ('range_max', _DOUBLE),
-                ('ranges', _DOUBLES), ('intensities', _DOUBLES)]
+                ('ranges', _ADDRESS), ('intensities', _ADDRESS)]
 
     def __init__(self, angles, range_max, ppm):
         angle = np.array(angles, dtype=np.float64)
         angle[angle == 0.0] = 1e-12
         reach = ppm * float(range_max)
-        cos, cos_pointer = _pointer(np.cos(angle), np.float64, _DOUBLES)
-        sin, sin_pointer = _pointer(np.sin(angle), np.float64, _DOUBLES)
-        tan, tan_pointer = _pointer(sin / cos, np.float64, _DOUBLES)
-        ax, ax_pointer = _pointer(np.abs(reach * cos).astype(np.int64), np.int64, _INTS)
-        ay, ay_pointer = _pointer(np.abs(reach * sin).astype(np.int64), np.int64, _INTS)
-        ranges, ranges_pointer = _pointer(np.empty(len(angle)), np.float64, _DOUBLES)
-        intensities, intensities_pointer = _pointer(np.empty(len(angle)), np.float64, _DOUBLES)
+        cos, cos_pointer = _address(np.cos(angle), np.float64)
+        sin, sin_pointer = _address(np.sin(angle), np.float64)
+        tan, tan_pointer = _address(sin / cos, np.float64)
+        ax, ax_pointer = _address(np.abs(reach * cos).astype(np.int64), np.int64)
+        ay, ay_pointer = _address(np.abs(reach * sin).astype(np.int64), np.int64)
+        ranges, ranges_pointer = _address(np.empty(len(angle)), np.float64)
+        intensities, intensities_pointer = _address(np.empty(len(angle)), np.float64)
         super(Beams, self).__init__(len(angle), cos_pointer, sin_pointer, tan_pointer,
                                     ax_pointer, ay_pointer, float(range_max),
                                     ranges_pointer, intensities_pointer)
