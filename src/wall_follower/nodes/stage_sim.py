@@ -342,6 +342,9 @@ def main(argv=None):
     except WorldFileError as error:
         sys.stderr.write('stage_sim: error: %s\n' % error)
         return 1
+    if not compiled_raytrace.available():
+        sys.stderr.write('stage_sim: error: %s\n' % compiled_raytrace.MISSING)
+        return 1
     try:
         return run_node(world, argv)
     except KeyboardInterrupt:   # Ctrl-C before our handler is in place
@@ -376,9 +379,6 @@ def run_node(world, argv):
                   world.resolution, world.interval_sim,
                   params['speedup'] if params['speedup'] > 0 else 'unlimited',
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
-    if not compiled_raytrace.available():
-        rospy.logwarn('%s; until then the laser is traced in numpy, over 20 times slower',
-                      compiled_raytrace.NOT_FOUND)
     if not node.running:
         rospy.loginfo('paused: call unpause_physics to start the world')
     if world.unknown_keywords:

@@ -70,12 +70,10 @@ class Simulation(object):
     world: a worldfile.World. laser_profile: one of laser_profiles.PROFILES.
     seed: for laser noise. poses: optional {robot index: (x, y, yaw)} start poses that
     replace the world file's. watchdog_timeout: seconds of sim time (stageros'
-    ~base_watchdog_timeout); 0 disables it. raytrace: the implementation of
-    raytrace.stage_ranges ('compiled', 'numpy', or None for the best one there is).
+    ~base_watchdog_timeout); 0 disables it.
     """
 
-    def __init__(self, world, laser_profile='stage', seed=0, poses=None, watchdog_timeout=0.2,
-                 raytrace=None):
+    def __init__(self, world, laser_profile='stage', seed=0, poses=None, watchdog_timeout=0.2):
         if laser_profile not in PROFILES:
             raise ValueError('unknown laser profile %r (known: %s)'
                              % (laser_profile, ', '.join(PROFILES)))
@@ -86,7 +84,6 @@ class Simulation(object):
         self._dt_us = int(round(world.interval_sim * 1e6))
         self._watchdog_us = int(round(watchdog_timeout * 1e6))
         self._seed = seed
-        self._raytrace = raytrace
         self.rng = np.random.RandomState(seed)
         self._time_us = 0
         poses = poses or {}
@@ -225,7 +222,7 @@ class Simulation(object):
                 others.append((xs, ys, _ROBOT_RANGER_RETURN))
         ranges, intensities = stage_ranges(self.grid, x, y, angles, ranger.range_max,
                                            height=ranger.sensor_height, robot_cells=own,
-                                           other_cells=others, implementation=self._raytrace)
+                                           other_cells=others)
         hit = ranges < ranger.range_max
         ranges, intensities = report(self.laser_profile, ranges, intensities, hit, ranger,
                                      self.rng)
