@@ -15,8 +15,7 @@ from scan_queries import min_range
 from wall_follower.control import follower
 from wall_follower.control.corner import CornerArc
 from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    Observation, WallFollower, as_planned, consensus_line,
-                                    unbiased)
+                                    Observation, WallFollower, as_planned, unbiased)
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
 from wall_follower.control.scan import ScanView
 
@@ -648,13 +647,6 @@ def test_look_ahead_moves_hits_against_the_motion():
 def test_range_bias_pulls_hits_in_along_their_beams():
     points = np.array([[0.3, 0.4], [0.0, -0.25]])
     assert unbiased(points, 0.05) == pytest.approx(np.array([[0.27, 0.36], [0.0, -0.2]]))
-
-
-def test_consensus_line_ignores_stray_hits_that_would_tilt_a_fit():
-    wall = np.array([[0.69, y] for y in np.linspace(0.05, 0.13, 7)])
-    stray = np.array([[0.82, 0.05]])
-    distance, angle = consensus_line(np.vstack((stray, wall)), 0.025, 6)
-    assert distance == pytest.approx(0.69) and angle == pytest.approx(0.0, abs=1e-9)
 
 
 # --- a small kinematic loop ------------------------------------------------------------

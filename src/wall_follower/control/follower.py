@@ -47,7 +47,8 @@ import numpy as np
 from wall_follower.control.corner import CornerArc, OuterTurn
 from wall_follower.control.left_turn import LeftTurn
 from wall_follower.control.motion import Command, seen_after_move
-from wall_follower.control.scan import RIGHT, fit_line, wrap_angle
+from wall_follower.control.lines import consensus_line, fit_line
+from wall_follower.control.scan import RIGHT, wrap_angle
 
 FOLLOW = 'FOLLOW'
 WALL_AHEAD = 'WALL_AHEAD'
@@ -219,32 +220,6 @@ def wall_through(seed, points, params):
     if residual > params.wall_max_residual or kept.mean() < params.wall_seed_support:
         return None
     return fit[0], float(wrap_angle(fit[1] - RIGHT))
-
-
-def consensus_line(points, tolerance, min_points, max_pairs_points=40):
-    """Line through points that the most of them lie near (within tolerance), or None.
-
-    Every line through two of the points is a candidate (of at most
-    max_pairs_points points spread evenly, to bound the work); the one with
-    the most points near it wins and is refitted through them. Unlike a
-    plain least-squares fit, a few stray hits (a beam grazing an obstacle's
-    side, the other leg of a corner) cannot tilt it.
-    """
-    if len(points) < max(2, min_points):
-        return None
-    step = max(1, int(math.ceil(len(points) / float(max_pairs_points))))
-    first, second = np.triu_indices(len(points[::step]), 1)
-    ends = points[::step]
-    along = ends[second] - ends[first]
-    length = np.hypot(along[:, 0], along[:, 1])
-    usable = length > 1e-9
-    normals = np.column_stack((-along[usable, 1], along[usable, 0])) / length[usable, None]
-    offsets = points.dot(normals.T) - np.sum(normals * ends[first][usable], axis=1)
-    near = np.abs(offsets) < tolerance
-    if not near.size:
-        return None
-    best = int(np.argmax(near.sum(axis=0)))
-    return fit_line(points[near[:, best]], min_points)
 
 
 def offsets_from(points, line):
