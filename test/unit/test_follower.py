@@ -14,10 +14,13 @@ from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, sc
 from scan_queries import min_range
 from wall_follower.control import follower
 from wall_follower.control.corner import CornerArc
-from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    Observation, WallFollower, as_planned, unbiased)
+from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
+                                            FollowerParams, WallFollower)
+from wall_follower.control.lines import Line
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
+from wall_follower.control.observation import Observation, unbiased
 from wall_follower.control.scan import ScanView
+from wall_follower.control.wall_fit import as_planned
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]
@@ -346,8 +349,8 @@ def test_a_wall_ahead_turned_onto_on_the_tight_arc_alone_is_not_approached_neare
 
 
 def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
-    assert as_planned((0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
-    distance, angle = as_planned((0.45, math.radians(120.0)))
+    assert as_planned(Line(0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
+    distance, angle = as_planned(Line(0.45, math.radians(120.0)))
     assert distance == pytest.approx(0.45 / math.sin(math.radians(120.0)))
     assert angle == pytest.approx(math.pi / 2)
     # So the turn starts where it would for a square wall at that crossing,
@@ -360,12 +363,12 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
 
 def test_heading_into_the_right_wall_a_wall_ahead_is_planned_square_to_it():
     into = math.radians(8.0)
-    distance, angle = as_planned((0.45, math.pi / 2 + into), (0.25, into))
+    distance, angle = as_planned(Line(0.45, math.pi / 2 + into), Line(0.25, into))
     assert angle == pytest.approx(math.pi / 2 + into)
     assert distance == pytest.approx(0.45)
     # Parallel to the right wall, or heading away from it, it is square to the way.
-    for wall in (None, (0.25, 0.0), (0.25, -into)):
-        assert as_planned((0.45, math.pi / 2 + into), wall) == pytest.approx(
+    for wall in (None, Line(0.25, 0.0), Line(0.25, -into)):
+        assert as_planned(Line(0.45, math.pi / 2 + into), wall) == pytest.approx(
             (0.45 / math.cos(into), math.pi / 2))
 
 
@@ -548,7 +551,7 @@ def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
     # the one the turn left behind, 60 degrees off: its end is not the
     # corner that came up, so the robot circles the nearest hit instead.
     seen = Observation.__new__(Observation)
-    seen.wall, seen.wall_end = (0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
+    seen.wall, seen.wall_end = Line(0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
     assert (WallFollower(EXACT)._corner_arc(seen) is not None) == pinned
 
 

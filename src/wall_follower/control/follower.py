@@ -42,13 +42,12 @@ laser_x ahead of it (on a Burger, 32 mm behind it).
 """
 import math
 
-import numpy as np
-
 from wall_follower.control.corner import CornerArc, OuterTurn
 from wall_follower.control.left_turn import LeftTurn
-from wall_follower.control.motion import Command, seen_after_move
-from wall_follower.control.lines import consensus_line, fit_line
+from wall_follower.control.motion import Command
+from wall_follower.control.observation import Observation
 from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.wall_fit import along_the_way, as_planned, from_centre, same_line
 
 FOLLOW = 'FOLLOW'
 WALL_AHEAD = 'WALL_AHEAD'
@@ -135,165 +134,6 @@ class FollowerParams(object):
     def defaults():
         """name -> default, e.g. for reading them as ROS private parameters."""
         return dict((name, default) for name, (default, _) in PARAMETERS.items())
-
-
-class Observation(object):
-    """What one scan tells the controller, measured once per update.
-
-    wall: (distance, angle) of the straight wall on the right, angle > 0
-    when the robot heads into it, or None. wall_end: (x, y) of that wall's
-    farthest hit ahead, and wall_ahead its x: how far ahead of the laser
-    the wall is still seen (-inf without a wall). right: every hit on the
-    right side. front: distance to the nearest hit in the
-    lane the robot is about to drive through. ahead: (distance, angle) of
-    the straight wall across that lane, angle measured like the right
-    wall's (pi/2 for a wall square ahead), or None. nearest: (distance,
-    bearing) of the closest hit on the right side, or None.
-    """
-
-    def __init__(self, view, params, motion=(0.0, 0.0)):
-        # A command takes effect a scan period or so after the scan it
-        # answers: judging the scan where the robot will be by then, under
-        # the command still running, keeps the loop from overshooting.
-        hits = seen_after_move(unbiased(view.points(), params.range_bias),
-                               motion[0] * params.latency, motion[1] * params.latency,
-                               params.laser_x)
-        off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
-        near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
-        sector = hits[(off_right <= math.radians(params.wall_sector_deg)) & near]
-        self.wall, self.wall_end = right_wall(sector, params)
-        self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
-        self.right = hits[off_right <= math.pi / 2]
-        front = hits[hits[:, 0] > 0.0]
-        lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
-        self.front = second_smallest(lane[:, 0])
-        self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
-        self.nearest = nearest_in(self.right)
-
-
-def unbiased(points, bias):
-    """Hits moved bias metres nearer the laser along their beams.
-
-    Stage raytraces in whole grid cells and so reads a wall long, by about
-    0.008 m on average at its default 0.02 m resolution; a laser that reads
-    true wants bias 0.
-    """
-    ranges = np.hypot(points[:, 0], points[:, 1])
-    scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)
-    return points * scale[:, None]
-
-
-def right_wall(points, params):
-    """((distance, angle), (x, y) of its farthest hit ahead) of the wall on the right, or None, None.
-
-    Seeded by the hits straight to the right only, so that the other leg of
-    a corner, or an obstacle, in the wider sector is not averaged into it.
-    """
-    bearings = np.arctan2(points[:, 1], points[:, 0])
-    seed = points[np.abs(bearings - RIGHT) <= math.radians(params.wall_seed_deg)]
-    wall = wall_through(seed, points, params)
-    if wall is None or wall[0] > params.wall_lost_distance:
-        return None, None
-    line = (wall[0], wall[1] + RIGHT)
-    inliers = points[np.abs(offsets_from(points, line)) < params.wall_inlier_distance]
-    return wall, inliers[np.argmax(inliers[:, 0])]
-
-
-def wall_through(seed, points, params):
-    """(distance, angle) of the straight wall through most of the seed hits, or None.
-
-    The line through most of the seed is refitted through every hit of
-    points that lies near it, and must then be straight (small residual)
-    and still pass through most of the seed. angle is that of the wall's
-    normal measured from the right: 0 for a wall parallel on the right,
-    > 0 when the robot heads into it.
-    """
-    first = consensus_line(seed, params.wall_inlier_distance, params.wall_min_points)
-    if first is None:
-        return None
-    inliers = points[np.abs(offsets_from(points, first)) < params.wall_inlier_distance]
-    fit = fit_line(inliers, params.wall_min_points)
-    if fit is None:
-        return None
-    residual = float(np.sqrt(np.mean(offsets_from(inliers, fit) ** 2)))
-    kept = np.abs(offsets_from(seed, fit)) < params.wall_inlier_distance
-    if residual > params.wall_max_residual or kept.mean() < params.wall_seed_support:
-        return None
-    return fit[0], float(wrap_angle(fit[1] - RIGHT))
-
-
-def offsets_from(points, line):
-    """Signed distances of points from line = (distance, normal angle)."""
-    distance, angle = line
-    return points.dot((math.cos(angle), math.sin(angle))) - distance
-
-
-def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
-    """True when two (distance, angle) walls are one and the same, within fit error."""
-    return (abs(float(wrap_angle(first[1] - second[1]))) < max_angle
-            and abs(first[0] - second[0]) < max_distance)
-
-
-def along_the_way(wall, max_angle_deg):
-    """True for a (distance, angle) wall within max_angle_deg of parallel; False for None."""
-    return wall is not None and abs(wall[1]) < math.radians(max_angle_deg)
-
-
-def from_centre(wall, laser_x):
-    """The (distance, angle) of a wall seen by the laser, as the rotation centre has it.
-
-    A turn is an arc of the rotation centre, so that is the distance it must
-    be planned by. Heading into a wall at angle, the centre is nearer it
-    than the laser by -laser_x * sin(angle): on a Burger (laser 32 mm
-    behind the centre) 32 mm when heading square at a wall ahead, nothing
-    once parallel. Angles past a right angle count as a right angle.
-    """
-    distance, angle = wall
-    return distance + laser_x * math.sin(min(angle, math.pi / 2)), angle
-
-
-def as_planned(ahead, wall=None):
-    """The (distance, angle) of a wall ahead that a left turn is planned for.
-
-    A wall ahead at more than a right angle is rare in rooms, but common in
-    the fit of a short wall's few hits, a box's side say, whose angle is
-    the uncertain part: the hits pin down where the wall crosses the way
-    ahead, while a tilted fit brings its foot (the perpendicular distance)
-    nearer, and would start the turn early. Such a wall counts as a square
-    wall where its line crosses the way: square to the way itself, or, when
-    the robot heads into the (distance, angle) wall on its right, square to
-    that wall. That is common while riding nearer before the turn, and
-    after an outer corner, whose arc hands over still turning right: the
-    turn then has those degrees more to go, and flown at its start, wide,
-    they carry the robot nearer the wall ahead (see LeftTurn.gap).
-    """
-    distance, angle = ahead
-    if angle <= math.pi / 2:
-        return distance, angle
-    into = max(0.0, wall[1]) if wall is not None else 0.0
-    return distance / max(math.sin(angle), 1e-6) * math.cos(into), math.pi / 2 + into
-
-
-def second_smallest(values):
-    """The second-smallest value (inf if fewer than two).
-
-    The second, not the first, so that one spurious beam does not count.
-    """
-    if values.size < 2:
-        return math.inf
-    return float(np.partition(values, 1)[1])
-
-
-def nearest_in(points):
-    """(distance, bearing) of the second-closest hit, or None.
-
-    The second, so that one spurious beam cannot pull the robot off.
-    """
-    if len(points) < 2:
-        return None
-    dist = np.hypot(points[:, 0], points[:, 1])
-    x, y = points[np.argpartition(dist, 1)[1]]
-    return float(math.hypot(x, y)), float(math.atan2(y, x))
 
 
 class WallFollower(object):
