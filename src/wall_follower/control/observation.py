@@ -5,7 +5,7 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.scan import RIGHT, wrap_angle
-from wall_follower.control.wall_fit import right_wall, wall_through
+from wall_follower.control.wall_fit import along_the_way, right_wall, wall_through
 
 
 class Observation(object):
@@ -40,6 +40,13 @@ class Observation(object):
         self.front = second_smallest(lane[:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
+
+    def rejoined(self, max_angle_deg, min_ahead):
+        """True when a corner is over: a straight wall on the right, nearly parallel.
+
+        Nearly: within max_angle_deg; and seen at least min_ahead ahead of the laser.
+        """
+        return along_the_way(self.wall, max_angle_deg) and self.wall_ahead > min_ahead
 
 
 def unbiased(points, bias):
