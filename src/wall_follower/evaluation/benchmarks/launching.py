@@ -22,6 +22,30 @@ def free_port():
     return port
 
 
+def launch_command(launch_file, args, port):
+    """roslaunch wall_follower launch_file args, on its own master at port."""
+    return (['roslaunch', '-p', str(port), 'wall_follower', launch_file]
+            + ['%s:=%s' % item for item in sorted(args.items())])
+
+
+def launch_and_wait(command, port, log, timeout):
+    """Runs a roslaunch command to its end, its output into the file log.
+
+    True when it ended by itself within timeout wall seconds; otherwise it
+    is interrupted (SIGINT, as Ctrl-C) and False is returned.
+    """
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+    process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
+                               start_new_session=True)
+    try:
+        process.wait(timeout=timeout)
+        return True
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGINT)
+        process.wait()
+        return False
+
+
 def run_launch(launch_file, args, timeout=600.0):
     """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
 
@@ -29,21 +53,13 @@ def run_launch(launch_file, args, timeout=600.0):
     roslaunch output is then kept, and its path printed on stderr.
     """
     port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
     fd, output = tempfile.mkstemp(suffix='.json')
     os.close(fd)
     os.unlink(output)
-    command = ['roslaunch', '-p', str(port), 'wall_follower', launch_file]
-    command += ['%s:=%s' % item for item in sorted(args.items())] + ['json:=' + output]
+    command = launch_command(launch_file, dict(args, json=output), port)
     with tempfile.NamedTemporaryFile('w', prefix='benchmark-', suffix='.log',
                                      delete=False) as log:
-        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=True)
-        try:
-            process.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGINT)
-            process.wait()
+        launch_and_wait(command, port, log, timeout)
     if not os.path.exists(output):
         sys.stderr.write('run failed: %s (roslaunch output: %s)\n' % (' '.join(command), log.name))
         return None
