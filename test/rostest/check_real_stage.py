@@ -12,7 +12,6 @@ stdout: a notice, not a silent skip.
 """
 import json
 import os
-import shutil
 import sys
 import tempfile
 import unittest
@@ -21,7 +20,8 @@ import rospkg
 import rospy
 import rostest
 
-from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
+                                                            launch_and_wait, launch_command)
 
 WORLD = 'room'
 # Wall seconds for the launch: real Stage runs at the world's pace (speedup
@@ -35,15 +35,6 @@ def stage_ros_installed():
     except rospkg.ResourceNotFound:
         return False
     return True
-
-
-def display_wrapper():
-    """The command prefix that gives Stage's window a display, or None if none can be had."""
-    if os.environ.get('DISPLAY'):
-        return []
-    if shutil.which('xvfb-run'):
-        return ['xvfb-run', '-a']
-    return None
 
 
 class RealStageCourse(unittest.TestCase):

@@ -10,6 +10,8 @@ import os
 import pytest
 import roslaunch.config
 
+from wall_follower.evaluation.benchmarks.follow import lap_args
+
 LAUNCH = os.path.join(os.path.dirname(__file__), '..', '..', 'launch')
 COURSE_NODES = {'wall_finder', 'odom_recorder', 'wall_following'}
 
@@ -67,3 +69,13 @@ def test_simulation_launch_hands_the_choice_to_stage_sim(simulator, gui):
     assert args[:2] == ['--simulator', simulator]
     assert ('-g' in args) == (gui == 'false')
     assert config.params['/use_sim_time'].value is True
+
+
+@pytest.mark.parametrize('simulator', ['builtin', 'stage'])
+def test_follow_benchmark_asks_main_launch_for_its_simulator(simulator):
+    """main.launch starts no simulator by itself: the benchmark must ask for one."""
+    args = lap_args(simulator, 'room', 'stage', 0)
+    config = load('main.launch', *['%s:=%s' % item for item in sorted(args.items())])
+    node, = simulators_of(config)
+    assert node.args.split()[:2] == ['--simulator', simulator]
+    assert ('-g' in node.args.split()) == (simulator == 'builtin')

@@ -5,6 +5,7 @@ a roscore already running on the machine is left alone.
 """
 import json
 import os
+import shutil
 import signal
 import socket
 import subprocess
@@ -20,6 +21,16 @@ def free_port():
     port = sock.getsockname()[1]
     sock.close()
     return port
+
+
+def display_wrapper():
+    """The command prefix that gives real Stage's window a display: none when
+    there is one, `xvfb-run -a` when there is not; None when neither can be had."""
+    if os.environ.get('DISPLAY'):
+        return []
+    if shutil.which('xvfb-run'):
+        return ['xvfb-run', '-a']
+    return None
 
 
 def launch_command(launch_file, args, port):
@@ -46,9 +57,10 @@ def launch_and_wait(command, port, log, timeout):
         return False
 
 
-def run_launch(launch_file, args, timeout=600.0):
+def run_launch(launch_file, args, timeout=600.0, wrapper=()):
     """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
 
+    wrapper: a command prefix (display_wrapper() for real Stage's window).
     None means the run wrote nothing: it failed or ran out of time; its
     roslaunch output is then kept, and its path printed on stderr.
     """
@@ -56,7 +68,7 @@ def run_launch(launch_file, args, timeout=600.0):
     fd, output = tempfile.mkstemp(suffix='.json')
     os.close(fd)
     os.unlink(output)
-    command = launch_command(launch_file, dict(args, json=output), port)
+    command = list(wrapper) + launch_command(launch_file, dict(args, json=output), port)
     with tempfile.NamedTemporaryFile('w', prefix='benchmark-', suffix='.log',
                                      delete=False) as log:
         launch_and_wait(command, port, log, timeout)
