@@ -38,21 +38,22 @@ RESULT_GRACE = 3.0
 FOLLOWER_START_LIMIT = 20.0
 
 
-def no_lap_reason(monitor, follower):
+def no_lap_reason(monitor, follower, alive=node_alive, clock=time.monotonic,
+                  poll=FOLLOWER_POLL):
     """Wait for record_odom's result; None once it came, else why no lap can come.
 
-    Polls the follower: once it has been gone for RESULT_GRACE with no
-    result (or never appeared within FOLLOWER_START_LIMIT), nothing will
-    drive the lap any more.
+    Polls the follower (alive(name), every poll wall seconds): once it has
+    been gone for RESULT_GRACE with no result (or never appeared within
+    FOLLOWER_START_LIMIT), nothing will drive the lap any more.
     """
-    started = time.monotonic()
+    started = clock()
     seen = False
     gone_since = None
     while not monitor.done.is_set():
         if rospy.is_shutdown():
             return 'shut down before the lap was recorded'
-        now = time.monotonic()
-        if node_alive(follower):
+        now = clock()
+        if alive(follower):
             seen, gone_since = True, None
         elif not seen:
             if now - started > FOLLOWER_START_LIMIT:
@@ -67,7 +68,7 @@ def no_lap_reason(monitor, follower):
                         % follower)
             return ('the follower %s ended during the lap (see its log above); no lap can come'
                     % follower)
-        monitor.done.wait(FOLLOWER_POLL)
+        monitor.done.wait(poll)
     return None
 
 
