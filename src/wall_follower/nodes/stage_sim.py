@@ -325,8 +325,9 @@ def exec_stageros(path, argv, world):
     """Replaces this process by stageros, with its window, and the same remappings."""
     remaps = [arg for arg in argv[1:] if ':=' in arg]
     args = [path, world] + remaps
-    print('stage_sim: running real Stage: %s' % ' '.join(args))
+    sys.stderr.write('stage_sim: running real Stage: %s\n' % ' '.join(args))
     sys.stdout.flush()
+    sys.stderr.flush()
     os.execv(path, args)
 
 
@@ -339,7 +340,8 @@ def main(argv=None):
         sys.stderr.write('stage_sim: error: %s\n' % choice.error)
         return 1
     if choice.note:
-        print('stage_sim: %s' % choice.note)
+        # On stderr, which roslaunch shows even for a node whose output is a log file.
+        sys.stderr.write('stage_sim: %s\n' % choice.note)
     if choice.simulator == STAGE:
         exec_stageros(stageros, argv, args.world)
     try:
