@@ -67,8 +67,8 @@ from std_srvs.srv import Empty, EmptyResponse
 from wall_follower.nodes.common import private_params, yaw_of
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
-from wall_follower.sim.simulator_choice import SIMULATORS, STAGE, choose_simulator
 from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choose_simulator
 from wall_follower.sim.worldfile import WorldFileError, load_world
 from wall_follower.sim.stage_interface import parse_pose, quit_report, robot_prefix
 from wall_follower.sim.step_pacer import StepPacer
@@ -304,7 +304,7 @@ def parse_args(argv):
         prog='stage_sim', description='Stage-compatible simulator with the stageros interface.')
     parser.add_argument('-g', dest='headless', action='store_true',
                         help='headless, as stageros -g (this simulator has no window anyway)')
-    parser.add_argument('--simulator', choices=SIMULATORS, default='builtin',
+    parser.add_argument('--simulator', choices=SIMULATORS, default=BUILTIN,
                         help='builtin: this simulator; stage: real stageros (needs stage_ros and '
                         'no -g); auto: real stageros when stage_ros is installed and -g is not '
                         'given, else this simulator')
@@ -334,7 +334,7 @@ def exec_stageros(path, argv, world):
 def main(argv=None):
     argv = list(sys.argv if argv is None else argv)
     args = parse_args(rospy.myargv(argv)[1:])
-    stageros = find_stageros() if args.simulator != 'builtin' else None
+    stageros = find_stageros() if args.simulator != BUILTIN else None
     choice = choose_simulator(args.simulator, not args.headless, stageros is not None)
     if choice.error:
         sys.stderr.write('stage_sim: error: %s\n' % choice.error)
