@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """rostest: `main.launch sim:=true report:=true` ends when find_wall fails.
 
-The robot stands in a hall with no wall in laser range (no_wall.world):
-find_wall answers false, the follower ends, and no lap can ever come. The
+The robot stands where no wall is in laser range (open_field.world, as in
+fault_no_wall.test): find_wall answers false, the follower ends, and no lap can ever come. The
 report must then say so and end (it is the launch's required node, so the
 whole launch ends) within a bound, with a non-zero status and no plot,
 instead of waiting for ever. The launch runs on a master of its own, as a
@@ -19,7 +19,7 @@ import rostest
 
 from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
 
-WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'no_wall.world')
+WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'open_field.world')
 # Wall seconds for the whole launch: start-up, find_wall's answer, and the
 # report's start limit for a follower it never saw (20 s) with room to spare.
 BOUND = 60.0
