@@ -2,10 +2,10 @@
 """rostest: `main.launch sim:=true report:=true` ends when find_wall fails.
 
 The robot stands where no wall is in laser range (open_field.world, as in
-fault_no_wall.test): find_wall answers false, the follower ends, and no lap can ever come. The
-report must then say so and end (it is the launch's required node, so the
-whole launch ends) within a bound, with a non-zero status and no plot,
-instead of waiting for ever. The launch runs on a master of its own, as a
+fault_no_wall.test): find_wall answers false, the follower ends, and no lap
+can ever come. The report must then say so and end (it is the launch's
+required node, so the whole launch ends) within a bound, with a non-zero
+status and no plot, instead of waiting for ever. The launch runs on a master of its own, as a
 user would start it; this test's own master is not used.
 """
 import os
