@@ -96,7 +96,7 @@ def test_without_the_library_a_scan_says_how_to_build_it():
 
 def test_without_the_library_the_node_exits_with_an_error_not_a_traceback():
     run = subprocess.run([sys.executable, os.path.join(REPO, 'scripts', 'stage_sim'),
-                          '--simulator', 'builtin', WORLDS[0]],
+                          '--simulator', 'builtin', '-g', WORLDS[0]],
                          env=_without_the_library(), stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
     assert run.returncode == 1
