@@ -14,6 +14,7 @@ import rospy
 from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
 from wall_follower.control.finder import WallFinder
 from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.srv import FindWall, FindWallResponse
 
 NODE_DEFAULTS = {
@@ -35,17 +36,12 @@ scan_timeout: a call answers false when no scan younger than this (ROS s)
     is available this long after it started, or at any point later on.
 """
 
-# The TurtleBot3 Burger (and every world of this package) has its laser
-# 32 mm behind the wheel axle; the finder's own default assumes none.
-ROBOT_DEFAULTS = {'laser_x': -0.032}
-
 
 class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
         defaults = dict(FINDER_DEFAULTS)
-        defaults.update(ROBOT_DEFAULTS)
         defaults.update(NODE_DEFAULTS)
         params = private_params(defaults)
         self.rate = params.pop('rate')
@@ -53,6 +49,7 @@ class WallFinderNode(object):
         self.timeout = params.pop('timeout')
         self.scan_timeout = params.pop('scan_timeout')
         self.finder_params = params
+        self.finder_params['laser_x'] = laser_x()
         self.commander = VelocityCommander('cmd_vel')
         # The behaviour never asks for more than the node will send.
         self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)

@@ -23,6 +23,7 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.srv import FindWall
 
 NODE_DEFAULTS = {
@@ -55,6 +56,7 @@ class WallFollowingNode(object):
     def __init__(self):
         params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
         self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
+        params['laser_x'] = laser_x()
         self.controller = WallFollower(FollowerParams(**params))
         self.commander = VelocityCommander('cmd_vel')
         self.scan = LatestScan('scan')
