@@ -11,6 +11,7 @@ import unittest
 
 import rospy
 import rostest
+from drive_guard import DriveGuard
 from rosgraph_msgs.msg import Log
 
 from wall_follower.nodes.common import world_path
@@ -31,6 +32,7 @@ class WaffleMount(unittest.TestCase):
         cls.lock = threading.Lock()
         cls.logs = []
         cls.rosout = rospy.Subscriber('/rosout', Log, cls._on_log, queue_size=100)
+        cls.guard = DriveGuard()
         cls.monitor = CourseMonitor(CourseMap(world_path(rospy.get_param('~world'))),
                                     start_on_goal=True)
         assert cls.monitor.start_world(CONNECT_LIMIT), 'the monitor could not connect'
@@ -49,12 +51,13 @@ class WaffleMount(unittest.TestCase):
                                 '%s did not log "%s": %s' % (node, TAKEN, said))
                 self.assertFalse(any('Burger' in text for text in said), said)
 
-    def test_the_chain_laps_without_contact(self):
+    def test_the_chain_laps_within_the_limits_without_contact(self):
         score = self.monitor.summary()
         rospy.loginfo('waffle: %s', score)
         self.assertTrue(score['lap_closed'])
         self.assertFalse(score['contact'], 'touched a wall (clearance %.3f m)'
                          % score['min_clearance'])
+        self.guard.assert_safe(self)
 
 
 if __name__ == '__main__':
