@@ -8,7 +8,9 @@ it: 32 mm behind it on a Burger, 64 mm on a Waffle. The real TurtleBot3
 transform between the scan's own frame and base_link, and a Waffle works
 with nothing set. The first scan names the frame; both waits are in wall
 time, so a paused or frozen simulated clock cannot stall them. With no
-scan or no transform in time, the Burger's value is used, with a warning.
+scan or no transform in time, the Burger's value is used, with a warning;
+so a node fed scans but no tf (a test's synthetic scans) is given ~laser_x,
+lest it wait for a transform that never comes.
 """
 import math
 import time
