@@ -26,7 +26,7 @@ Private parameters:
   ~late_command_share (0.5) at a held speedup, a step waits at most this share of
                           its period for a moving robot's next cmd_vel; the steady
                           schedule makes up the delay on the next steps
-  ~laser_profile (stage)  scan convention: stage, lds01 or gazebo
+  ~laser_profile (stage)  scan convention: stage, lds01, lds02, gazebo or course720
   ~seed (0)               seed of the laser noise
   ~pose ('')              'x y yaw_deg' start pose of the first robot instead of the
                           world file's; reset_positions returns there

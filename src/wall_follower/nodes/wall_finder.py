@@ -15,6 +15,7 @@ from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
 from wall_follower.control.finder import WallFinder
 from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
 from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.srv import FindWall, FindWallResponse
 
 NODE_DEFAULTS = {
@@ -39,17 +40,12 @@ ahead_half_width: never drive forward while no beam within this angle (rad)
     either side of straight ahead reads a hit or a proven no-return.
 """
 
-# The TurtleBot3 Burger (and every world of this package) has its laser
-# 32 mm behind the wheel axle; the finder's own default assumes none.
-ROBOT_DEFAULTS = {'laser_x': -0.032}
-
 
 class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
         defaults = dict(FINDER_DEFAULTS)
-        defaults.update(ROBOT_DEFAULTS)
         defaults.update(NODE_DEFAULTS)
         params = private_params(defaults)
         self.rate = params.pop('rate')
@@ -58,6 +54,7 @@ class WallFinderNode(object):
         self.scan_timeout = params.pop('scan_timeout')
         self.ahead_half_width = params.pop('ahead_half_width')
         self.finder_params = params
+        self.finder_params['laser_x'] = laser_x()
         self.commander = VelocityCommander('cmd_vel')
         # The behaviour never asks for more than the node will send.
         self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)

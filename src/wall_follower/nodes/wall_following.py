@@ -20,6 +20,7 @@ from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import (LatestScan, VelocityCommander, init_node, private_params,
                                         wait_in_wall_time)
 from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.srv import FindWall
 
 NODE_DEFAULTS = {
@@ -59,6 +60,7 @@ class WallFollowingNode(object):
     def __init__(self):
         params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
         self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
+        params['laser_x'] = laser_x()
         self.controller = WallFollower(FollowerParams(**params))
         self._state = None
         self.loop = DriveLoop('wall_following', LatestScan('scan'), VelocityCommander('cmd_vel'),

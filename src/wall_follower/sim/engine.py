@@ -27,7 +27,7 @@ import numpy as np
 from .grid import OccupancyGrid, footprint_cells, footprint_collides, footprint_corners, \
     footprints_overlap
 from .kinematics import clamp_velocity, diff_drive_step, normalize_angle
-from .laser_profiles import PROFILES, angle_noise, beam_layout, report
+from .laser_profiles import PROFILES, angle_noise, beam_layout, reach, report
 from .raytrace import stage_beam_angles, stage_ranges
 
 __all__ = ['Simulation', 'Frame', 'RobotFrame', 'Scan', 'Odometry', 'LaserMount', 'RobotState']
@@ -208,7 +208,8 @@ class Simulation(object):
         if ranger is None:
             return None
         x, y, ranger_yaw = self._ranger_origin(index)
-        layout = beam_layout(self.laser_profile, ranger)
+        layout = beam_layout(self.laser_profile, ranger, self.rng)
+        limits = reach(self.laser_profile, ranger)
         # Stage sweeps from the normalised first-beam angle in float32 steps.
         first = normalize_angle(ranger_yaw + (ranger.sensor_pose[3] + layout.angle_min))
         angles = stage_beam_angles(first, layout.angle_increment, layout.count)
@@ -220,14 +221,15 @@ class Simulation(object):
             if other_index != index:
                 xs, ys = footprint_cells(other.spec, other.pose, self.grid.ppm)
                 others.append((xs, ys, _ROBOT_RANGER_RETURN))
-        ranges, intensities = stage_ranges(self.grid, x, y, angles, ranger.range_max,
+        ranges, intensities = stage_ranges(self.grid, x, y, angles, limits.max,
                                            height=ranger.sensor_height, robot_cells=own,
                                            other_cells=others)
-        hit = ranges < ranger.range_max
+        hit = ranges < limits.max
         ranges, intensities = report(self.laser_profile, ranges, intensities, hit, ranger,
                                      self.rng)
         return Scan(layout.angle_min, layout.angle_max, layout.angle_increment,
-                    ranger.range_min, ranger.range_max, ranges, intensities, self.laser_profile)
+                    limits.published_min, limits.published_max, ranges, intensities,
+                    self.laser_profile)
 
 
 def laser_mount(spec):

@@ -3,10 +3,10 @@
 Runs main.launch without find_wall, in lockstep simulated time, and reads
 the ground-truth figures written by course_report. The stage profile is
 noise-free and gives the same lap every time, so it runs once. A noisy
-profile (lds01) gives a different lap for every noise seed, and a lap of
-it has been seen to differ between runs at one seed, so one lap is a
-sample, not a figure: its row is the mean over --seeds laps (seeds 0, 1,
-...), with the worst lap's ratio beside it.
+profile (lds01, lds02, gazebo, course720) gives a different lap for every
+noise seed, and a lap of it has been seen to differ between runs at one
+seed, so one lap is a sample, not a figure: its row is the mean over
+--seeds laps (seeds 0, 1, ...), with the worst lap's ratio beside it.
 
 --simulator stage runs the same laps on real stageros (stage_ros installed),
 with its window (under xvfb-run without a display), at the world's pace and
@@ -18,7 +18,7 @@ import sys
 from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
                                                             print_table, run_launch)
 
-PROFILES = ('stage', 'lds01')
+PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
 MEANS = ('time_in_band', 'rms_error', 'lap_time', 'path_length', 'lap_time_ratio')
 
