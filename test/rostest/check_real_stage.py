@@ -21,7 +21,7 @@ import rospy
 import rostest
 
 from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
-                                                            launch_and_wait, launch_command)
+                                                           launch_and_wait, launch_command)
 
 WORLD = 'room'
 # Wall seconds for the launch: real Stage runs at the world's pace (speedup

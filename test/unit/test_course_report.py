@@ -63,4 +63,3 @@ def test_the_result_gets_a_grace_after_the_follower_ends():
             monitor.done.set()
         return poll == 0
     assert reason(monitor, alive) is None
-

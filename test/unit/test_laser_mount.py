@@ -54,7 +54,7 @@ def test_no_transform_falls_back_to_the_burger_and_says_why():
 
 
 @pytest.mark.parametrize('frame, why', [(None, 'no scan came'),
-                                         ('', 'the scan has no frame_id')])
+                                        ('', 'the scan has no frame_id')])
 def test_no_scan_or_no_frame_falls_back_to_the_burger(frame, why):
     value, warning = choose_laser_x(None, frame)
     assert value == BURGER_LASER_X

@@ -118,5 +118,5 @@ def report(profile, ranges, intensities, hit, ranger, rng):
 
 def angle_noise(ranger, layout, rng):
     """Stage's per-beam angle jitter (the world's `noise` angle term), in radians."""
-    return layout.angle_increment * ranger.noise[2] * (rng.randint(0, 1000, layout.count) * 0.002
-                                                      - 1.0) * 0.5
+    spread = rng.randint(0, 1000, layout.count) * 0.002 - 1.0
+    return layout.angle_increment * ranger.noise[2] * spread * 0.5

@@ -16,7 +16,7 @@ import argparse
 import sys
 
 from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
-                                                            print_table, run_launch)
+                                                           print_table, run_launch)
 
 PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
@@ -89,7 +89,8 @@ def main(argv=None):
                          fmt(f.get('max_linear'), '.3f'),
                          fmt(f.get('max_angular'), '.3f')])
     print_table(['world', 'simulator', 'laser', 'laps', 'in band %', 'RMS cm', 'min clearance m',
-                 'contact', 'lap s', 'path m', 'lap / (path/0.19)', 'worst lap', 'max v', 'max w'], rows)
+                 'contact', 'lap s', 'path m', 'lap / (path/0.19)', 'worst lap', 'max v',
+                 'max w'], rows)
     print('\nmeans over the laps, but min clearance, contact, worst lap and max v, w '
           'over all of them')
     print('goals: in band >= 97 %, RMS <= 2 cm, lap ratio <= 1.2, no contact, '

@@ -91,7 +91,9 @@ def fmt(value, spec):
 
 def print_table(header, rows):
     widths = [max(len(str(cell)) for cell in column) for column in zip(header, *rows)]
-    line = lambda cells: '| ' + ' | '.join(str(c).ljust(w) for c, w in zip(cells, widths)) + ' |'
+
+    def line(cells):
+        return '| ' + ' | '.join(str(c).ljust(w) for c, w in zip(cells, widths)) + ' |'
     print(line(header))
     print('|' + '|'.join('-' * (w + 2) for w in widths) + '|')
     for row in rows:
