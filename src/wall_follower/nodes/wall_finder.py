@@ -13,7 +13,7 @@ import rospy
 
 from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
 from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.srv import FindWall, FindWallResponse
 
@@ -138,6 +138,6 @@ def _describe(finder):
 
 
 def main():
-    rospy.init_node('wall_finder')
+    init_node('wall_finder')
     WallFinderNode()
     rospy.spin()

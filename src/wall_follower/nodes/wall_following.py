@@ -19,7 +19,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
 from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.srv import FindWall
 
@@ -154,7 +154,7 @@ class WallFollowingNode(object):
 
 
 def main():
-    rospy.init_node('wall_following')
+    init_node('wall_following')
     node = WallFollowingNode()
     try:
         if node.node['find_wall'] and not node.find_wall():
