@@ -17,9 +17,11 @@ import unittest
 
 import rospy
 import rostest
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
 
-from motion_guard import MotionGuard
+from drive_guard import DriveGuard
 from paused_world import start_world
 from waiting import wait_until
 from wall_follower.evaluation.geometry import cast_rays
@@ -37,11 +39,13 @@ CELL = 0.02           # the simulator's grid
 class ForwardStopRun(unittest.TestCase):
 
     def setUp(self):
-        self.guard = MotionGuard()
+        self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
         truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
-        self.assertTrue(start_world([truth] + self.guard.subscribers),
+        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
+                     rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.assertTrue(start_world(listening),
                         'the simulator or the node never connected')
 
     def _on_truth(self, msg):
@@ -75,7 +79,7 @@ class ForwardStopRun(unittest.TestCase):
         self.assertGreaterEqual(ahead, stop_distance - 0.19 * SCAN_PERIOD - 2 * CELL)
         self.assertLess(ahead, stop_distance + 0.19 * SCAN_PERIOD + CELL,
                         'stood %.2f m from the wall: not stopped by it' % ahead)
-        self.assertEqual(self.guard.problems(), [])
+        self.guard.assert_safe(self)
 
 
 def moving_stretches(truth):

@@ -15,9 +15,11 @@ import unittest
 
 import rospy
 import rostest
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
 
-from motion_guard import MotionGuard
+from drive_guard import DriveGuard
 from paused_world import start_world
 from waiting import wait_until
 from wall_follower.control.scan import wrap_angle
@@ -33,11 +35,13 @@ SETTLE = 2.0          # simulated s standing after the last corner
 class Square(unittest.TestCase):
 
     def setUp(self):
-        self.guard = MotionGuard()
+        self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
         truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
-        self.assertTrue(start_world([truth] + self.guard.subscribers),
+        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
+                     rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.assertTrue(start_world(listening),
                         'the simulator or the node never connected')
 
     def _on_truth(self, msg):
@@ -85,7 +89,7 @@ class Square(unittest.TestCase):
         heading_error = abs(float(wrap_angle(truth[-1][3] - yaw0)))
         self.assertLess(heading_error, heading_tolerance,
                         'final heading %.2f deg off the start' % math.degrees(heading_error))
-        self.assertEqual(self.guard.problems(), [])
+        self.guard.assert_safe(self)
 
 
 def pivots(truth):

@@ -11,12 +11,15 @@ status, and the motion guard (limits, no contact).
 import os
 import subprocess
 import sys
+import threading
 import unittest
 
 import rospy
 import rostest
+from geometry_msgs.msg import Twist
+from std_msgs.msg import Bool
 
-from motion_guard import MotionGuard
+from drive_guard import DriveGuard
 from paused_world import start_world
 from waiting import wait_until
 
@@ -27,11 +30,19 @@ EXACT = 1e-6
 class TeleopKey(unittest.TestCase):
 
     def setUp(self):
-        self.guard = MotionGuard()
+        self.guard = DriveGuard()
+        self.lock = threading.Lock()
+        self.sent = []
+        listening = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
+                     rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.node = subprocess.Popen(['rosrun', 'wall_follower', 'teleop_key'],
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, env=dict(os.environ))
-        self.assertTrue(start_world(self.guard.subscribers), 'teleop_key never connected')
+        self.assertTrue(start_world(listening), 'teleop_key never connected')
+
+    def _on_command(self, msg):
+        with self.lock:
+            self.sent.append((msg.linear.x, msg.angular.z))
 
     def tearDown(self):
         if self.node.poll() is None:
@@ -43,8 +54,8 @@ class TeleopKey(unittest.TestCase):
         self.node.stdin.flush()
 
     def commands(self):
-        with self.guard.lock:
-            return list(self.guard.commands)
+        with self.lock:
+            return list(self.sent)
 
     def wait_for(self, condition, what, after=0, then=3):
         """The index of the first command from index after on that meets condition,
@@ -98,7 +109,7 @@ class TeleopKey(unittest.TestCase):
         self.assertIn('target: linear 0.00 m/s, angular 0.00 rad/s', output)
         self.assertNotIn('0.20 m/s', output)
         self.assertNotIn('0.50 rad/s', output)
-        self.assertEqual(self.guard.problems(), [])
+        self.guard.assert_safe(self)
 
 
 if __name__ == '__main__':

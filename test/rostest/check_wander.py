@@ -15,9 +15,11 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
 
-from motion_guard import MotionGuard
+from drive_guard import DriveGuard
 from paused_world import start_world
 from waiting import wait_until
 from wall_follower.evaluation.coverage import visited_share
@@ -30,11 +32,13 @@ QUEUE = 100000
 class Wander(unittest.TestCase):
 
     def setUp(self):
-        self.guard = MotionGuard()
+        self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
         truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
-        self.assertTrue(start_world([truth] + self.guard.subscribers),
+        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
+                     rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.assertTrue(start_world(listening),
                         'the simulator or the node never connected')
 
     def _on_truth(self, msg):
@@ -58,14 +62,13 @@ class Wander(unittest.TestCase):
         share = visited_share(course, poses)
         figures = {'world': world, 'duration': truth[-1][0] - truth[0][0], 'path_length': path,
                    'visited_share': share, 'min_clearance': clearance,
-                   'max_linear': max(abs(c[0]) for c in self.guard.commands),
-                   'max_angular': max(abs(c[1]) for c in self.guard.commands),
-                   'contact': bool(self.guard.stalls) or clearance <= 0.0}
+                   'max_linear': self.guard.max_linear, 'max_angular': self.guard.max_angular,
+                   'contact': self.guard.touched_at is not None or clearance <= 0.0}
         rospy.loginfo('wander %s: %s', world, figures)
         if rospy.get_param('~json', ''):
             with open(rospy.get_param('~json'), 'w') as out:
                 json.dump(figures, out)
-        self.assertEqual(self.guard.problems(), [])
+        self.guard.assert_safe(self)
         self.assertGreater(clearance, 0.0, 'touched an obstacle')
         self.assertGreater(path, min_path, 'drove only %.1f m' % path)
 

@@ -13,7 +13,12 @@ from waiting import wait_until
 
 
 def start_world(subscribers, limit=30.0):
-    """Unpause the simulator once every subscriber has a publisher; False if that never came."""
+    """Unpause the simulator once every subscriber has a publisher; False if that never came.
+
+    rospy shares one connection per topic among a process's subscribers, so
+    a subscriber passed here stands for every other one on its topic (the
+    drive guard's among them).
+    """
     if not wait_until(lambda: all(sub.get_num_connections() > 0 for sub in subscribers), limit):
         return False
     started = time.monotonic()

@@ -11,7 +11,7 @@ import rospy
 from wall_follower.exercises.forward_stop import BLOCKED
 from wall_follower.exercises.forward_stop import DEFAULTS as BEHAVIOUR_DEFAULTS
 from wall_follower.exercises.forward_stop import ForwardStop, nearest_ahead
-from wall_follower.nodes.common import private_params
+from wall_follower.nodes.common import init_node, private_params
 from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
                                                split_params)
 
@@ -51,5 +51,5 @@ class ForwardStopNode(object):
 
 
 def main():
-    rospy.init_node('forward_stop')
+    init_node('forward_stop')
     return ForwardStopNode().run()

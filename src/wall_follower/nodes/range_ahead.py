@@ -10,7 +10,7 @@ import math
 import rospy
 
 from wall_follower.exercises.range_ahead import describe, range_ahead
-from wall_follower.nodes.common import LatestScan, private_params
+from wall_follower.nodes.common import LatestScan, init_node, private_params
 
 NODE_DEFAULTS = {
     'half_width': math.radians(3.0),
@@ -27,7 +27,7 @@ WAIT = 0.1   # wall s between looks at the clock while no scan comes
 
 
 def main():
-    rospy.init_node('range_ahead')
+    init_node('range_ahead')
     params = private_params(NODE_DEFAULTS)
     scan = LatestScan('scan')
     seen, printed, warned = None, -math.inf, rospy.get_time()

@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 from wall_follower.control.motion import STOP
 from wall_follower.exercises.move_square import DEFAULTS as SQUARE_DEFAULTS
 from wall_follower.exercises.move_square import SquareDriver
-from wall_follower.nodes.common import pose_of, private_params
+from wall_follower.nodes.common import init_node, pose_of, private_params
 from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
                                                split_params)
 
@@ -120,5 +120,5 @@ class SimpleMoveSquareNode(object):
 
 
 def main():
-    rospy.init_node('simple_move_square')
+    init_node('simple_move_square')
     return SimpleMoveSquareNode().run()

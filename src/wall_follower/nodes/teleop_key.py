@@ -19,7 +19,7 @@ import threading
 import rospy
 
 from wall_follower.exercises.teleop import ANGULAR_STEP, LINEAR_STEP, USAGE, Teleop
-from wall_follower.nodes.common import private_params
+from wall_follower.nodes.common import init_node, private_params
 from wall_follower.nodes.exercise_loop import LOOP_DEFAULTS, drive_loop, split_params
 
 NODE_DEFAULTS = dict(LOOP_DEFAULTS, tick=0.1, linear_step=LINEAR_STEP,
@@ -110,5 +110,5 @@ def say(text):
 
 
 def main():
-    rospy.init_node('teleop_key')
+    init_node('teleop_key')
     return TeleopKeyNode().run()

@@ -10,7 +10,7 @@ import rospy
 
 from wall_follower.exercises.wander import DEFAULTS as BEHAVIOUR_DEFAULTS
 from wall_follower.exercises.wander import TURN, Wanderer, nearest_in_cone
-from wall_follower.nodes.common import private_params
+from wall_follower.nodes.common import init_node, private_params
 from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
                                                split_params)
 
@@ -49,5 +49,5 @@ class WanderNode(object):
 
 
 def main():
-    rospy.init_node('wander')
+    init_node('wander')
     return WanderNode().run()
