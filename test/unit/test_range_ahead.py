@@ -42,7 +42,7 @@ def test_open_space_beyond_range_says_there_is_no_valid_reading(convention):
     ahead = range_ahead(scan_view(far, (0.0, 0.0, 0.0), convention))
     assert ahead.distance is None
     text = describe(ahead, DEFAULT_HALF_WIDTH, convention.range_max)
-    assert 'no valid reading within 3 deg of straight ahead' in text
+    assert 'no valid reading within 5 deg of straight ahead' in text
     if convention.no_return == 0.0:
         assert 'prove nothing' in text
     else:

@@ -13,7 +13,7 @@ from collections import namedtuple
 
 import numpy as np
 
-DEFAULT_HALF_WIDTH = math.radians(3.0)
+DEFAULT_HALF_WIDTH = math.radians(5.0)
 
 Ahead = namedtuple('Ahead', ['distance', 'hits', 'free', 'unknown'])
 """distance: median valid range in the window [m], None without one; hits,

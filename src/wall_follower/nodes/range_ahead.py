@@ -13,7 +13,7 @@ from wall_follower.exercises.range_ahead import describe, range_ahead
 from wall_follower.nodes.common import LatestScan, init_node, private_params
 
 NODE_DEFAULTS = {
-    'half_width': math.radians(3.0),
+    'half_width': math.radians(5.0),
     'period': 0.5,
     'scan_timeout': 1.0,
 }
