@@ -6,7 +6,10 @@ test types keys into it and checks what comes out on cmd_vel: the ramp of
 half a step per tick toward the target, the clamp at ~max_linear and
 ~max_angular, the stop at once on s, and a zero Twist when Ctrl-C's byte
 quits it while the robot is moving. Also: the targets it prints, its exit
-status, and the motion guard (limits, no contact).
+status, and the drive guard (limits, no contact). The ramp is checked on
+the ROS time each command is heard at, one tick (0.1 s) per half step
+within RAMP_JITTER, so that a command superseded before it was sent (the
+publisher keeps only the newest) does not fail it.
 """
 import os
 import subprocess
@@ -25,6 +28,8 @@ from waiting import wait_until
 
 WAIT = 60.0
 EXACT = 1e-6
+TICK = 0.1             # ROS s between teleop_key's commands
+RAMP_JITTER = 0.25     # ROS s: when a command is heard may lag when it was sent
 
 
 class TeleopKey(unittest.TestCase):
@@ -33,6 +38,7 @@ class TeleopKey(unittest.TestCase):
         self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.sent = []
+        self.heard = []
         listening = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
                      rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.node = subprocess.Popen(['rosrun', 'wall_follower', 'teleop_key'],
@@ -43,6 +49,7 @@ class TeleopKey(unittest.TestCase):
     def _on_command(self, msg):
         with self.lock:
             self.sent.append((msg.linear.x, msg.angular.z))
+            self.heard.append(rospy.get_time())
 
     def tearDown(self):
         if self.node.poll() is None:
@@ -68,27 +75,38 @@ class TeleopKey(unittest.TestCase):
         self.assertTrue(index, 'never: ' + what)
         return index[0]
 
+    def assert_ramp(self, values, heard, ramp):
+        """values, heard at ROS times heard, follow ramp (one value per tick) in order, in time."""
+        self.assertAlmostEqual(values[0], ramp[0], delta=EXACT, msg='ramp %r' % values)
+        self.assertAlmostEqual(values[-1], ramp[-1], delta=EXACT, msg='ramp %r' % values)
+        ticks = []
+        for value in values:
+            tick = min(range(len(ramp)), key=lambda k: abs(ramp[k] - value))
+            self.assertAlmostEqual(value, ramp[tick], delta=EXACT,
+                                   msg='%r is not on the ramp %r' % (value, values))
+            ticks.append(tick)
+        self.assertEqual(ticks, sorted(set(ticks)), 'not one value per tick, in order: %r' % values)
+        for tick, when in zip(ticks, heard):
+            self.assertLessEqual(abs(when - heard[0] - tick * TICK), RAMP_JITTER,
+                                 'ramp value %.3f heard %.2f s after the first, not %.1f s'
+                                 % (ramp[tick], when - heard[0], tick * TICK))
+
     def test_keys_ramp_clamp_stop_and_quit(self):
         self.wait_for(lambda c: True, 'a first command')
         self.type('w' * 25)
         top = self.wait_for(lambda c: c[0] >= 0.19 - EXACT, 'full speed')
         commands = self.commands()
         first = next(i for i, c in enumerate(commands) if c[0] > 0.0)
-        linear = [c[0] for c in commands[first:top + 1]]
-        self.assertEqual(len(linear), 38, 'not half a step per tick: %r' % linear)
-        for k, value in enumerate(linear, 1):
-            self.assertAlmostEqual(value, min(0.19, 0.005 * k), delta=EXACT)
+        self.assert_ramp([c[0] for c in commands[first:top + 1]], self.heard[first:top + 1],
+                         [0.005 * k for k in range(1, 39)])
         self.assertTrue(all(abs(c[0] - 0.19) < EXACT for c in commands[top:]), 'not held at 0.19')
 
         self.type('a' * 8)
         turned = self.wait_for(lambda c: c[1] >= 0.49 - EXACT, 'full turn rate', after=top)
         commands = self.commands()
         start = next(i for i in range(top, len(commands)) if commands[i][1] > 0.0)
-        angular = [c[1] for c in commands[start:turned + 1]]
-        expected = [0.05 * k for k in range(1, 10)] + [0.49]
-        self.assertEqual(len(angular), len(expected), 'angular ramp %r' % angular)
-        for value, wanted in zip(angular, expected):
-            self.assertAlmostEqual(value, wanted, delta=EXACT)
+        self.assert_ramp([c[1] for c in commands[start:turned + 1]],
+                         self.heard[start:turned + 1], [0.05 * k for k in range(1, 10)] + [0.49])
 
         self.type('s')
         stopped = self.wait_for(lambda c: c == (0.0, 0.0), 'a stop', after=turned)
