@@ -34,7 +34,7 @@ from nav_msgs.msg import Odometry, Path
 
 from wall_follower.control.lap import LapRecorder, odometry_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
-from wall_follower.nodes.common import pose_of, private_params
+from wall_follower.nodes.common import init_node, pose_message, pose_of, private_params
 
 DEFAULTS = {
     'sample_period': 1.0,
@@ -335,18 +335,12 @@ def _path(points, frame_id):
     path = Path()
     path.header.stamp = rospy.Time.now()
     path.header.frame_id = frame_id
-    for x, y, yaw in points:
-        pose = PoseStamped()
-        pose.header = path.header
-        pose.pose.position.x = x
-        pose.pose.position.y = y
-        pose.pose.orientation.z = math.sin(yaw / 2.0)
-        pose.pose.orientation.w = math.cos(yaw / 2.0)
-        path.poses.append(pose)
+    path.poses = [PoseStamped(header=path.header, pose=pose_message(x, y, yaw))
+                   for x, y, yaw in points]
     return path
 
 
 def main():
-    rospy.init_node('odom_recorder')
+    init_node('odom_recorder')
     OdomRecorderNode()
     rospy.spin()
