@@ -1,0 +1,158 @@
+"""The `slam` node: the package's mapper, with gmapping's interface.
+
+Subscribes `scan`; reads the robot's odometry pose at each scan's stamp from
+tf (odom_frame -> base_frame) and the laser's mount (base_frame -> the scan's
+frame); publishes `map` (nav_msgs/OccupancyGrid, latched) and `map_metadata`
+every ~map_update_interval seconds of ROS time, and the tf map_frame ->
+odom_frame that puts the robot where scan matching found it. Every scan is
+processed, in order (a deep queue rather than the newest only), so that a
+run in simulated time gives the same map however busy the machine is.
+"""
+import math
+import time
+
+import rospy
+import tf2_ros
+from geometry_msgs.msg import TransformStamped
+from nav_msgs.msg import MapMetaData, OccupancyGrid
+from sensor_msgs.msg import LaserScan
+
+import numpy as np
+
+from wall_follower.mapping.slam import DEFAULTS, Mapper
+from wall_follower.nodes.common import pose_message, private_params, yaw_of
+
+PARAMS = {
+    'base_frame': 'base_footprint',
+    'odom_frame': 'odom',
+    'map_frame': 'map',
+    'map_update_interval': 2.0,   # s of ROS time between map publications
+    'delta': DEFAULTS.resolution,
+    'xmin': DEFAULTS.extent[0], 'ymin': DEFAULTS.extent[1],
+    'xmax': DEFAULTS.extent[2], 'ymax': DEFAULTS.extent[3],
+    'max_range': DEFAULTS.max_range,
+    'linear_update': DEFAULTS.linear_update,
+    'angular_update': DEFAULTS.angular_update,
+    'match_resolution': DEFAULTS.match_resolution,
+    'match_reach': DEFAULTS.match_reach,
+    'search_window_linear': DEFAULTS.search_window[0],
+    'search_window_angular': DEFAULTS.search_window[1],
+    'scan_matching': DEFAULTS.scan_matching,
+    'tf_timeout': 1.0,            # wall s to wait for the odometry at a scan's stamp
+}
+# Scans waiting to be processed; a mapper that falls this far behind drops the oldest.
+SCAN_QUEUE = 200
+
+
+def _pose_of(transform):
+    t = transform.transform
+    return t.translation.x, t.translation.y, yaw_of(t.rotation)
+
+
+class SlamNode(object):
+    def __init__(self):
+        self.p = private_params(PARAMS)
+        p = self.p
+        config = DEFAULTS._replace(
+            resolution=p['delta'], extent=(p['xmin'], p['ymin'], p['xmax'], p['ymax']),
+            max_range=p['max_range'], linear_update=p['linear_update'],
+            angular_update=p['angular_update'], match_resolution=p['match_resolution'],
+            match_reach=p['match_reach'],
+            search_window=(p['search_window_linear'], p['search_window_angular']),
+            scan_matching=bool(p['scan_matching']))
+        self.config = config
+        self.mapper = None
+        self.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(60.0))
+        self.listener = tf2_ros.TransformListener(self.buffer)
+        self.broadcaster = tf2_ros.TransformBroadcaster()
+        self.map_pub = rospy.Publisher('map', OccupancyGrid, queue_size=1, latch=True)
+        self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
+        self.last_published = None
+        self.cpu = 0.0
+        self.rejected = 0
+        rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
+
+    def _lookup(self, target, source, stamp):
+        deadline = time.monotonic() + self.p['tf_timeout']
+        while not rospy.is_shutdown():
+            try:
+                return self.buffer.lookup_transform(target, source, stamp)
+            except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                    tf2_ros.ExtrapolationException) as err:
+                if time.monotonic() > deadline:
+                    rospy.logwarn_throttle(5.0, 'slam: no transform %s -> %s at %.3f (%s); '
+                                           'scan skipped', target, source, stamp.to_sec(), err)
+                    return None
+                time.sleep(0.002)
+        return None
+
+    def on_scan(self, msg):
+        if msg.angle_increment == 0.0 or msg.range_max <= msg.range_min:
+            rospy.logwarn_throttle(5.0, 'slam: malformed scan (angle_increment %g, range %g..%g)'
+                                   ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
+            return
+        if self.mapper is None:
+            mount = self._lookup(self.p['base_frame'], msg.header.frame_id, rospy.Time(0))
+            if mount is None:
+                return
+            self.mapper = Mapper(self.config, _pose_of(mount))
+            rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
+                          'on %s', self.config.resolution, *(self.mapper.laser[:2] + (
+                              math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
+        odom = self._lookup(self.p['odom_frame'], self.p['base_frame'], msg.header.stamp)
+        if odom is None:
+            return
+        angles = msg.angle_min + msg.angle_increment * np.arange(len(msg.ranges))
+        started = time.process_time()
+        self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, _pose_of(odom))
+        self.cpu += time.process_time() - started
+        match = self.mapper.last_match
+        if match is not None and not match.ok:
+            self.rejected += 1
+            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used',
+                                   match.reason)
+        self._send_transform(msg.header.stamp)
+        if self.last_published is None or \
+                (msg.header.stamp - self.last_published).to_sec() >= self.p['map_update_interval']:
+            self.publish_map(msg.header.stamp)
+
+    def _send_transform(self, stamp):
+        x, y, yaw = self.mapper.map_to_odom()
+        t = TransformStamped()
+        t.header.stamp = stamp
+        t.header.frame_id = self.p['map_frame']
+        t.child_frame_id = self.p['odom_frame']
+        t.transform.translation.x, t.transform.translation.y = x, y
+        t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+        self.broadcaster.sendTransform(t)
+
+    def publish_map(self, stamp):
+        grid = self.mapper.occupancy_map()
+        if grid is None:
+            return
+        values, origin = grid
+        msg = OccupancyGrid()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.p['map_frame']
+        info = msg.info
+        info.map_load_time = stamp
+        info.resolution = self.config.resolution
+        info.height, info.width = values.shape
+        info.origin = pose_message(*origin)
+        msg.data = values.reshape(-1).tolist()
+        self.map_pub.publish(msg)
+        self.meta_pub.publish(info)
+        self.last_published = stamp
+        rospy.logdebug('slam: map %dx%d after %d scans, %.1f ms CPU per scan', info.width,
+                       info.height, self.mapper.scans, 1000.0 * self.cpu / self.mapper.scans)
+
+
+def main():
+    rospy.init_node('slam')
+    node = SlamNode()
+    rospy.spin()
+    if node.mapper is not None and node.mapper.scans:
+        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, '
+                      '%.1f ms CPU per scan', node.mapper.scans, node.mapper.drawn,
+                      node.rejected, 1000.0 * node.cpu / node.mapper.scans)
+    return 0
