@@ -14,6 +14,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 import tf2_ros
@@ -46,22 +47,39 @@ class Mapping(unittest.TestCase):
         cls.lock = threading.Lock()
         rospy.Subscriber('base_pose_ground_truth', Odometry, cls.on_truth, queue_size=100)
         rospy.Subscriber('odom', Odometry, cls.on_odom, queue_size=10)
-        cls.buffer = tf2_ros.Buffer()
+        # The mapper may fall behind a simulation running flat out: keep enough tf.
+        cls.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(600.0))
         cls.listener = tf2_ros.TransformListener(cls.buffer)
+        deadline = time.monotonic() + RUN_LIMIT
+        # Let the world go only once the mapper hears the laser, or it misses the start.
+        assert cls.wait_for(cls.mapper_listens, deadline), 'slam never subscribed to scan'
         rospy.wait_for_service('unpause_physics', timeout=30.0)
         rospy.ServiceProxy('unpause_physics', Empty)()
-        deadline = time.monotonic() + RUN_LIMIT
         cls.saved = cls.wait_for(lambda: os.path.exists(cls.map_file + '.yaml'), deadline)
         cls.still = cls.wait_for(cls.stopped, deadline)
         with cls.lock:
-            cls.final_truth = cls.truth[-1][1] if cls.truth else None
+            cls.final_stamp, cls.final_truth = cls.truth[-1] if cls.truth else (0.0, None)
             cls.final_odom = cls.odom
+        cls.mapper_pose = None
+        cls.wait_for(lambda: cls.mapper_pose_at(cls.final_stamp), deadline)
+
+    @classmethod
+    def mapper_listens(cls):
+        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+        return any(topic == rospy.resolve_name('scan') and '/slam' in nodes
+                   for topic, nodes in subscribers)
+
+    @classmethod
+    def mapper_pose_at(cls, stamp):
+        """True once the mapper has placed the robot at stamp (it may lag behind)."""
         try:
-            t = cls.buffer.lookup_transform('map', 'base_footprint', rospy.Time(0)).transform
-            cls.mapper_pose = (t.translation.x, t.translation.y, yaw_of(t.rotation))
+            t = cls.buffer.lookup_transform('map', 'base_footprint', rospy.Time.from_sec(stamp))
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
                 tf2_ros.ExtrapolationException):
-            cls.mapper_pose = None
+            return False
+        t = t.transform
+        cls.mapper_pose = (t.translation.x, t.translation.y, yaw_of(t.rotation))
+        return True
 
     @classmethod
     def wait_for(cls, condition, deadline):

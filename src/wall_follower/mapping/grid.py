@@ -38,7 +38,7 @@ class LogOddsGrid(object):
         self.origin = (float(xmin), float(ymin))
         cols = int(math.ceil((xmax - xmin) / resolution - 1e-9))
         rows = int(math.ceil((ymax - ymin) / resolution - 1e-9))
-        self.logodds = np.zeros((rows, cols), dtype=np.float64)
+        self.logodds = np.zeros((rows, cols), dtype=np.float32)
         self.observed = np.zeros((rows, cols), dtype=bool)
         self.hit = float(hit)
         self.miss = float(miss)

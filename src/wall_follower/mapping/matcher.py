@@ -25,7 +25,7 @@ class DistanceField(object):
     def __init__(self, grid, reach):
         self.grid = grid
         self.reach = float(reach)
-        self.values = np.full(grid.shape, self.reach)
+        self.values = np.full(grid.shape, self.reach, dtype=np.float32)
 
     def update(self):
         """Recompute over the observed part of the grid (after the grid has changed)."""

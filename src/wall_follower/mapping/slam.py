@@ -36,7 +36,7 @@ MapperConfig = namedtuple('MapperConfig', [
 ])
 
 DEFAULTS = MapperConfig(resolution=0.05, extent=(-10.0, -10.0, 10.0, 10.0), max_range=3.5,
-                        linear_update=0.05, angular_update=0.05, match_resolution=0.02,
+                        linear_update=0.15, angular_update=0.15, match_resolution=0.01,
                         match_reach=0.1, search_window=(0.15, math.radians(10.0)),
                         scan_matching=True, hit=0.85, miss=-0.4)
 

@@ -1,26 +1,30 @@
 """The `slam` node: the package's mapper, with gmapping's interface.
 
-Subscribes `scan`; reads the robot's odometry pose at each scan's stamp from
-tf (odom_frame -> base_frame) and the laser's mount (base_frame -> the scan's
-frame); publishes `map` (nav_msgs/OccupancyGrid, latched) and `map_metadata`
+Subscribes `scan` and `odom` (nav_msgs/Odometry): the robot's odometry pose
+at each scan's stamp is interpolated between the odometry messages around
+it, and the laser's mount (base_frame -> the scan's frame) read from tf
+once. Publishes `map` (nav_msgs/OccupancyGrid, latched) and `map_metadata`
 every ~map_update_interval seconds of ROS time, and the tf map_frame ->
 odom_frame that puts the robot where scan matching found it. Every scan is
 processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
 """
+import bisect
 import math
+import threading
 import time
 
 import rospy
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
-from nav_msgs.msg import MapMetaData, OccupancyGrid
+from nav_msgs.msg import MapMetaData, OccupancyGrid, Odometry
 from sensor_msgs.msg import LaserScan
 
 import numpy as np
 
 from wall_follower.mapping.slam import DEFAULTS, Mapper
-from wall_follower.nodes.common import pose_message, private_params, yaw_of
+from wall_follower.mapping.poses import wrap
+from wall_follower.nodes.common import pose_message, pose_of, private_params, yaw_of
 
 PARAMS = {
     'base_frame': 'base_footprint',
@@ -38,10 +42,21 @@ PARAMS = {
     'search_window_linear': DEFAULTS.search_window[0],
     'search_window_angular': DEFAULTS.search_window[1],
     'scan_matching': DEFAULTS.scan_matching,
-    'tf_timeout': 1.0,            # wall s to wait for the odometry at a scan's stamp
+    'odom_timeout': 1.0,          # wall s to wait for odometry at or after a scan's stamp
 }
-# Scans waiting to be processed; a mapper that falls this far behind drops the oldest.
-SCAN_QUEUE = 200
+# Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
+# outpace the mapper for a while, but not lose it scans; one this far behind drops the oldest.
+SCAN_QUEUE = 1000
+# Odometry messages kept to interpolate scans' poses from: more than the scans queued.
+ODOM_KEPT = 4 * SCAN_QUEUE
+
+
+def interpolate(before, after, stamp):
+    """Pose at stamp between two (stamp, (x, y, yaw)) samples."""
+    (t0, p0), (t1, p1) = before, after
+    f = 0.0 if t1 == t0 else (stamp - t0) / (t1 - t0)
+    return (p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1]),
+            wrap(p0[2] + f * wrap(p1[2] - p0[2])))
 
 
 def _pose_of(transform):
@@ -62,7 +77,9 @@ class SlamNode(object):
             scan_matching=bool(p['scan_matching']))
         self.config = config
         self.mapper = None
-        self.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(60.0))
+        self.odom_stamps, self.odom_poses = [], []
+        self.odom_arrived = threading.Condition()
+        self.buffer = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.buffer)
         self.broadcaster = tf2_ros.TransformBroadcaster()
         self.map_pub = rospy.Publisher('map', OccupancyGrid, queue_size=1, latch=True)
@@ -70,21 +87,47 @@ class SlamNode(object):
         self.last_published = None
         self.cpu = 0.0
         self.rejected = 0
+        rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE)
         rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
 
-    def _lookup(self, target, source, stamp):
-        deadline = time.monotonic() + self.p['tf_timeout']
-        while not rospy.is_shutdown():
-            try:
-                return self.buffer.lookup_transform(target, source, stamp)
-            except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
-                    tf2_ros.ExtrapolationException) as err:
-                if time.monotonic() > deadline:
-                    rospy.logwarn_throttle(5.0, 'slam: no transform %s -> %s at %.3f (%s); '
-                                           'scan skipped', target, source, stamp.to_sec(), err)
+    def on_odom(self, msg):
+        with self.odom_arrived:
+            stamp = msg.header.stamp.to_sec()
+            if self.odom_stamps and stamp < self.odom_stamps[-1]:
+                self.odom_stamps, self.odom_poses = [], []   # time went back: a new run
+            self.odom_stamps.append(stamp)
+            self.odom_poses.append(pose_of(msg))
+            if len(self.odom_stamps) > ODOM_KEPT:
+                del self.odom_stamps[:ODOM_KEPT // 2], self.odom_poses[:ODOM_KEPT // 2]
+            self.odom_arrived.notify_all()
+
+    def odometry_at(self, stamp):
+        """The odometry pose at stamp (s), waiting up to ~odom_timeout wall s for it; None
+        if it never comes or is older than what is kept."""
+        deadline = time.monotonic() + self.p['odom_timeout']
+        with self.odom_arrived:
+            while not self.odom_stamps or self.odom_stamps[-1] < stamp:
+                left = deadline - time.monotonic()
+                if left <= 0.0 or rospy.is_shutdown():
                     return None
-                time.sleep(0.002)
-        return None
+                self.odom_arrived.wait(left)
+            i = bisect.bisect_left(self.odom_stamps, stamp)
+            if self.odom_stamps[i] == stamp:
+                return self.odom_poses[i]
+            if i == 0:
+                return None
+            return interpolate((self.odom_stamps[i - 1], self.odom_poses[i - 1]),
+                               (self.odom_stamps[i], self.odom_poses[i]), stamp)
+
+    def _laser_mount(self, frame):
+        try:
+            return self.buffer.lookup_transform(self.p['base_frame'], frame, rospy.Time(0),
+                                                rospy.Duration(self.p['odom_timeout']))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException) as err:
+            rospy.logwarn_throttle(5.0, 'slam: no transform %s -> %s (%s); scan skipped',
+                                   self.p['base_frame'], frame, err)
+            return None
 
     def on_scan(self, msg):
         if msg.angle_increment == 0.0 or msg.range_max <= msg.range_min:
@@ -92,19 +135,21 @@ class SlamNode(object):
                                    ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
             return
         if self.mapper is None:
-            mount = self._lookup(self.p['base_frame'], msg.header.frame_id, rospy.Time(0))
+            mount = self._laser_mount(msg.header.frame_id)
             if mount is None:
                 return
             self.mapper = Mapper(self.config, _pose_of(mount))
             rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
                           'on %s', self.config.resolution, *(self.mapper.laser[:2] + (
                               math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
-        odom = self._lookup(self.p['odom_frame'], self.p['base_frame'], msg.header.stamp)
+        odom = self.odometry_at(msg.header.stamp.to_sec())
         if odom is None:
+            rospy.logwarn_throttle(5.0, 'slam: no odometry at the scan of %.3f s; scan skipped',
+                                   msg.header.stamp.to_sec())
             return
         angles = msg.angle_min + msg.angle_increment * np.arange(len(msg.ranges))
         started = time.process_time()
-        self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, _pose_of(odom))
+        self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
         self.cpu += time.process_time() - started
         match = self.mapper.last_match
         if match is not None and not match.ok:
