@@ -21,6 +21,8 @@ __all__ = ['MapQuality', 'map_quality']
 MapQuality = namedtuple('MapQuality', ['precision', 'recall', 'occupied', 'seen_walls'])
 
 _BEAMS = 360
+# The path is sampled every path_step metres, or this much turning [rad].
+_PATH_TURN = 0.2
 
 
 def _to_map(points, map_in_world):
@@ -66,14 +68,15 @@ def map_quality(saved_map, world_path, start_pose, path, max_range, path_step=0.
     course = CourseMap(world_path)
     res = saved_map.resolution
     occupied = saved_map.data == 100
-    true_walls = _cell_mask(_to_map(_wall_points(course.edges, res / 4.0), start_pose),
-                               saved_map)
+    walls = _to_map(_wall_points(course.edges, res / 4.0), start_pose)
+    true_walls = _cell_mask(walls, saved_map)
     angles = np.linspace(-math.pi, math.pi, _BEAMS, endpoint=False)
     seen_points, last = [], None
     reach = min(max_range, course.range_max)
     for pose in path:
         if last is not None and math.hypot(pose[0] - last[0], pose[1] - last[1]) < path_step \
-                and abs(math.atan2(math.sin(pose[2] - last[2]), math.cos(pose[2] - last[2]))) < 0.2:
+                and abs(math.atan2(math.sin(pose[2] - last[2]),
+                                   math.cos(pose[2] - last[2]))) < _PATH_TURN:
             continue
         last = pose
         lx, ly, lyaw = course.laser_pose(pose)

@@ -112,4 +112,3 @@ def load_map(yaml_path):
     data[occupancy > occupied] = 100
     data[occupancy < free] = 0
     return SavedMap(data[::-1].copy(), resolution, origin)
-

@@ -3,12 +3,12 @@
 The loop the nodes of mapping.launch run, in pure Python and simulated
 time: the simulator steps, the finder and then the follower answer each
 scan from the world's start pose, and the mapper takes every scan with the
-odometry of its stamp, until the true path has closed its lap; then the robot stands for a second and the map is
-saved in map_server's format, read back and scored against the world
-(wall_follower/evaluation/map_scoring.py). Each world is mapped twice: with
-scan matching, and from raw odometry alone, the map a mapper without
-matching would make. CPU time is the mapper's alone, per scan: a 10 Hz laser
-leaves it 100 ms.
+odometry of its stamp, until the true path has closed its lap; then the
+robot stands for a second and the map is saved in map_server's format,
+read back and scored against the world (evaluation/map_scoring.py). Each
+world is mapped twice: with scan matching, and from raw odometry alone, the
+map a mapper without matching would make. CPU time is the mapper's alone,
+per scan: a 10 Hz laser leaves it 100 ms.
 """
 import argparse
 import math
