@@ -11,6 +11,7 @@ import pytest
 import yaml
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
+from scan_queries import min_range
 from wall_follower.control import follower
 from wall_follower.control.corner import CornerArc
 from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
@@ -677,7 +678,7 @@ def drive(world, pose, steps, dt=0.1, params=EXACT):
         command = clamp(controller.update(view))
         sector = scan_view(world, (x, y, yaw), STAGE)
         trail.append((controller.state, (x, y, yaw),
-                      sector.min_range(-math.pi / 2, math.radians(30.0))))
+                      min_range(sector, -math.pi / 2, math.radians(30.0))))
     return trail
 
 

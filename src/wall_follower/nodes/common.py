@@ -1,6 +1,8 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
+import signal
 import threading
+from collections import namedtuple
 
 import rospkg
 import rospy
@@ -8,7 +10,7 @@ from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
-from wall_follower.control.scan import ScanView
+from wall_follower.control.scan_check import check_scan
 
 
 def private_params(defaults):
@@ -41,28 +43,72 @@ class VelocityCommander(object):
     """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
 
     The limits are the private parameters ~max_linear and ~max_angular,
-    defaulting to the real robot's 0.19 m/s and 0.49 rad/s.
+    defaulting to the real robot's 0.19 m/s and 0.49 rad/s. Once shutdown
+    has begun, every command is a stop: a controller thread still answering
+    a scan must not follow the shutdown's zero Twist with a last move.
     """
 
     def __init__(self, topic='cmd_vel'):
-        self.max_linear = abs(float(rospy.get_param('~max_linear', MAX_LINEAR)))
-        self.max_angular = abs(float(rospy.get_param('~max_angular', MAX_ANGULAR)))
+        limits = private_params({'max_linear': MAX_LINEAR, 'max_angular': MAX_ANGULAR})
+        self.max_linear = abs(limits['max_linear'])
+        self.max_angular = abs(limits['max_angular'])
         self._pub = rospy.Publisher(topic, Twist, queue_size=1)
+        self._lock = threading.Lock()
+        self._halted = False
         self.last = STOP
-        rospy.on_shutdown(self.stop)
+        rospy.on_shutdown(self._halt)
 
     def send(self, command):
         """Clamp and publish a Command; returns what was actually sent."""
-        self.last = clamp(Command(*command), self.max_linear, self.max_angular)
-        self._pub.publish(to_twist(self.last))
-        return self.last
+        with self._lock:
+            if self._halted:
+                command = STOP
+            self.last = clamp(Command(*command), self.max_linear, self.max_angular)
+            self._pub.publish(to_twist(self.last))
+            return self.last
 
     def stop(self):
         self.send(STOP)
 
+    def _halt(self):
+        with self._lock:
+            self._halted = True
+        self.stop()
+
+
+def init_node(name):
+    """rospy.init_node, with SIGINT and SIGTERM answered from a thread of the node's own.
+
+    rospy runs its shutdown hooks inside its signal handler, that is in the
+    main thread wherever the signal caught it. A hook that publishes (every
+    driving node's last stop) then deadlocks on a publisher lock whenever
+    the signal lands while the main thread is publishing, and the node
+    never exits. Here the handler only wakes a thread that shuts rospy down.
+    """
+    rospy.init_node(name, disable_signals=True)
+    caught = []
+    wake = threading.Event()
+
+    def shut_down():
+        wake.wait()
+        rospy.signal_shutdown('signal %d' % caught[0])
+
+    def on_signal(number, _frame):
+        caught.append(number)
+        wake.set()
+
+    threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, on_signal)
+
+
+Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])
+"""What LatestScan holds: the ScanCheck (None before any scan), and either a
+usable scan's view and time taken [s] or, both None, what is wrong."""
+
 
 class LatestScan(object):
-    """Keeps the newest scan as a ScanView and knows when it has gone stale.
+    """Keeps the newest scan, checked by check_scan, and knows when it has gone stale.
 
     Age is measured in ROS time from the scan's arrival, so it follows
     simulated time in simulation and does not depend on the laser host's
@@ -72,38 +118,43 @@ class LatestScan(object):
     """
 
     def __init__(self, topic='scan'):
-        self._latest = (None, None, None)   # (view, arrival, taken), replaced as one
+        self._latest = (None, None, None)   # (ScanCheck, arrival, taken), replaced as one
         self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
 
     def _on_scan(self, msg):
         arrival = rospy.Time.now()
         taken = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
-        self._latest = (ScanView.from_msg(msg), arrival, taken)
+        self._latest = (check_scan(msg), arrival, taken)
         with self._arrived:
             self._arrived.notify_all()
 
-    def wait_for_newer(self, view, timeout):
-        """Wait until the latest scan is not `view`, at most timeout wall seconds.
+    def forget(self):
+        """Drop the scan held, e.g. one that arrived on a clock that has since moved back."""
+        self._latest = (None, None, None)
+
+    def wait_for_newer(self, seen, timeout):
+        """Wait until a scan newer than `seen` (a Reading's check) comes, at most timeout wall s.
 
         Lets a controller answer each scan as soon as it arrives instead of
         at its next timer tick: in lockstep simulation a command that merely
         repeats the last one would let the world step on a stale decision.
         """
         with self._arrived:
-            if self._latest[0] is view:
+            if self._latest[0] is seen:
                 self._arrived.wait(timeout)
 
-    def fresh(self, timeout):
-        """The latest scan if it is younger than timeout seconds, else None."""
-        return self.fresh_stamped(timeout)[0]
-
-    def fresh_stamped(self, timeout):
-        """(view, time taken in s) of the latest scan if it arrived within timeout s, else (None, None)."""
-        view, arrival, taken = self._latest
-        if view is None or (rospy.Time.now() - arrival).to_sec() > timeout:
-            return None, None
-        return view, taken.to_sec()
+    def latest(self, timeout):
+        """The newest scan as a Reading: its view and time taken [s] if usable and fresh,
+        else None for both and the problem, in words."""
+        check, arrival, taken = self._latest
+        if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
+            problem = 'no scan on %s for %.1f s' % (self._sub.resolved_name, timeout)
+            return Reading(check, None, None, problem)
+        if check.view is None:
+            problem = 'the scan on %s is unusable: %s' % (self._sub.resolved_name, check.problem)
+            return Reading(check, None, None, problem)
+        return Reading(check, check.view, taken.to_sec(), None)
 
 
 def world_path(world):

@@ -13,7 +13,8 @@ import rospy
 
 from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
+from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.srv import FindWall, FindWallResponse
 
 NODE_DEFAULTS = {
@@ -21,6 +22,7 @@ NODE_DEFAULTS = {
     'keepalive': 0.15,
     'timeout': 60.0,
     'scan_timeout': 1.0,
+    'ahead_half_width': 0.5236,
 }
 """Parameters of the node itself (the finder's own are finder.DEFAULTS).
 
@@ -31,8 +33,10 @@ keepalive: when no new scan has come for this long (ROS s), the last
     robot after 0.2 s without one) does not stop the robot mid-turn. Longer
     than a scan period, so that a repeat never stands in for an answer.
 timeout: a call that has not succeeded after this long (ROS s) answers false.
-scan_timeout: a call answers false when no scan younger than this (ROS s)
-    is available this long after it started, or at any point later on.
+scan_timeout: a call answers false when no usable scan younger than this
+    (ROS s) is available this long after it started, or at any point later on.
+ahead_half_width: never drive forward while no beam within this angle (rad)
+    either side of straight ahead reads a hit or a proven no-return.
 """
 
 # The TurtleBot3 Burger (and every world of this package) has its laser
@@ -52,12 +56,14 @@ class WallFinderNode(object):
         self.keepalive = params.pop('keepalive')
         self.timeout = params.pop('timeout')
         self.scan_timeout = params.pop('scan_timeout')
+        self.ahead_half_width = params.pop('ahead_half_width')
         self.finder_params = params
         self.commander = VelocityCommander('cmd_vel')
         # The behaviour never asks for more than the node will send.
         self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)
         self.finder_params['max_angular'] = min(params['max_angular'], self.commander.max_angular)
-        self.scan = LatestScan('scan')
+        self.loop = DriveLoop('find_wall', LatestScan('scan'), self.commander, self.rate,
+                              self.keepalive, self.scan_timeout, self.ahead_half_width)
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
         rospy.loginfo('find_wall: ready (timeout %.0f s)', self.timeout)
@@ -78,49 +84,50 @@ class WallFinderNode(object):
 
     def _search(self):
         """Run one search to its end; True when the wall is on the right."""
-        finder = WallFinder(**self.finder_params)
-        finder.start()
+        search = Search(WallFinder(**self.finder_params), self.timeout)
         rospy.loginfo('find_wall: searching for the nearest wall')
-        started = sent = rospy.get_time()
-        state = finder.state
-        last_view = None
-        while not rospy.is_shutdown():
-            now = rospy.get_time()
-            elapsed = now - started
-            if elapsed > self.timeout:
-                rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
-                              elapsed, finder.state)
-                return False
-            view = self.scan.fresh(self.scan_timeout)
-            if view is None:
-                if elapsed > self.scan_timeout:
-                    rospy.logwarn('find_wall: no scan on %s for %.1f s; stopping',
-                                  rospy.resolve_name('scan'), self.scan_timeout)
-                    return False
-                self.commander.stop()
-            elif view is not last_view:
-                last_view = view
-                self.commander.send(finder.update(view))
-                sent = now
-                if finder.state != state:
-                    rospy.loginfo('find_wall: %s -> %s%s', state, finder.state, _describe(finder))
-                    state = finder.state
-                if finder.done:
-                    return self._report(finder, rospy.get_time() - started)
-            elif now - sent >= self.keepalive:
-                self.commander.send(self.commander.last)
-                sent = now
-            self.scan.wait_for_newer(last_view, 1.0 / self.rate)
-        return False
+        return self.loop.run(search.answer, search.outcome, patience=self.scan_timeout,
+                             on_clock_reset=search.restart) is True
 
-    @staticmethod
-    def _report(finder, elapsed):
-        if finder.success:
-            rospy.loginfo('find_wall: wall found: %.3f m on the right after %.1f s',
-                          finder.wall.distance, elapsed)
-        else:
-            rospy.logwarn('find_wall: no wall found: %s', finder.failure_reason)
-        return finder.success
+
+class Search(object):
+    """One find_wall call: the WallFinder it steps, timed from the call on ROS time."""
+
+    def __init__(self, finder, timeout):
+        self.finder = finder
+        self.timeout = timeout
+        self.restart()
+
+    def restart(self):
+        """Start from the beginning, e.g. when ROS time has moved back."""
+        self.finder.start()
+        self.started = rospy.get_time()
+        self.state = self.finder.state
+
+    def answer(self, view, _taken):
+        command = self.finder.update(view)
+        if self.finder.state != self.state:
+            rospy.loginfo('find_wall: %s -> %s%s', self.state, self.finder.state,
+                          _describe(self.finder))
+            self.state = self.finder.state
+        return command
+
+    def outcome(self):
+        """True or False once the search has ended, else None."""
+        elapsed = rospy.get_time() - self.started
+        finder = self.finder
+        if finder.done:
+            if finder.success:
+                rospy.loginfo('find_wall: wall found: %.3f m on the right after %.1f s',
+                              finder.wall.distance, elapsed)
+            else:
+                rospy.logwarn('find_wall: no wall found: %s', finder.failure_reason)
+            return finder.success
+        if elapsed > self.timeout:
+            rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
+                          elapsed, finder.state)
+            return False
+        return None
 
 
 def _describe(finder):
@@ -131,6 +138,6 @@ def _describe(finder):
 
 
 def main():
-    rospy.init_node('wall_finder')
+    init_node('wall_finder')
     WallFinderNode()
     rospy.spin()

@@ -1,11 +1,8 @@
 """The wall_following node: find_wall, then record_odom, then follow the right wall.
 
-The controller answers each scan as soon as it arrives, so that in
-lockstep simulation every world step acts on a decision about the latest
-scan. When scans pause for ~keepalive (ROS time, simulated in simulation)
-the last command is sent again, so that the robot's cmd_vel watchdog
-(stageros: 0.2 s) never stops it mid-turn; with no scan for ~scan_timeout
-the robot is stopped until scans come back. Every command leaves through
+The controller answers each scan through the DriveLoop that every driving
+node shares: at once, re-sent after ~keepalive, and stopped while the scan
+is stale or unusable or the way ahead unseen. Every command leaves through
 VelocityCommander, which clamps it to ~max_linear and ~max_angular and
 stops the robot on shutdown.
 
@@ -22,13 +19,15 @@ from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
+from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.srv import FindWall
 
 NODE_DEFAULTS = {
     'rate': 20.0,
     'keepalive': 0.15,
     'scan_timeout': 0.5,
+    'ahead_half_width': 0.5236,
     'find_wall': True,
     'record_odom': True,
     'stop_after_lap': True,
@@ -41,6 +40,8 @@ rate: how often (Hz) the loop looks at the clock while it waits for scans.
 keepalive: with no new scan for this long (ROS s), send the last command
     again; longer than a scan period, so a repeat never stands in for an answer.
 scan_timeout: stop the robot when the newest scan is older than this (ROS s).
+ahead_half_width: never drive forward while no beam within this angle (rad)
+    either side of straight ahead reads a hit or a proven no-return.
 find_wall: call the find_wall service before following; do not follow if it fails.
 record_odom: send a goal to the record_odom action before following.
 stop_after_lap: when record_odom reports the lap, stop and end the node.
@@ -56,8 +57,10 @@ class WallFollowingNode(object):
         params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
         self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
         self.controller = WallFollower(FollowerParams(**params))
-        self.commander = VelocityCommander('cmd_vel')
-        self.scan = LatestScan('scan')
+        self._state = None
+        self.loop = DriveLoop('wall_following', LatestScan('scan'), VelocityCommander('cmd_vel'),
+                              self.node['rate'], self.node['keepalive'], self.node['scan_timeout'],
+                              self.node['ahead_half_width'])
         self.lap_done = threading.Event()
         self._recorder = None
         self._recording = None
@@ -134,33 +137,24 @@ class WallFollowingNode(object):
 
     def follow(self):
         """Answer each scan until shutdown or, with stop_after_lap, the recorded lap."""
-        last_view = None
-        state = None
-        sent = rospy.get_time()
-        while not rospy.is_shutdown() and not self.lap_done.is_set():
-            now = rospy.get_time()
-            view, stamp = self.scan.fresh_stamped(self.node['scan_timeout'])
-            if view is None:
-                self.commander.stop()
-                sent = now
-                rospy.logwarn_throttle(5.0, 'wall_following: no scan on %s for %.1f s; stopped'
-                                       % (rospy.resolve_name('scan'), self.node['scan_timeout']))
-            elif view is not last_view:
-                last_view = view
-                self.commander.send(self.controller.update(view, stamp))
-                sent = now
-                if self.controller.state != state:
-                    rospy.loginfo('wall_following: %s -> %s', state, self.controller.state)
-                    state = self.controller.state
-            elif now - sent >= self.node['keepalive']:
-                self.commander.send(self.commander.last)
-                sent = now
-            self.scan.wait_for_newer(last_view, 1.0 / self.node['rate'])
-        self.commander.stop()
+        self.loop.run(self._answer, lambda: 'lap' if self.lap_done.is_set() else None,
+                      on_clock_reset=self._restart_controller)
+
+    def _answer(self, view, taken):
+        command = self.controller.update(view, taken)
+        if self.controller.state != self._state:
+            rospy.loginfo('wall_following: %s -> %s', self._state, self.controller.state)
+            self._state = self.controller.state
+        return command
+
+    def _restart_controller(self):
+        """A controller that timed its corners on the old clock starts afresh."""
+        self.controller = WallFollower(self.controller.params)
+        self._state = None
 
 
 def main():
-    rospy.init_node('wall_following')
+    init_node('wall_following')
     node = WallFollowingNode()
     try:
         if node.node['find_wall'] and not node.find_wall():
