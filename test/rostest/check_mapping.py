@@ -18,6 +18,7 @@ import rosgraph
 import rospy
 import rostest
 import tf2_ros
+from drive_guard import DriveGuard
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
@@ -42,6 +43,7 @@ class Mapping(unittest.TestCase):
         course = CourseMap(cls.world)
         cls.start = course.robot.pose
         cls.max_range = rospy.get_param('/slam/max_range', 3.5)
+        cls.guard = DriveGuard()
         cls.truth = []   # (stamp, pose)
         cls.odom = None
         cls.lock = threading.Lock()
@@ -108,6 +110,9 @@ class Mapping(unittest.TestCase):
             recent = [pose for stamp, pose in cls.truth if stamp >= last_stamp - STILL_FOR]
             span = cls.truth[-1][0] - cls.truth[0][0]
         return span > STILL_FOR and all(pose == last for pose in recent)
+
+    def test_drove_within_limits_without_contact(self):
+        self.guard.assert_safe(self)
 
     def errors(self, pose):
         truth = between(self.start, self.final_truth)
