@@ -70,7 +70,7 @@ def _room_scan(pose, beams=360, half=(1.5, 1.2)):
                                     (0.0, 0.0, math.radians(6.0))])
 def test_the_matcher_recovers_a_known_offset_of_a_synthetic_scan(offset):
     # The map from a few scans at known poses, so the far walls are drawn without gaps.
-    mapper = Mapper(DEFAULTS._replace(scan_matching=False, linear_update=0.0))
+    mapper = Mapper(DEFAULTS._replace(scan_matching=False, linear_update=0.0, start_patience=0))
     for k in range(4):
         ranges, angles = _room_scan((0.0, 0.0, math.radians(0.25 * k)))
         mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, math.radians(0.25 * k)))
@@ -105,6 +105,10 @@ def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():
     mapper = Mapper(DEFAULTS)
     truth = (0.0, 0.0, 0.0)
     odom = truth
+    for _ in range(2):    # standing: the map starts
+        ranges, angles = _room_scan(truth)
+        mapper.add_scan(ranges, angles, 0.12, 3.5, odom)
+    assert mapper.started
     for _ in range(40):   # 2 cm and 1 degree a scan; odometry believes 2 % more of both
         step = (0.02, 0.0, math.radians(1.0))
         truth = compose(truth, step)
@@ -116,6 +120,19 @@ def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():
     assert math.hypot(odom[0] - truth[0], odom[1] - truth[1]) > 0.015
     assert math.degrees(odom[2] - truth[2]) > 0.7
     assert compose(mapper.map_to_odom(), odom) == pytest.approx(pose)
+
+
+def test_the_map_starts_at_rest_or_once_patience_runs_out():
+    ranges, angles = _room_scan((0.0, 0.0, 0.0))
+    mapper = Mapper(DEFAULTS._replace(start_patience=5))
+    for k in range(3):    # turning: odometry a step ahead of the laser would tilt the map
+        assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k)) is None
+    assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.1)) == (0.0, 0.0, 0.1)
+    assert mapper.started and mapper.drawn == 1
+    impatient = Mapper(DEFAULTS._replace(start_patience=5))
+    poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * k, 0.0, 0.0))
+             for k in range(7)]
+    assert poses[:5] == [None] * 5 and poses[5] is not None
 
 
 def test_poses_compose_invert_and_relate():

@@ -6,8 +6,11 @@ points lie on walls, so Gauss-Newton minimises the sum of their squared
 distances (the likelihood-field model of AMCL and Cartographer, solved as
 Hector SLAM solves its own), with the field interpolated bilinearly so the
 pose comes out finer than a cell, starting from the pose odometry predicts.
-Points farther than `reach` from any wall (a part of the room not mapped
-yet) carry no weight. The field comes from a fine grid, not the published
+Points farther than a reach from any wall (a part of the room not mapped
+yet) carry no weight. Matching runs in passes of shrinking reach: a wide
+first pass pulls in far points, which alone tell a small turn (near a
+wall, turning mostly slides its points along it), and a narrow last pass
+keeps stray points from tilting the fit. The field comes from a fine grid, not the published
 one, so that walls stay where the beams ended rather than at the centres of
 coarse cells.
 """
@@ -65,7 +68,7 @@ class DistanceField(object):
 
 class Match(object):
     """A matcher's answer: the pose, whether it is trusted, and the RMS distance of the
-    scan's points from the walls there [m]."""
+    scan's points within the last reach from the walls there [m]."""
 
     __slots__ = ('pose', 'ok', 'misfit', 'reason')
 
@@ -78,13 +81,16 @@ class ScanMatcher(object):
 
     window: (metres, radians) the match may move from the odometry's
     prediction; a match that goes farther is not trusted and the prediction
-    is kept. min_points: fewer hits than this are not matched.
+    is kept. reaches: the passes, each weighing only points this near a
+    wall [m], at most the field's reach. min_points: fewer hits than this
+    are not matched.
     """
 
-    def __init__(self, field, window=(0.15, math.radians(10.0)), iterations=12,
+    def __init__(self, field, window=(0.15, math.radians(10.0)), reaches=None, iterations=12,
                  min_points=20, damping=1e-3):
         self.field = field
         self.window = window
+        self.reaches = tuple(reaches) if reaches else (field.reach,)
         self.iterations = iterations
         self.min_points = min_points
         self.damping = damping
@@ -97,21 +103,13 @@ class ScanMatcher(object):
         pose = np.array(guess, dtype=float)
         px, py = points[:, 0], points[:, 1]
         step_limit = np.array([self.field.grid.resolution * 2.0] * 2 + [math.radians(2.0)])
-        for _ in range(self.iterations):
-            c, s = math.cos(pose[2]), math.sin(pose[2])
-            world = np.column_stack((pose[0] + c * px - s * py, pose[1] + s * px + c * py))
-            residual, gx, gy = self.field.sample(world)
-            weight = (residual < self.field.reach).astype(float)
-            jac = np.column_stack((gx, gy, gx * (-s * px - c * py) + gy * (c * px - s * py)))
-            hessian = (jac * weight[:, None]).T.dot(jac) + self.damping * np.eye(3)
-            delta = -np.linalg.solve(hessian, (jac * weight[:, None]).T.dot(residual))
-            delta = np.clip(delta, -step_limit, step_limit)
-            pose += delta
-            if abs(delta[0]) < 1e-5 and abs(delta[1]) < 1e-5 and abs(delta[2]) < 1e-5:
-                break
+        for reach in self.reaches:
+            pose = self._descend(pose, px, py, reach, step_limit)
         c, s = math.cos(pose[2]), math.sin(pose[2])
         world = np.column_stack((pose[0] + c * px - s * py, pose[1] + s * px + c * py))
-        misfit = float(np.sqrt(np.mean(self.field.sample(world)[0] ** 2)))
+        residual = self.field.sample(world)[0]
+        near = residual < self.reaches[-1]
+        misfit = float(np.sqrt(np.mean(residual[near] ** 2))) if near.any() else float('nan')
         pose[2] = math.atan2(math.sin(pose[2]), math.cos(pose[2]))
         moved = math.hypot(pose[0] - guess[0], pose[1] - guess[1])
         turned = abs(math.atan2(math.sin(pose[2] - guess[2]), math.cos(pose[2] - guess[2])))
@@ -120,3 +118,19 @@ class ScanMatcher(object):
                          'moved %.3f m, %.1f deg from odometry: beyond the search window'
                          % (moved, math.degrees(turned)))
         return Match(tuple(float(p) for p in pose), True, misfit)
+
+    def _descend(self, pose, px, py, reach, step_limit):
+        """Gauss-Newton steps from pose, weighing the points within reach of a wall."""
+        for _ in range(self.iterations):
+            c, s = math.cos(pose[2]), math.sin(pose[2])
+            world = np.column_stack((pose[0] + c * px - s * py, pose[1] + s * px + c * py))
+            residual, gx, gy = self.field.sample(world)
+            weight = (residual < reach).astype(float)
+            jac = np.column_stack((gx, gy, gx * (-s * px - c * py) + gy * (c * px - s * py)))
+            hessian = (jac * weight[:, None]).T.dot(jac) + self.damping * np.eye(3)
+            delta = -np.linalg.solve(hessian, (jac * weight[:, None]).T.dot(residual))
+            delta = np.clip(delta, -step_limit, step_limit)
+            pose += delta
+            if abs(delta[0]) < 1e-5 and abs(delta[1]) < 1e-5 and abs(delta[2]) < 1e-5:
+                break
+        return pose

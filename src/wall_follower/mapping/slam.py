@@ -6,6 +6,13 @@ in the map is predicted from the last one by the odometry's motion since,
 and scan matching corrects that prediction. map -> odom is then whatever
 puts the odometry's pose of the robot where matching found it.
 
+The map starts from a scan taken at rest: the odometry may be read a step
+apart from the scan (Stage's "odom" localization reports the pose after
+the move its laser has not seen yet), and while the robot moves that would
+tilt the whole map by the step's turn. So the first scan is drawn only once
+the odometry has not moved since the scan before, or after `start_patience`
+scans, whichever comes first.
+
 A scan is matched every time, but drawn into the map only once the robot
 has moved `linear_update` or turned `angular_update` since the last one
 drawn (and always the first), as gmapping does: a robot standing still
@@ -29,16 +36,21 @@ MapperConfig = namedtuple('MapperConfig', [
     'linear_update',     # draw a scan after this much travel [m]
     'angular_update',    # ... or this much turning [rad]
     'match_resolution',  # cell of the fine grid the matcher aligns to [m]
-    'match_reach',       # points farther than this from a mapped wall are not matched [m]
+    'match_capture',     # the matcher's first pass weighs points this near a wall [m] ...
+    'match_reach',       # ... and its last pass those this near; farther ones not at all [m]
     'search_window',     # (m, rad) a match may move from the odometry's prediction
     'scan_matching',     # False: odometry alone places every scan (for comparison)
+    'start_patience',    # scans to wait for the robot to stand still before the map starts
     'hit', 'miss',       # log-odds added for an occupied / a crossed cell
 ])
 
 DEFAULTS = MapperConfig(resolution=0.05, extent=(-10.0, -10.0, 10.0, 10.0), max_range=3.5,
                         linear_update=0.15, angular_update=0.15, match_resolution=0.01,
-                        match_reach=0.1, search_window=(0.15, math.radians(10.0)),
-                        scan_matching=True, hit=0.85, miss=-0.4)
+                        match_capture=0.3, match_reach=0.1,
+                        search_window=(0.15, math.radians(10.0)), scan_matching=True,
+                        start_patience=100, hit=0.85, miss=-0.4)
+# Odometry that moved less than this between two scans is at rest [m, rad].
+AT_REST = 1e-4
 
 
 def scan_points(ranges, angles, range_min, range_max, max_range):
@@ -79,8 +91,9 @@ class Mapper(object):
                                 config.miss)
         self.fine = LogOddsGrid(config.match_resolution, xmin, ymin, xmax, ymax, config.hit,
                                 config.miss)
-        self.field = DistanceField(self.fine, config.match_reach)
-        self.matcher = ScanMatcher(self.field, window=config.search_window)
+        self.field = DistanceField(self.fine, max(config.match_capture, config.match_reach))
+        self.matcher = ScanMatcher(self.field, window=config.search_window,
+                                   reaches=(config.match_capture, config.match_reach))
         self.laser = tuple(laser)
         self.pose = None          # robot in the map frame
         self.odom = None          # robot in the odometry frame at the same scan
@@ -88,6 +101,11 @@ class Mapper(object):
         self.scans = 0
         self.drawn = 0
         self.last_match = None
+        self._waiting = []        # odometry of the scans seen before the map started
+
+    @property
+    def started(self):
+        return self.pose is not None
 
     def map_to_odom(self):
         """The map -> odom transform (x, y, yaw): identity until the first scan."""
@@ -109,10 +127,12 @@ class Mapper(object):
 
     def add_scan(self, ranges, angles, range_min, range_max, odom_pose):
         """Place one scan (laser-frame ranges at angles) taken at odom_pose; returns the
-        robot's map pose."""
+        robot's map pose, or None while waiting to start the map at rest."""
+        odom_pose = tuple(float(v) for v in odom_pose)
+        if self.pose is None and not self._may_start(odom_pose):
+            return None
         ends, hit = scan_points(ranges, angles, range_min, range_max, self.config.max_range)
         base_ends = _transform(self.laser, ends)
-        odom_pose = tuple(float(v) for v in odom_pose)
         if self.pose is None:
             predicted = odom_pose
         else:
@@ -127,6 +147,15 @@ class Mapper(object):
         if self._due(pose):
             self._draw(pose, base_ends, hit)
         return pose
+
+    def _may_start(self, odom_pose):
+        previous = self._waiting[-1] if self._waiting else None
+        self._waiting.append(odom_pose)
+        if previous is not None:
+            moved = between(previous, odom_pose)
+            if math.hypot(moved[0], moved[1]) < AT_REST and abs(moved[2]) < AT_REST:
+                return True
+        return len(self._waiting) > self.config.start_patience
 
     def _due(self, pose):
         if self._drawn_at is None:

@@ -38,10 +38,12 @@ PARAMS = {
     'linear_update': DEFAULTS.linear_update,
     'angular_update': DEFAULTS.angular_update,
     'match_resolution': DEFAULTS.match_resolution,
+    'match_capture': DEFAULTS.match_capture,
     'match_reach': DEFAULTS.match_reach,
     'search_window_linear': DEFAULTS.search_window[0],
     'search_window_angular': DEFAULTS.search_window[1],
     'scan_matching': DEFAULTS.scan_matching,
+    'start_patience': DEFAULTS.start_patience,
     'odom_timeout': 1.0,          # wall s to wait for odometry at or after a scan's stamp
 }
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
@@ -72,9 +74,9 @@ class SlamNode(object):
             resolution=p['delta'], extent=(p['xmin'], p['ymin'], p['xmax'], p['ymax']),
             max_range=p['max_range'], linear_update=p['linear_update'],
             angular_update=p['angular_update'], match_resolution=p['match_resolution'],
-            match_reach=p['match_reach'],
+            match_capture=p['match_capture'], match_reach=p['match_reach'],
             search_window=(p['search_window_linear'], p['search_window_angular']),
-            scan_matching=bool(p['scan_matching']))
+            scan_matching=bool(p['scan_matching']), start_patience=p['start_patience'])
         self.config = config
         self.mapper = None
         self.odom_stamps, self.odom_poses = [], []
@@ -149,8 +151,12 @@ class SlamNode(object):
             return
         angles = msg.angle_min + msg.angle_increment * np.arange(len(msg.ranges))
         started = time.process_time()
-        self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
+        pose = self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
         self.cpu += time.process_time() - started
+        if pose is None:
+            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still to start '
+                                   'the map')
+            return
         match = self.mapper.last_match
         if match is not None and not match.ok:
             self.rejected += 1
