@@ -96,6 +96,17 @@ def test_odom_drifts_from_ground_truth_while_gps_reports_it(tmp_path):
     assert abs(robot.odom.yaw - (truth.yaw - syaw)) > math.radians(0.5)
 
 
+def test_reset_and_teleport_move_the_robot_but_not_its_dead_reckoning(tmp_path):
+    # stageros' reset_positions (and Stage's SetPose) set the true pose only.
+    sim = Simulation(_world(tmp_path, 'localization "odom" odom_error [ 0.03 0.01 0 2.0 ]'))
+    before = _drive(sim, 0.19, 0.49, 30).odom
+    sim.reset()
+    sim.teleport(0, (2.0, 2.0, 1.0))
+    after = _drive(sim, 0.0, 0.0, 1).odom
+    assert (after.x, after.y, after.yaw) == (before.x, before.y, before.yaw)
+    assert sim.robots[0].pose == (2.0, 2.0, 1.0)
+
+
 def test_without_odom_error_stage_draws_one_within_half_its_maxima(tmp_path):
     world = _world(tmp_path, 'localization "odom"')
     errors = np.array([Simulation(world, seed=seed).robots[0].odom_error for seed in range(50)])
