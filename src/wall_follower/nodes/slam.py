@@ -78,7 +78,8 @@ class SlamNode(object):
             search_window=(p['search_window_linear'], p['search_window_angular']),
             scan_matching=bool(p['scan_matching']), start_patience=p['start_patience'])
         self.config = config
-        self.mapper = None
+        self.mapper = Mapper(config)     # raises ValueError on a grid that cannot be
+        self.laser_known = False         # the laser's mount is read at the first scan
         self.odom_stamps, self.odom_poses = [], []
         self.odom_arrived = threading.Condition()
         self.buffer = tf2_ros.Buffer()
@@ -136,11 +137,12 @@ class SlamNode(object):
             rospy.logwarn_throttle(5.0, 'slam: malformed scan (angle_increment %g, range %g..%g)'
                                    ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
             return
-        if self.mapper is None:
+        if not self.laser_known:
             mount = self._laser_mount(msg.header.frame_id)
             if mount is None:
                 return
-            self.mapper = Mapper(self.config, _pose_of(mount))
+            self.mapper.laser = _pose_of(mount)
+            self.laser_known = True
             rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
                           'on %s', self.config.resolution, *(self.mapper.laser[:2] + (
                               math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
@@ -200,9 +202,13 @@ class SlamNode(object):
 
 def main():
     rospy.init_node('slam')
-    node = SlamNode()
+    try:
+        node = SlamNode()
+    except ValueError as err:
+        rospy.logerr('slam: bad parameters: %s', err)
+        return 1
     rospy.spin()
-    if node.mapper is not None and node.mapper.scans:
+    if node.mapper.scans:
         rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, '
                       '%.1f ms CPU per scan', node.mapper.scans, node.mapper.drawn,
                       node.rejected, 1000.0 * node.cpu / node.mapper.scans)
