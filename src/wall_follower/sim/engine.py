@@ -107,13 +107,17 @@ class Simulation(object):
         robot.last_command_us = self._time_us
 
     def reset(self):
-        """Back to the start poses with zero commands (stageros' reset_positions)."""
+        """Back to the start poses with zero commands (stageros' reset_positions).
+
+        As in stageros, only the true pose is set back: "odom" dead reckoning
+        goes on from where it was, as a real robot's odometry would if it
+        were carried back.
+        """
         for robot in self.robots:
             robot.pose = robot.start_pose
             robot.command = (0.0, 0.0)
             robot.velocity = (0.0, 0.0)
             robot.stalled = False
-            robot.odom_pose = (0.0, 0.0, 0.0)
 
     def teleport(self, index, pose):
         """Put a robot at pose (x, y, yaw) at once, with no collision check.
