@@ -181,11 +181,16 @@ def pose_of(odometry):
     return p.position.x, p.position.y, yaw_of(p.orientation)
 
 
+def quaternion_z(yaw):
+    """(z, w) of the unit quaternion of a rotation by yaw (rad) about the z axis."""
+    return math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
 def pose_message(x, y, yaw):
     """A geometry_msgs/Pose at (x, y) turned yaw (rad) about z."""
     pose = Pose()
     pose.position.x, pose.position.y = x, y
-    pose.orientation.z, pose.orientation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+    pose.orientation.z, pose.orientation.w = quaternion_z(yaw)
     return pose
 
 

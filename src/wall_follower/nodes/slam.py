@@ -24,7 +24,8 @@ import numpy as np
 
 from wall_follower.mapping.slam import DEFAULTS, Mapper
 from wall_follower.mapping.poses import wrap
-from wall_follower.nodes.common import pose_message, pose_of, private_params, yaw_of
+from wall_follower.nodes.common import (pose_message, pose_of, private_params, quaternion_z,
+                                        yaw_of)
 
 PARAMS = {
     'base_frame': 'base_footprint',
@@ -176,7 +177,7 @@ class SlamNode(object):
         t.header.frame_id = self.p['map_frame']
         t.child_frame_id = self.p['odom_frame']
         t.transform.translation.x, t.transform.translation.y = x, y
-        t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+        t.transform.rotation.z, t.transform.rotation.w = quaternion_z(yaw)
         self.broadcaster.sendTransform(t)
 
     def publish_map(self, stamp):

@@ -64,7 +64,7 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, EmptyResponse
 
-from wall_follower.nodes.common import private_params, yaw_of
+from wall_follower.nodes.common import private_params, quaternion_z, yaw_of
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
@@ -97,11 +97,6 @@ def stamp_of(seconds):
     unit), so that every topic of one step carries the identical stamp."""
     micros = int(round(seconds * 1e6))
     return rospy.Time(micros // 1000000, (micros % 1000000) * 1000)
-
-
-def quaternion_z(yaw):
-    """(z, w) of a rotation by yaw about the z axis."""
-    return math.sin(yaw / 2.0), math.cos(yaw / 2.0)
 
 
 class RobotTopics(object):
@@ -393,6 +388,7 @@ def run_node(world, argv):
     node.run()
     rospy.signal_shutdown('simulation ended')
     return 0
+
 
 if __name__ == '__main__':
     sys.exit(main())
