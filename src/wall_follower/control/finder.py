@@ -45,8 +45,15 @@ class WallFinder(object):
     """Find-wall state machine: call start(), then update(scan) until done."""
 
     def __init__(self, **params):
-        self.params = checked(FINDER, params)
+        self.reconfigure(**params)
         self._reset(IDLE)
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next update on.
+
+        A search in progress goes on where it is.
+        """
+        self.params = checked(FINDER, params)
 
     @property
     def done(self):

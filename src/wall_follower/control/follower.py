@@ -48,92 +48,35 @@ from wall_follower.control.corner import CornerArc, OuterTurn
 from wall_follower.control.left_turn import LeftTurn
 from wall_follower.control.motion import Command, seen_after_move
 from wall_follower.control.scan import RIGHT, fit_line, wrap_angle
+from wall_follower.params import checked, defaults
+from wall_follower.params.wall_following import FOLLOWER
 
 FOLLOW = 'FOLLOW'
 WALL_AHEAD = 'WALL_AHEAD'
 OUTER_CORNER = 'OUTER_CORNER'
 SEARCH = 'SEARCH'
 
-#: Every tunable number of the controller: name -> (default, meaning).
-#: Distances from the laser in metres, speeds in m/s and rad/s, angles in degrees.
-PARAMETERS = {
-    # The robot
-    'laser_x': (-0.032, 'laser position ahead of the rotation centre (Burger: 32 mm behind)'),
-    # Following a straight wall
-    'target_distance': (0.25, 'wanted distance to the wall on the right'),
-    'range_bias': (0.008, 'how much longer than true the laser reads (Stage ~0.008, LDS-01 0)'),
-    'cruise_speed': (0.19, 'forward speed on a straight wall'),
-    'max_turn_rate': (0.49, 'largest turn rate the controller asks for'),
-    'k_distance': (11.0, 'turn rate per metre of distance error (rad/s/m)'),
-    'k_angle': (3.0, 'turn rate per radian of heading into the wall (rad/s/rad)'),
-    'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
-    'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
-    'closest_distance': (0.215, 'heading into the wall, slow so as to turn parallel no nearer'),
-    'min_arc_radius': (0.2, '... but never onto an arc tighter than this (no pivot on the spot)'),
-    # Finding the wall on the right
-    'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
-    'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the fit'),
-    'wall_fit_range': (0.8, 'hits farther than this are not taken for the wall on the right'),
-    'wall_inlier_distance': (0.025, 'hits this near the seed line belong to the wall'),
-    'wall_min_points': (6, 'fewest hits that make a wall'),
-    'wall_max_residual': (0.025, 'RMS misfit above which the hits are no straight wall'),
-    'wall_seed_support': (0.6, 'share of the seed hits the wall line must still pass through'),
-    'wall_lost_distance': (0.45, 'a wall farther than this is not followed'),
-    # Inner corners: a wall ahead
-    'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
-    'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
-    'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.09, 'radius of the left turn onto a wall ahead, between its wide arcs'),
-    'wide_start_deg': (30.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'wide_end_deg': (30.0, 'last part of that turn, flown the same way'),
-    'wide_allowance': (0.015, 'the wide start may carry the robot this far past target_distance'),
-    'short_turn_cut_deg': (5.0, 'a wide start cut by more than this: fly the short-wall turn below'),
-    'short_turn_radius': (0.16, 'radius of that turn (after a short wall), between its wide arcs'),
-    'short_wide_start_deg': (20.0, 'first part of the short-wall turn, on its widest arc'),
-    'short_wide_end_deg': (25.0, 'last part of the short-wall turn, the same way'),
-    'approach_range': (0.8, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
-    'inner_corner_distance': (0.22, 'distance from the wall ahead at which that turn ends'),
-    'turn_lead': (0.015, 'start the turn this much early, for the scan and command delay'),
-    'settle_time': (3.0, 'after that turn, the distance gain is raised for this long (s) ...'),
-    'settle_gain': (1.5, '... by this factor, to bring the robot back out to target_distance'),
-    'front_turn_distance': (0.38, 'anything nearer in the lane ahead starts the left turn'),
-    'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
-    'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
-    # Outer corners: the right wall ends
-    'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
-    'outer_wide_start_deg': (25.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'outer_wide_end_deg': (40.0, 'last part of that turn as planned, flown the same way'),
-    'outer_turn_lead': (-0.005, 'start the turn round a wall\'s end this much early (negative: late)'),
-    'outer_wide_tolerance': (0.03, 'the wide start is flown even this far inside the tip\'s arc'),
-    'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
-    'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
-    'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
-    'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
-    'rejoin_angle_deg': (40.0, '... and within this angle of the heading'),
-    'arc_exit_angle_deg': (5.0, 'an outer corner arc ends this near parallel to the next wall'),
-    # No wall near
-    'search_speed': (0.15, 'forward speed while no wall is near'),
-}
+#: The controller's parameters: defaults, ranges, units and meanings.
+PARAMETERS = FOLLOWER
 
 
 class FollowerParams(object):
     """The controller's parameters, defaults from PARAMETERS, overridable by name.
 
-    An unknown name is an error rather than silently ignored, so that a typo
-    in a YAML file shows up instead of leaving a default in force.
+    An unknown name, a value of the wrong type or one out of range is an
+    error (ParameterError, a ValueError) rather than silently ignored, so
+    that a typo in a configuration shows up instead of leaving a default
+    in force.
     """
 
     def __init__(self, **overrides):
-        unknown = set(overrides) - set(PARAMETERS)
-        if unknown:
-            raise ValueError('unknown follower parameter(s): %s' % ', '.join(sorted(unknown)))
-        for name, (default, _) in PARAMETERS.items():
-            setattr(self, name, type(default)(overrides.get(name, default)))
+        for name, value in checked(PARAMETERS, overrides).items():
+            setattr(self, name, value)
 
     @staticmethod
     def defaults():
         """name -> default, e.g. for reading them as ROS private parameters."""
-        return dict((name, default) for name, (default, _) in PARAMETERS.items())
+        return defaults(PARAMETERS)
 
 
 class Observation(object):
@@ -159,7 +102,7 @@ class Observation(object):
                                params.laser_x)
         off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
-        sector = hits[(off_right <= math.radians(params.wall_sector_deg)) & near]
+        sector = hits[(off_right <= params.wall_sector) & near]
         self.wall, self.wall_end = right_wall(sector, params)
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]
@@ -189,7 +132,7 @@ def right_wall(points, params):
     a corner, or an obstacle, in the wider sector is not averaged into it.
     """
     bearings = np.arctan2(points[:, 1], points[:, 0])
-    seed = points[np.abs(bearings - RIGHT) <= math.radians(params.wall_seed_deg)]
+    seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
     wall = wall_through(seed, points, params)
     if wall is None or wall[0] > params.wall_lost_distance:
         return None, None
@@ -259,9 +202,9 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
             and abs(first[0] - second[0]) < max_distance)
 
 
-def along_the_way(wall, max_angle_deg):
-    """True for a (distance, angle) wall within max_angle_deg of parallel; False for None."""
-    return wall is not None and abs(wall[1]) < math.radians(max_angle_deg)
+def along_the_way(wall, max_angle):
+    """True for a (distance, angle) wall within max_angle (rad) of parallel; False for None."""
+    return wall is not None and abs(wall[1]) < max_angle
 
 
 def from_centre(wall, laser_x):
@@ -341,26 +284,29 @@ class WallFollower(object):
     """
 
     def __init__(self, params=None):
-        self.params = params or FollowerParams()
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
         self.arc = None
         self.starting_wide = False
         self.ending_wide = False
-        p = self.params
-        wide_radius = p.cruise_speed / p.max_turn_rate
-        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, math.radians(p.wide_start_deg),
-                                  math.radians(p.wide_end_deg))
-        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius,
-                                   math.radians(p.short_wide_start_deg),
-                                   math.radians(p.short_wide_end_deg))
-        self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius,
-                                    math.radians(p.outer_wide_start_deg),
-                                    math.radians(p.outer_wide_end_deg), p.target_distance,
-                                    p.outer_wide_tolerance)
+        self.reconfigure(params or FollowerParams())
         self.turn = self.left_turn
         self.settling = 0.0   # seconds left of settle_gain after a turn onto a wall ahead
         self._stamp = None
+
+    def reconfigure(self, params):
+        """Go on under new FollowerParams from the next update on.
+
+        The state is kept; a turn already being flown keeps its plan, and
+        the next one is planned with the new parameters.
+        """
+        self.params = p = params
+        wide_radius = p.cruise_speed / p.max_turn_rate
+        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, p.wide_start, p.wide_end)
+        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius, p.short_wide_start,
+                                   p.short_wide_end)
+        self.right_turn = OuterTurn(p.outer_corner_radius, wide_radius, p.outer_wide_start,
+                                    p.outer_wide_end, p.target_distance, p.outer_wide_tolerance)
 
     def update(self, view, stamp=None):
         """Advance the state machine on a ScanView; returns the next Command.
@@ -395,7 +341,7 @@ class WallFollower(object):
             # the end of a wall beside the robot (a short wall, a box) can
             # end the turn otherwise: anything near behind it only means the
             # turn is not over yet.
-            if self._rejoined(obs, p.rejoin_angle_deg) and not self._blocking(obs):
+            if self._rejoined(obs, p.rejoin_angle) and not self._blocking(obs):
                 return FOLLOW
             if obs.ahead is not None or obs.front < p.front_clear_distance:
                 return WALL_AHEAD
@@ -406,8 +352,8 @@ class WallFollower(object):
         elif self.state == OUTER_CORNER:
             # An arc ends where it was planned to, nearly parallel to the next
             # wall; circling a hit has no such end, and takes any wall.
-            exit_deg = p.arc_exit_angle_deg if self.arc is not None else p.rejoin_angle_deg
-            if self._rejoined(obs, exit_deg):
+            exit_angle = p.arc_exit_angle if self.arc is not None else p.rejoin_angle
+            if self._rejoined(obs, exit_angle):
                 return FOLLOW
         elif (obs.wall is not None
               and obs.wall_ahead + p.laser_x > self.right_turn.lead + p.outer_turn_lead):
@@ -420,9 +366,9 @@ class WallFollower(object):
         return SEARCH
 
     def _beside(self, hit):
-        """True when a (distance, bearing) hit is within corner_bearing_deg of the right."""
+        """True when a (distance, bearing) hit is within corner_bearing of the right."""
         off_right = abs(float(wrap_angle(hit[1] - RIGHT)))
-        return off_right <= math.radians(self.params.corner_bearing_deg)
+        return off_right <= self.params.corner_bearing
 
     def _turn_due(self, obs):
         """True once the planned left turn would end on the wall ahead."""
@@ -442,7 +388,7 @@ class WallFollower(object):
         A right wall fitted farther off parallel is mid-corner, not the
         wall the one ahead meets.
         """
-        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle_deg) else None
+        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle) else None
         return as_planned(obs.ahead, wall)
 
     def _turn_from(self, obs):
@@ -458,7 +404,7 @@ class WallFollower(object):
         p = self.params
         allowed = p.target_distance + p.wide_allowance - from_centre(obs.wall, p.laser_x)[0]
         turn = self.left_turn.drifting_at_most(allowed)
-        if turn.wide_start < self.left_turn.wide_start - math.radians(p.short_turn_cut_deg):
+        if turn.wide_start < self.left_turn.wide_start - p.short_turn_cut:
             turn = self.short_turn.drifting_at_most(allowed)
         return turn
 
@@ -479,7 +425,7 @@ class WallFollower(object):
 
     def _blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
-        steep = math.radians(self.params.ahead_min_angle_deg)
+        steep = self.params.ahead_min_angle
         if obs.ahead is None or not steep <= obs.ahead[1] <= math.pi - steep:
             return False  # none, or one nearly along the way (beside the lane)
         return obs.wall is None or not same_line(obs.ahead, obs.wall)
@@ -495,9 +441,9 @@ class WallFollower(object):
         """
         return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
 
-    def _rejoined(self, obs, max_angle_deg):
+    def _rejoined(self, obs, max_angle):
         """True when a corner is over: a straight wall on the right, nearly parallel."""
-        return along_the_way(obs.wall, max_angle_deg) and obs.wall_ahead > self.params.rejoin_ahead
+        return along_the_way(obs.wall, max_angle) and obs.wall_ahead > self.params.rejoin_ahead
 
     def _steer(self, distance, angle, target, gain=1.0):
         """PD turn rate holding a wall at distance target and parallel (gain: on the distance)."""
@@ -570,12 +516,12 @@ class WallFollower(object):
         Without it (the corner comes up in the middle of a left turn, at
         the end of a short wall or a box's side) which way the corner points
         is unknown, and the robot circles the nearest hit instead. A wall
-        fitted far off parallel (beyond rejoin_angle_deg) is not the one
+        fitted far off parallel (beyond rejoin_angle) is not the one
         that ended either: mid-turn onto a box's short side, it is the wall
         the turn left behind, and an arc pinned to its end would circle a
         point nowhere near the corner.
         """
-        if not along_the_way(obs.wall, self.params.rejoin_angle_deg):
+        if not along_the_way(obs.wall, self.params.rejoin_angle):
             return None
         angle = obs.wall[1]
         return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.right_turn.center,

@@ -23,33 +23,13 @@ import rospy
 from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
+from wall_follower.cfg import OdomRecorderConfig
 from wall_follower.control.lap import LapRecorder
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
-from wall_follower.nodes.common import pose_of, private_params
-
-DEFAULTS = {
-    'sample_period': 1.0,
-    'min_travel': 2.0,
-    'leave_radius': 0.5,
-    'close_tolerance': 0.3,
-    'max_heading_error': math.radians(60.0),
-    'timeout': 5.0,
-    'rate': 10.0,
-}
-"""Parameters (private, ~name).
-
-sample_period: a point is recorded every this many seconds (ROS time).
-min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
-    counts as closed (m, m, m, rad); see wall_follower.control.lap.LapDetector.
-timeout: a goal is aborted when no odometry stamped since the goal has
-    arrived for this long (ROS s), whether at its start or later; a client
-    whose clock is far ahead of this node's (say, wall time against
-    simulated time) is told so this way rather than left waiting.
-rate: how often (Hz, ROS time) the goal loop checks for new points, the
-    lap's end, cancellation and the odometry time-out.
-"""
-
-LAP_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_error')
+from wall_follower.nodes.common import pose_of
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params import pick
+from wall_follower.params.odom_recorder import LAP, TABLE
 
 # Odometry messages held while the node is busy: a minute and a half at 10 Hz.
 ODOM_QUEUE = 1000
@@ -64,7 +44,8 @@ class OdomRecorderNode(object):
     """Serves record_odom: one recording per goal, fed from the odom topic."""
 
     def __init__(self):
-        self.params = private_params(DEFAULTS)
+        self.settings = NodeParameters(TABLE, OdomRecorderConfig)
+        self.params = self.settings.snapshot()   # those in force for the current goal
         self._lock = threading.Lock()
         self._recording = None
         self._frame_id = ''
@@ -138,9 +119,10 @@ class OdomRecorderNode(object):
         return start - offset
 
     def _execute(self, _goal):
+        self.params = self.settings.snapshot()
         with self._lock:
             recording = LapRecorder(self.params['sample_period'], start=self._recording_start(),
-                                    **{name: self.params[name] for name in LAP_PARAMS})
+                                    **pick(self.params, LAP))
             self._recording = recording
             for stamp, pose, _ in self._recent:
                 self._take(stamp, pose)

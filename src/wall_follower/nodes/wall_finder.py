@@ -11,56 +11,37 @@ import threading
 
 import rospy
 
-from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
+from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params import pick
+from wall_follower.params.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
-
-NODE_DEFAULTS = {
-    'rate': 20.0,
-    'keepalive': 0.15,
-    'timeout': 60.0,
-    'scan_timeout': 1.0,
-}
-"""Parameters of the node itself (the finder's own are finder.DEFAULTS).
-
-rate: how often (Hz) the loop looks at the clock while it waits for scans.
-    Each new scan is answered at once with a new command.
-keepalive: when no new scan has come for this long (ROS s), the last
-    command is sent again, so that a velocity watchdog (stageros stops the
-    robot after 0.2 s without one) does not stop the robot mid-turn. Longer
-    than a scan period, so that a repeat never stands in for an answer.
-timeout: a call that has not succeeded after this long (ROS s) answers false.
-scan_timeout: a call answers false when no scan younger than this (ROS s)
-    is available this long after it started, or at any point later on.
-"""
-
-# The TurtleBot3 Burger (and every world of this package) has its laser
-# 32 mm behind the wheel axle; the finder's own default assumes none.
-ROBOT_DEFAULTS = {'laser_x': -0.032}
 
 
 class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
-        defaults = dict(FINDER_DEFAULTS)
-        defaults.update(ROBOT_DEFAULTS)
-        defaults.update(NODE_DEFAULTS)
-        params = private_params(defaults)
-        self.rate = params.pop('rate')
-        self.keepalive = params.pop('keepalive')
-        self.timeout = params.pop('timeout')
-        self.scan_timeout = params.pop('scan_timeout')
-        self.finder_params = params
+        self.params = NodeParameters(TABLE, WallFinderConfig)
         self.commander = VelocityCommander('cmd_vel')
-        # The behaviour never asks for more than the node will send.
-        self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)
-        self.finder_params['max_angular'] = min(params['max_angular'], self.commander.max_angular)
         self.scan = LatestScan('scan')
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
-        rospy.loginfo('find_wall: ready (timeout %.0f s)', self.timeout)
+        rospy.loginfo('find_wall: ready (timeout %.0f s)', self.params.snapshot()['timeout'])
+
+    def _apply(self, values, finder):
+        """Put the node's parameters (name -> value) in force for this search.
+
+        max_linear and max_angular are both the behaviour's limits and the
+        commander's clamp, so the behaviour never asks for more than is sent.
+        """
+        self.rate, self.keepalive = values['rate'], values['keepalive']
+        self.timeout, self.scan_timeout = values['timeout'], values['scan_timeout']
+        self.commander.max_linear = values['max_linear']
+        self.commander.max_angular = values['max_angular']
+        finder.reconfigure(**pick(values, FINDER))
 
     def handle(self, _request):
         """One call, one search. rospy serves each caller in its own thread,
@@ -78,7 +59,8 @@ class WallFinderNode(object):
 
     def _search(self):
         """Run one search to its end; True when the wall is on the right."""
-        finder = WallFinder(**self.finder_params)
+        finder = WallFinder()
+        self._apply(self.params.snapshot(), finder)
         finder.start()
         rospy.loginfo('find_wall: searching for the nearest wall')
         started = sent = rospy.get_time()
@@ -100,6 +82,9 @@ class WallFinderNode(object):
                 self.commander.stop()
             elif view is not last_view:
                 last_view = view
+                update = self.params.take_update()
+                if update is not None:
+                    self._apply(update, finder)
                 self.commander.send(finder.update(view))
                 sent = now
                 if finder.state != state:

@@ -20,48 +20,36 @@ from actionlib.action_client import CommState
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
+from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import LatestScan, VelocityCommander, private_params
+from wall_follower.nodes.common import LatestScan, VelocityCommander
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params import pick
+from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
-
-NODE_DEFAULTS = {
-    'rate': 20.0,
-    'keepalive': 0.15,
-    'scan_timeout': 0.5,
-    'find_wall': True,
-    'record_odom': True,
-    'stop_after_lap': True,
-    'service_wait': 30.0,
-    'feedback_period': 5.0,
-}
-"""Parameters of the node itself (the controller's are follower.PARAMETERS).
-
-rate: how often (Hz) the loop looks at the clock while it waits for scans.
-keepalive: with no new scan for this long (ROS s), send the last command
-    again; longer than a scan period, so a repeat never stands in for an answer.
-scan_timeout: stop the robot when the newest scan is older than this (ROS s).
-find_wall: call the find_wall service before following; do not follow if it fails.
-record_odom: send a goal to the record_odom action before following.
-stop_after_lap: when record_odom reports the lap, stop and end the node.
-service_wait: how long to wait for find_wall and record_odom to appear (wall s).
-feedback_period: log record_odom's distance so far at most this often (ROS s).
-"""
 
 
 class WallFollowingNode(object):
     """The follower's ROS wiring: scan in, clamped cmd_vel out, plus the two clients."""
 
     def __init__(self):
-        params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
-        self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
-        self.controller = WallFollower(FollowerParams(**params))
+        self.params = NodeParameters(TABLE, WallFollowingConfig)
+        self.controller = WallFollower()
         self.commander = VelocityCommander('cmd_vel')
+        self._apply(self.params.snapshot())
         self.scan = LatestScan('scan')
         self.lap_done = threading.Event()
         self._recorder = None
         self._recording = None
         self._distance = 0.0
+
+    def _apply(self, values):
+        """Put the node's parameters (all of them: name -> value) in force."""
+        self.node = pick(values, NODE)
+        self.controller.reconfigure(FollowerParams(**pick(values, FOLLOWER)))
+        self.commander.max_linear = values['max_linear']
+        self.commander.max_angular = values['max_angular']
 
     def find_wall(self):
         """Call find_wall and wait for its answer; True when the wall is on the right."""
@@ -147,6 +135,9 @@ class WallFollowingNode(object):
                                        % (rospy.resolve_name('scan'), self.node['scan_timeout']))
             elif view is not last_view:
                 last_view = view
+                update = self.params.take_update()
+                if update is not None:
+                    self._apply(update)
                 self.commander.send(self.controller.update(view, stamp))
                 sent = now
                 if self.controller.state != state:

@@ -113,6 +113,11 @@ def defaults(table):
     return dict((parameter.name, parameter.default) for parameter in parameters(table))
 
 
+def pick(values, table):
+    """The entries of values (name -> value) that are parameters of table."""
+    return dict((name, values[name]) for name in names(table) if name in values)
+
+
 def checked(table, values):
     """The defaults of table, overridden by values (name -> value), each checked.
 

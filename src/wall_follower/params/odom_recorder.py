@@ -5,15 +5,15 @@ from wall_follower.params import Parameter as P, Section
 
 NODE = (
     Section('node', (
-        P('sample_period', 1.0, 'a point is recorded every this many seconds of ROS time [s] '
-          '(a change applies from the next goal)', 0.01, 60.0),
+        P('sample_period', 1.0, 'a point is recorded every this many seconds of ROS time [s]',
+          0.01, 60.0),
         P('timeout', 5.0, 'a goal is aborted when no odometry stamped since the goal has '
           'arrived for this long [s]', 0.1, 600.0),
         P('rate', 10.0, 'how often the goal loop checks for new points, the end of the lap, '
           'cancellation and the odometry time-out [Hz]', 1.0, 100.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.odom_recorder)."""
+"""The node's own parameters (wall_follower.nodes.odom_recorder); a change applies from the next goal."""
 
 LAP = (
     Section('lap', (
@@ -26,6 +26,6 @@ LAP = (
           'heading [rad]', 0.0, math.pi),
     )),
 )
-"""When a lap counts as closed (wall_follower.control.lap.LapDetector; from the next goal)."""
+"""When a lap counts as closed (wall_follower.control.lap.LapDetector); from the next goal too."""
 
 TABLE = NODE + LAP
