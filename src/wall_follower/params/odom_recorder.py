@@ -13,7 +13,7 @@ NODE = (
           'cancellation and the odometry time-out [Hz]', 1.0, 100.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.odom_recorder); a change applies from the next goal."""
+"""The node's own parameters (wall_follower.nodes.odom_recorder), in force from the next goal."""
 
 LAP = (
     Section('lap', (
