@@ -85,3 +85,13 @@ def test_a_change_is_handed_over_once(server):
     assert params.take_update() is None
     params._on_reconfigure(dict(config), 0)   # the same values again: nothing new
     assert params.take_update() is None
+
+
+def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server):
+    fake = server({})
+    params = parameters.NodeParameters(TABLE)
+    config = {'target_distance': 'far', 'wall_min_points': 6, 'find_wall': True, 'groups': {}}
+    answer = params._on_reconfigure(config, 0)
+    assert answer['target_distance'] == 0.25 and 'groups' in answer
+    assert params.take_update() is None
+    assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]

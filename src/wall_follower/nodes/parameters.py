@@ -62,7 +62,8 @@ class NodeParameters(object):
             values = checked(self._table, dict((name, config[name]) for name in names(self._table)))
         except ParameterError as error:
             rospy.logerr('%s: reconfiguration refused: %s', rospy.get_name(), error)
-            return self.snapshot()
+            config.update(self.snapshot())   # the values still in force
+            return config
         with self._lock:
             changed = sorted(name for name in values if values[name] != self._values[name])
             if changed:
@@ -84,9 +85,10 @@ def _load(table):
     given = rospy.get_param('~', {})
     unknown = sorted(set(given) - set(names(table)))
     if unknown:
-        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? see %s)', rospy.get_name(),
-                      ', '.join('~' + name for name in unknown), 'rosrun dynamic_reconfigure '
-                      'dynparam get %s, or the node\'s cfg/*.cfg' % rospy.get_name())
+        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? `rosrun '
+                      'dynamic_reconfigure dynparam get %s` lists the known ones)',
+                      rospy.get_name(), ', '.join('~' + name for name in unknown),
+                      rospy.get_name())
     known = dict((name, value) for name, value in given.items() if name not in unknown)
     try:
         values = checked(table, known)
