@@ -21,6 +21,7 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-numpy python3-yaml python3-pil python3-matplotlib python3-pytest
   python3-catkin-pkg rosbash python3-rostopic python3-rosnode
   python3-rosservice python3-rosparam python3-rosmsg python3-rosbag
+  python3-hypothesis
   python3-dynamic-reconfigure
   libdynamic-reconfigure-config-init-mutex-dev"
 

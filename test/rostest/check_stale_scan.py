@@ -4,35 +4,20 @@
 Runs in wall time against wall_following alone (no find_wall, no
 record_odom), fed synthetic Stage-convention scans of a wall on the right.
 """
-import math
 import sys
 import threading
 import time
 import unittest
 
-import numpy as np
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
+from synthetic_scans import wall_on_the_right
 
 SCAN_PERIOD = 0.1
 FEED_TIME = 1.5
 WAIT_LIMIT = 10.0
-
-
-def wall_on_the_right(distance=0.25, beams=360):
-    """A Stage-convention scan (angle_min -pi) of a straight wall on the right."""
-    scan = LaserScan()
-    scan.header.frame_id = 'base_laser_link'
-    scan.angle_min, scan.angle_max = -math.pi, math.pi
-    scan.angle_increment = 2.0 * math.pi / (beams - 1)
-    scan.range_min, scan.range_max = 0.12, 3.5
-    angles = scan.angle_min + scan.angle_increment * np.arange(beams)
-    with np.errstate(divide='ignore'):
-        ranges = np.where(np.sin(angles) < -1e-3, -distance / np.sin(angles), np.inf)
-    scan.ranges = np.minimum(ranges, scan.range_max).tolist()
-    return scan
 
 
 class StaleScan(unittest.TestCase):

@@ -70,3 +70,17 @@ def test_ends_parallel_at_0_30_m_from_the_wall_on_its_right(course_map, start, p
     assert not stalled
     assert max(abs(c.linear) for c in commands) <= MAX_LINEAR
     assert max(abs(c.angular) for c in commands) <= MAX_ANGULAR
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01'])
+@pytest.mark.parametrize('start', sorted(POSES))
+def test_a_second_call_from_where_the_first_ended_answers_at_once(course_map, start, profile):
+    first, _, pose, _, _ = find_wall(POSES[start], profile)
+    assert first.success, first.failure_reason
+    finder, elapsed, second_pose, stalled, commands = find_wall(pose, profile)
+    assert finder.success, finder.failure_reason
+    turned = sum(abs(c.angular) for c in commands) * 0.1
+    assert math.degrees(turned) <= 3.0, 'turned %.0f deg' % math.degrees(turned)
+    assert elapsed <= 0.5
+    assert course_map.right_wall_distance(second_pose) == pytest.approx(0.30, abs=0.015)
+    assert not stalled

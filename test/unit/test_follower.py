@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
+from scan_queries import min_range
 from wall_follower.control.corner import CornerArc
 from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
                                     Observation, WallFollower, as_planned, consensus_line,
@@ -661,7 +662,7 @@ def drive(world, pose, steps, dt=0.1, params=EXACT):
         command = clamp(controller.update(view))
         sector = scan_view(world, (x, y, yaw), STAGE)
         trail.append((controller.state, (x, y, yaw),
-                      sector.min_range(-math.pi / 2, math.radians(30.0))))
+                      min_range(sector, -math.pi / 2, math.radians(30.0))))
     return trail
 
 

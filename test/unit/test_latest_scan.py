@@ -20,8 +20,8 @@ def clock(monkeypatch):
 
 
 def scan_taken_at(stamp):
-    msg = LaserScan(angle_min=-3.14, angle_increment=0.0175, range_min=0.12, range_max=3.5,
-                    ranges=[1.0] * 360)
+    msg = LaserScan(angle_min=-3.14, angle_max=3.14, angle_increment=6.28 / 359,
+                    range_min=0.12, range_max=3.5, ranges=[1.0] * 360)
     msg.header.stamp = rospy.Time.from_sec(stamp)
     return msg
 
@@ -32,15 +32,15 @@ def test_a_scan_is_timed_by_its_header_stamp_not_its_arrival(clock):
     scan = LatestScan()
     clock.now = 4.9
     scan._on_scan(scan_taken_at(5.0))
-    view, taken = scan.fresh_stamped(0.5)
-    assert view is not None and taken == pytest.approx(5.0)
+    reading = scan.latest(0.5)
+    assert reading.view is not None and reading.taken == pytest.approx(5.0)
 
 
 def test_a_scan_without_a_stamp_is_timed_by_its_arrival(clock):
     scan = LatestScan()
     clock.now = 4.9
     scan._on_scan(scan_taken_at(0.0))
-    assert scan.fresh_stamped(0.5)[1] == pytest.approx(4.9)
+    assert scan.latest(0.5).taken == pytest.approx(4.9)
 
 
 def test_a_scan_goes_stale_by_its_arrival_whatever_the_laser_clock(clock):
@@ -49,7 +49,26 @@ def test_a_scan_goes_stale_by_its_arrival_whatever_the_laser_clock(clock):
     clock.now = 10.0
     scan._on_scan(scan_taken_at(3.0))
     clock.now = 10.4
-    assert scan.fresh_stamped(0.5)[1] == pytest.approx(3.0)
+    assert scan.latest(0.5).taken == pytest.approx(3.0)
     clock.now = 10.6
-    assert scan.fresh_stamped(0.5) == (None, None)
-    assert scan.fresh(0.5) is None
+    reading = scan.latest(0.5)
+    assert reading.view is None and reading.taken is None
+    assert reading.problem == 'no scan on /scan for 0.5 s'
+
+
+def test_an_unusable_scan_is_held_with_what_is_wrong(clock):
+    scan = LatestScan()
+    msg = scan_taken_at(3.0)
+    msg.ranges = [0.0] * 360
+    scan._on_scan(msg)
+    reading = scan.latest(0.5)
+    assert reading.view is None and reading.check is not None
+    assert reading.problem == ('the scan on /scan is unusable: none of its 360 readings is '
+                               'usable (360 0.0)')
+
+
+def test_a_forgotten_scan_is_no_scan(clock):
+    scan = LatestScan()
+    scan._on_scan(scan_taken_at(3.0))
+    scan.forget()
+    assert scan.latest(0.5).check is None

@@ -6,6 +6,7 @@ find_wall service node alike:
 
     IDLE -> start() -> CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
                            |    +-> ALIGN (already beside the wall)
+                           |    +-> DONE (already in place: parallel at wall_distance)
                            +-> FAILED (no wall in range, or the wall kept getting lost)
     (a chosen wall lost from sight for a while: back to CHOOSE_WALL)
 
@@ -95,6 +96,13 @@ class WallFinder(object):
         p = self.params
         walls = [wall for wall in extract_walls(view, min_length=p['min_wall_length'])
                  if wall.foot_inside() and path_is_clear(view, wall, p['corridor_half_width'])]
+        in_place = [wall for wall in walls if self._in_place(wall)]
+        if in_place:
+            # Where a search ends: nothing to do, and turning to look for the
+            # nearest wall could only leave the robot less well placed.
+            self.wall = in_place[0]
+            self.state = DONE
+            return STOP
         # Ending near a wall's end leaves the robot at a corner, with another
         # wall on its right as soon as it moves: choose such a wall only if
         # there is nothing better.
@@ -186,6 +194,12 @@ class WallFinder(object):
         self.state = FAILED
         self.failure_reason = reason
         return STOP
+
+    def _in_place(self, wall):
+        """True when wall is on the right, parallel and at wall_distance, within the tolerances."""
+        p = self.params
+        return (abs(float(wrap_angle(wall.angle - RIGHT))) <= p['heading_tolerance']
+                and abs(wall.distance - p['wall_distance']) <= p['distance_tolerance'])
 
     def _heading_error(self, target):
         """Angle (rad) by which the wall's normal lies left of where it should be.

@@ -1,6 +1,7 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
 import threading
+from collections import namedtuple
 
 import rospkg
 import rospy
@@ -8,7 +9,7 @@ from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
-from wall_follower.control.scan import ScanView
+from wall_follower.control.scan_check import check_scan
 
 
 def to_twist(command):
@@ -42,8 +43,13 @@ class VelocityCommander(object):
         self.send(STOP)
 
 
+Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])
+"""What LatestScan holds: the ScanCheck (None before any scan), and either a
+usable scan's view and time taken [s] or, both None, what is wrong."""
+
+
 class LatestScan(object):
-    """Keeps the newest scan as a ScanView and knows when it has gone stale.
+    """Keeps the newest scan, checked by check_scan, and knows when it has gone stale.
 
     Age is measured in ROS time from the scan's arrival, so it follows
     simulated time in simulation and does not depend on the laser host's
@@ -53,38 +59,43 @@ class LatestScan(object):
     """
 
     def __init__(self, topic='scan'):
-        self._latest = (None, None, None)   # (view, arrival, taken), replaced as one
+        self._latest = (None, None, None)   # (ScanCheck, arrival, taken), replaced as one
         self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
 
     def _on_scan(self, msg):
         arrival = rospy.Time.now()
         taken = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
-        self._latest = (ScanView.from_msg(msg), arrival, taken)
+        self._latest = (check_scan(msg), arrival, taken)
         with self._arrived:
             self._arrived.notify_all()
 
-    def wait_for_newer(self, view, timeout):
-        """Wait until the latest scan is not `view`, at most timeout wall seconds.
+    def forget(self):
+        """Drop the scan held, e.g. one that arrived on a clock that has since moved back."""
+        self._latest = (None, None, None)
+
+    def wait_for_newer(self, seen, timeout):
+        """Wait until a scan newer than `seen` (a Reading's check) comes, at most timeout wall s.
 
         Lets a controller answer each scan as soon as it arrives instead of
         at its next timer tick: in lockstep simulation a command that merely
         repeats the last one would let the world step on a stale decision.
         """
         with self._arrived:
-            if self._latest[0] is view:
+            if self._latest[0] is seen:
                 self._arrived.wait(timeout)
 
-    def fresh(self, timeout):
-        """The latest scan if it is younger than timeout seconds, else None."""
-        return self.fresh_stamped(timeout)[0]
-
-    def fresh_stamped(self, timeout):
-        """(view, time taken in s) of the latest scan if it arrived within timeout s, else (None, None)."""
-        view, arrival, taken = self._latest
-        if view is None or (rospy.Time.now() - arrival).to_sec() > timeout:
-            return None, None
-        return view, taken.to_sec()
+    def latest(self, timeout):
+        """The newest scan as a Reading: its view and time taken [s] if usable and fresh,
+        else None for both and the problem, in words."""
+        check, arrival, taken = self._latest
+        if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
+            problem = 'no scan on %s for %.1f s' % (self._sub.resolved_name, timeout)
+            return Reading(check, None, None, problem)
+        if check.view is None:
+            problem = 'the scan on %s is unusable: %s' % (self._sub.resolved_name, check.problem)
+            return Reading(check, None, None, problem)
+        return Reading(check, check.view, taken.to_sec(), None)
 
 
 def world_path(world):

@@ -23,6 +23,8 @@ import threading
 import rospy
 from dynamic_reconfigure.server import Server
 
+from wall_follower.nodes.common import LatestScan, VelocityCommander
+from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.params import ParameterError, checked, names
 
 
@@ -99,3 +101,20 @@ def _load(table):
     for name in known:
         rospy.set_param('~' + name, values[name])
     return values
+
+
+def drive_loop(name, values):
+    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value)."""
+    loop = DriveLoop(name, LatestScan('scan'), VelocityCommander('cmd_vel'), values['rate'],
+                     values['keepalive'], values['scan_timeout'], values['ahead_half_width'])
+    tune_drive_loop(loop, values)
+    return loop
+
+
+def tune_drive_loop(loop, values):
+    """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout,
+    ahead_half_width, max_linear, max_angular) in force; in the loop's own thread."""
+    loop.tune(values['rate'], values['keepalive'], values['scan_timeout'],
+              values['ahead_half_width'])
+    loop.commander.max_linear = values['max_linear']
+    loop.commander.max_angular = values['max_angular']

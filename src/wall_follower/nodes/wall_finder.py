@@ -13,8 +13,7 @@ import rospy
 
 from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import LatestScan, VelocityCommander
-from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
@@ -25,23 +24,14 @@ class WallFinderNode(object):
 
     def __init__(self):
         self.params = NodeParameters(TABLE, WallFinderConfig)
-        self.commander = VelocityCommander('cmd_vel')
-        self.scan = LatestScan('scan')
+        values = self.params.snapshot()
+        # max_linear and max_angular are the behaviour's limits and the clamp
+        # alike, so the behaviour never asks for more than the node will send.
+        self.loop = drive_loop('find_wall', values)
+        self.commander = self.loop.commander
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
-        rospy.loginfo('find_wall: ready (timeout %.0f s)', self.params.snapshot()['timeout'])
-
-    def _apply(self, values, finder):
-        """Put the node's parameters (name -> value) in force for this search.
-
-        max_linear and max_angular are both the behaviour's limits and the
-        commander's clamp, so the behaviour never asks for more than is sent.
-        """
-        self.rate, self.keepalive = values['rate'], values['keepalive']
-        self.timeout, self.scan_timeout = values['timeout'], values['scan_timeout']
-        self.commander.max_linear = values['max_linear']
-        self.commander.max_angular = values['max_angular']
-        finder.reconfigure(**pick(values, FINDER))
+        rospy.loginfo('find_wall: ready (timeout %.0f s)', values['timeout'])
 
     def handle(self, _request):
         """One call, one search. rospy serves each caller in its own thread,
@@ -59,53 +49,62 @@ class WallFinderNode(object):
 
     def _search(self):
         """Run one search to its end; True when the wall is on the right."""
-        finder = WallFinder()
-        self._apply(self.params.snapshot(), finder)
-        finder.start()
+        values = self.params.snapshot()
+        search = Search(WallFinder(**pick(values, FINDER)), values['timeout'])
+        tune_drive_loop(self.loop, values)
         rospy.loginfo('find_wall: searching for the nearest wall')
-        started = sent = rospy.get_time()
-        state = finder.state
-        last_view = None
-        while not rospy.is_shutdown():
-            now = rospy.get_time()
-            elapsed = now - started
-            if elapsed > self.timeout:
-                rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
-                              elapsed, finder.state)
-                return False
-            view = self.scan.fresh(self.scan_timeout)
-            if view is None:
-                if elapsed > self.scan_timeout:
-                    rospy.logwarn('find_wall: no scan on %s for %.1f s; stopping',
-                                  rospy.resolve_name('scan'), self.scan_timeout)
-                    return False
-                self.commander.stop()
-            elif view is not last_view:
-                last_view = view
-                update = self.params.take_update()
-                if update is not None:
-                    self._apply(update, finder)
-                self.commander.send(finder.update(view))
-                sent = now
-                if finder.state != state:
-                    rospy.loginfo('find_wall: %s -> %s%s', state, finder.state, _describe(finder))
-                    state = finder.state
-                if finder.done:
-                    return self._report(finder, rospy.get_time() - started)
-            elif now - sent >= self.keepalive:
-                self.commander.send(self.commander.last)
-                sent = now
-            self.scan.wait_for_newer(last_view, 1.0 / self.rate)
-        return False
+        return self.loop.run(lambda view, taken: self._answer(search, view, taken),
+                             search.outcome, patience=values['scan_timeout'],
+                             on_clock_reset=search.restart) is True
 
-    @staticmethod
-    def _report(finder, elapsed):
-        if finder.success:
-            rospy.loginfo('find_wall: wall found: %.3f m on the right after %.1f s',
-                          finder.wall.distance, elapsed)
-        else:
-            rospy.logwarn('find_wall: no wall found: %s', finder.failure_reason)
-        return finder.success
+    def _answer(self, search, view, taken):
+        """The search's answer to a scan, under any parameters changed since the last."""
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            search.timeout = values['timeout']
+            search.finder.reconfigure(**pick(values, FINDER))
+        return search.answer(view, taken)
+
+
+class Search(object):
+    """One find_wall call: the WallFinder it steps, timed from the call on ROS time."""
+
+    def __init__(self, finder, timeout):
+        self.finder = finder
+        self.timeout = timeout
+        self.restart()
+
+    def restart(self):
+        """Start from the beginning, e.g. when ROS time has moved back."""
+        self.finder.start()
+        self.started = rospy.get_time()
+        self.state = self.finder.state
+
+    def answer(self, view, _taken):
+        command = self.finder.update(view)
+        if self.finder.state != self.state:
+            rospy.loginfo('find_wall: %s -> %s%s', self.state, self.finder.state,
+                          _describe(self.finder))
+            self.state = self.finder.state
+        return command
+
+    def outcome(self):
+        """True or False once the search has ended, else None."""
+        elapsed = rospy.get_time() - self.started
+        finder = self.finder
+        if finder.done:
+            if finder.success:
+                rospy.loginfo('find_wall: wall found: %.3f m on the right after %.1f s',
+                              finder.wall.distance, elapsed)
+            else:
+                rospy.logwarn('find_wall: no wall found: %s', finder.failure_reason)
+            return finder.success
+        if elapsed > self.timeout:
+            rospy.logwarn('find_wall: gave up after %.1f s (~timeout) in state %s',
+                          elapsed, finder.state)
+            return False
+        return None
 
 
 def _describe(finder):

@@ -1,11 +1,8 @@
 """The wall_following node: find_wall, then record_odom, then follow the right wall.
 
-The controller answers each scan as soon as it arrives, so that in
-lockstep simulation every world step acts on a decision about the latest
-scan. When scans pause for ~keepalive (ROS time, simulated in simulation)
-the last command is sent again, so that the robot's cmd_vel watchdog
-(stageros: 0.2 s) never stops it mid-turn; with no scan for ~scan_timeout
-the robot is stopped until scans come back. Every command leaves through
+The controller answers each scan through the DriveLoop that every driving
+node shares: at once, re-sent after ~keepalive, and stopped while the scan
+is stale or unusable or the way ahead unseen. Every command leaves through
 VelocityCommander, which clamps it to ~max_linear and ~max_angular and
 stops the robot on shutdown.
 
@@ -23,8 +20,7 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import LatestScan, VelocityCommander
-from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
@@ -35,21 +31,15 @@ class WallFollowingNode(object):
 
     def __init__(self):
         self.params = NodeParameters(TABLE, WallFollowingConfig)
-        self.controller = WallFollower()
-        self.commander = VelocityCommander('cmd_vel')
-        self._apply(self.params.snapshot())
-        self.scan = LatestScan('scan')
+        values = self.params.snapshot()
+        self.node = pick(values, NODE)
+        self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))
+        self._state = None
+        self.loop = drive_loop('wall_following', values)
         self.lap_done = threading.Event()
         self._recorder = None
         self._recording = None
         self._distance = 0.0
-
-    def _apply(self, values):
-        """Put the node's parameters (all of them: name -> value) in force."""
-        self.node = pick(values, NODE)
-        self.controller.reconfigure(FollowerParams(**pick(values, FOLLOWER)))
-        self.commander.max_linear = values['max_linear']
-        self.commander.max_angular = values['max_angular']
 
     def find_wall(self):
         """Call find_wall and wait for its answer; True when the wall is on the right."""
@@ -122,32 +112,25 @@ class WallFollowingNode(object):
 
     def follow(self):
         """Answer each scan until shutdown or, with stop_after_lap, the recorded lap."""
-        last_view = None
-        state = None
-        sent = rospy.get_time()
-        while not rospy.is_shutdown() and not self.lap_done.is_set():
-            now = rospy.get_time()
-            view, stamp = self.scan.fresh_stamped(self.node['scan_timeout'])
-            if view is None:
-                self.commander.stop()
-                sent = now
-                rospy.logwarn_throttle(5.0, 'wall_following: no scan on %s for %.1f s; stopped'
-                                       % (rospy.resolve_name('scan'), self.node['scan_timeout']))
-            elif view is not last_view:
-                last_view = view
-                update = self.params.take_update()
-                if update is not None:
-                    self._apply(update)
-                self.commander.send(self.controller.update(view, stamp))
-                sent = now
-                if self.controller.state != state:
-                    rospy.loginfo('wall_following: %s -> %s', state, self.controller.state)
-                    state = self.controller.state
-            elif now - sent >= self.node['keepalive']:
-                self.commander.send(self.commander.last)
-                sent = now
-            self.scan.wait_for_newer(last_view, 1.0 / self.node['rate'])
-        self.commander.stop()
+        self.loop.run(self._answer, lambda: 'lap' if self.lap_done.is_set() else None,
+                      on_clock_reset=self._restart_controller)
+
+    def _answer(self, view, taken):
+        values = self.params.take_update()
+        if values is not None:
+            self.node = pick(values, NODE)
+            self.controller.reconfigure(FollowerParams(**pick(values, FOLLOWER)))
+            tune_drive_loop(self.loop, values)
+        command = self.controller.update(view, taken)
+        if self.controller.state != self._state:
+            rospy.loginfo('wall_following: %s -> %s', self._state, self.controller.state)
+            self._state = self.controller.state
+        return command
+
+    def _restart_controller(self):
+        """A controller that timed its corners on the old clock starts afresh."""
+        self.controller = WallFollower(self.controller.params)
+        self._state = None
 
 
 def main():

@@ -11,6 +11,8 @@ NODE = (
           'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
         P('timeout', 60.0, 'a call that has not succeeded after this long answers false [s]',
           0.0, 3600.0),
+        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
+          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
         P('scan_timeout', 1.0, 'a call answers false when no scan younger than this is '
           'available this long after it started, or at any point later on [s]', 0.05, 10.0),
     )),

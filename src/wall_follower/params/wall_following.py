@@ -12,6 +12,8 @@ NODE = (
           1.0, 100.0),
         P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
           'a velocity watchdog never stops the robot [s]', 0.01, 1.0),
+        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
+          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
         P('scan_timeout', 0.5, 'stop the robot while the newest scan is older than this [s]',
           0.05, 5.0),
         P('max_linear', 0.19, 'clamp on every forward speed sent [m/s] (the real robot kills '

@@ -1,0 +1,118 @@
+"""The loop every node that drives from the laser runs, and the stops it makes.
+
+One answer per scan, as soon as the scan arrives: in lockstep simulation a
+command that merely repeats the last one would let the world step on a
+stale decision. Between scans the last command is sent again after
+`keepalive`, so that the robot's cmd_vel watchdog (stageros: 0.2 s) does
+not stop it mid-turn. The robot is stopped, with a throttled warning that
+says why, whenever the newest scan is older than `scan_timeout` or
+unusable (check_scan), and it goes on by itself once usable scans return.
+No command drives forward while the sector within `ahead_half_width` of
+straight ahead holds no valid reading (neither a hit nor a proven
+no-return): a laser that sees nothing there may be blind, not looking at
+free space. A clock that jumps back (a simulator restarted, a bag looped)
+drops the scan held and lets the node reset what it timed on the old clock.
+"""
+import math
+
+import rospy
+
+from wall_follower.control.motion import Command
+
+FINISHED_NO_SCAN = 'no scan'
+WARNING_PERIOD = 5.0   # ROS s between repeats of one warning
+
+
+class DriveLoop(object):
+    """Answers scans with commands through a VelocityCommander.
+
+    scan: a LatestScan; commander: a VelocityCommander; name: the prefix
+    of every log line. rate: how often (Hz) the loop looks at the clock
+    while it waits for scans. keepalive, scan_timeout: ROS seconds.
+    ahead_half_width: rad either side of straight ahead.
+    """
+
+    def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
+                 ahead_half_width=math.radians(30.0)):
+        self.name = name
+        self.scan = scan
+        self.commander = commander
+        self.tune(rate, keepalive, scan_timeout, ahead_half_width)
+        self._warned = (None, None)   # (text, ROS time) of the last warning
+
+    def tune(self, rate, keepalive, scan_timeout, ahead_half_width):
+        """Take new settings (as in the constructor); call it between two scans, from answer()."""
+        self.period = 1.0 / rate
+        self.keepalive = keepalive
+        self.scan_timeout = scan_timeout
+        self.ahead_half_width = ahead_half_width
+
+    def run(self, answer, finished=lambda: None, patience=None, on_clock_reset=None):
+        """Drive until shutdown or finished() returns something other than None.
+
+        answer(view, taken) -> Command for each new usable scan (taken: its
+        stamp in s). finished: checked before each pass and right after
+        each answer; what it returns ends the loop and is returned.
+        patience: without a usable scan for this long [ROS s] the loop ends
+        with FINISHED_NO_SCAN; None waits for ever, stopped.
+        on_clock_reset(): called when ROS time has moved backwards.
+        Returns None on shutdown. The robot is stopped on every way out.
+        """
+        seen = None
+        now = started = sent = rospy.get_time()
+        try:
+            while not rospy.is_shutdown():
+                outcome = finished()
+                if outcome is not None:
+                    return outcome
+                previous, now = now, rospy.get_time()
+                if now < previous:
+                    self._clock_moved_back(previous, now, on_clock_reset)
+                    started = sent = now
+                reading = self.scan.latest(self.scan_timeout)
+                if reading.view is None:
+                    if patience is not None and now - started > patience:
+                        rospy.logwarn('%s: %s; giving up', self.name, reading.problem)
+                        return FINISHED_NO_SCAN
+                    self.commander.stop()
+                    sent = now
+                    if reading.check is not None or now - started > self.scan_timeout:
+                        self._warn('%s; stopped' % reading.problem, now)
+                elif reading.check is not seen:
+                    started = now
+                    self.commander.send(self._safe(answer(reading.view, reading.taken),
+                                                   reading.view, now))
+                    sent = now
+                    outcome = finished()
+                    if outcome is not None:
+                        return outcome
+                elif now - sent >= self.keepalive:
+                    self.commander.send(self.commander.last)
+                    sent = now
+                seen = reading.check
+                self.scan.wait_for_newer(seen, self.period)
+            return None
+        finally:
+            self.commander.stop()
+
+    def _safe(self, command, view, now):
+        """command, with no forward motion into a sector ahead that the laser cannot see."""
+        if command.linear > 0.0 and not view.known_in_sector(0.0, self.ahead_half_width):
+            self._warn('no valid reading within %.0f deg ahead; not driving forward'
+                       % math.degrees(self.ahead_half_width), now)
+            return Command(0.0, command.angular)
+        return command
+
+    def _warn(self, text, now):
+        """Log a warning at once when it is new, and again every WARNING_PERIOD while it lasts."""
+        last_text, last_time = self._warned
+        if text != last_text or now - last_time >= WARNING_PERIOD or now < last_time:
+            rospy.logwarn('%s: %s', self.name, text)
+            self._warned = (text, now)
+
+    def _clock_moved_back(self, previous, now, on_clock_reset):
+        rospy.logwarn('%s: ROS time moved back from %.2f s to %.2f s; dropping what was timed '
+                      'on the old clock', self.name, previous, now)
+        self.scan.forget()
+        if on_clock_reset is not None:
+            on_clock_reset()

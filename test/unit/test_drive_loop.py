@@ -1,0 +1,155 @@
+"""DriveLoop with a scripted clock, scan and commander: when it answers, stops and gives up.
+
+Needs ROS's Python modules but no master: rospy's clock and shutdown flag
+are replaced by the test's.
+"""
+import math
+
+import pytest
+import rospy
+
+from wall_follower.control.motion import STOP, Command
+from wall_follower.control.scan_check import check_scan
+from wall_follower.nodes.common import Reading
+from wall_follower.nodes.drive_loop import FINISHED_NO_SCAN, DriveLoop
+
+PERIOD = 0.05
+
+
+class Clock(object):
+    """ROS time in s, moved on by the scripted scan source at every wait."""
+    now = 0.0
+
+
+class Commander(object):
+    def __init__(self):
+        self.sent = []
+        self.last = STOP
+
+    def send(self, command):
+        self.last = command
+        self.sent.append((Clock.now, command))
+
+    def stop(self):
+        self.send(STOP)
+
+
+class Msg(object):
+    def __init__(self, ranges):
+        self.ranges = ranges
+        self.angle_min, self.angle_increment = 0.0, 2.0 * math.pi / len(ranges)
+        self.angle_max = self.angle_increment * (len(ranges) - 1)
+        self.range_min, self.range_max = 0.12, 3.5
+
+
+GOOD = Msg([1.0] * 360)
+DEAD = Msg([0.0] * 360)
+BLIND_AHEAD = Msg([0.0] * 31 + [1.0] * 299 + [0.0] * 30)
+
+
+class Scans(object):
+    """Delivers script[i] = (time, msg) as the clock passes each time; a float
+    for msg sets the clock to it instead."""
+
+    def __init__(self, script, timeout=0.5):
+        self.script = list(script)
+        self.timeout = timeout
+        self.current = None
+        self.arrival = None
+        self.forgotten = 0
+
+    def latest(self, timeout):
+        if self.current is None or Clock.now - self.arrival > timeout:
+            return Reading(self.current, None, None, 'no scan')
+        if self.current.view is None:
+            return Reading(self.current, None, None, self.current.problem)
+        return Reading(self.current, self.current.view, self.arrival, None)
+
+    def forget(self):
+        self.current = None
+        self.forgotten += 1
+
+    def wait_for_newer(self, _seen, timeout):
+        Clock.now += timeout
+        while self.script and self.script[0][0] <= Clock.now:
+            when, msg = self.script.pop(0)
+            if isinstance(msg, float):
+                Clock.now = msg   # the clock jumps
+            else:
+                self.current, self.arrival = check_scan(msg), when
+
+
+@pytest.fixture(autouse=True)
+def ros_clock(monkeypatch):
+    Clock.now = 0.0
+    monkeypatch.setattr(rospy, 'get_time', lambda: Clock.now)
+    monkeypatch.setattr(rospy, 'is_shutdown', lambda: False)
+    monkeypatch.setattr(rospy, 'logwarn', lambda *args: Clock.warnings.append(args[-1]))
+    Clock.warnings = []
+
+
+def run(script, until, answer=lambda view, taken: Command(0.1, 0.2), **kwargs):
+    scans, commander = Scans(script), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5)
+    outcome = loop.run(answer, lambda: 'end' if Clock.now >= until else None, **kwargs)
+    return outcome, commander.sent, scans
+
+
+def test_each_new_scan_is_answered_once_and_repeated_after_keepalive():
+    outcome, sent, _ = run([(0.1, GOOD)], until=0.5)
+    assert outcome == 'end'
+    moving = [t for t, c in sent if c == Command(0.1, 0.2)]
+    assert moving[0] == pytest.approx(0.1)
+    assert all(b - a >= 0.15 - 1e-9 for a, b in zip(moving, moving[1:]))
+    assert sent[-1][1] == STOP
+
+
+def test_a_stale_scan_stops_the_robot_and_a_new_one_resumes_it():
+    outcome, sent, _ = run([(0.1, GOOD), (2.0, GOOD)], until=2.2)
+    after_timeout = [c for t, c in sent if 0.65 <= t < 2.0]
+    assert after_timeout and all(c == STOP for c in after_timeout)
+    assert any(c == Command(0.1, 0.2) for t, c in sent if t >= 2.0)
+
+
+def test_an_unusable_scan_stops_the_robot_at_once():
+    outcome, sent, _ = run([(0.1, GOOD), (0.3, DEAD), (0.6, GOOD)], until=0.8)
+    assert [c for t, c in sent if 0.3 <= t < 0.6] and all(
+        c == STOP for t, c in sent if 0.3 <= t < 0.6)
+    assert any(c == Command(0.1, 0.2) for t, c in sent if t >= 0.6)
+
+
+def test_an_unusable_scan_is_warned_of_with_what_is_wrong_and_not_again_at_once():
+    run([(0.1, DEAD), (0.2, DEAD)], until=0.5)
+    assert Clock.warnings == ['none of its 360 readings is usable (360 0.0); stopped']
+
+
+def test_no_forward_motion_into_a_sector_with_no_valid_reading():
+    outcome, sent, _ = run([(0.1, BLIND_AHEAD)], until=0.5)
+    answered = [c for t, c in sent if c != STOP]
+    assert answered and all(c == Command(0.0, 0.2) for c in answered)
+    assert Clock.warnings == ['no valid reading within 30 deg ahead; not driving forward']
+
+
+def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():
+    outcome, sent, _ = run([(0.1, BLIND_AHEAD)], until=0.5,
+                           answer=lambda view, taken: Command(-0.1, 0.0))
+    assert any(c == Command(-0.1, 0.0) for t, c in sent)
+
+
+def test_with_patience_the_loop_gives_up_without_a_usable_scan():
+    outcome, sent, _ = run([(0.1, DEAD)], until=10.0, patience=1.0)
+    assert outcome == FINISHED_NO_SCAN
+    assert Clock.now == pytest.approx(1.05, abs=PERIOD)
+    assert all(c == STOP for t, c in sent)
+
+
+def test_a_clock_moving_back_drops_the_scan_and_tells_the_node():
+    resets = []
+    outcome, sent, scans = run([(0.1, GOOD), (0.4, 0.05), (0.3, GOOD)], until=0.5,
+                               on_clock_reset=lambda: resets.append(Clock.now))
+    assert resets == [pytest.approx(0.05)]
+    assert scans.forgotten == 1
+    jump = next(i for i in range(1, len(sent)) if sent[i][0] < sent[i - 1][0])
+    after_jump = sent[jump:]
+    assert all(c == STOP for t, c in after_jump if t < 0.3)
+    assert any(c == Command(0.1, 0.2) for t, c in after_jump if t >= 0.3)
