@@ -17,6 +17,7 @@ import rospy
 import rostest
 from dynamic_reconfigure.client import Client
 from nav_msgs.msg import Odometry
+from std_srvs.srv import Empty
 
 from waiting import wait_until
 from wall_follower.evaluation.scoring import CourseMap
@@ -41,6 +42,11 @@ class Reconfigure(unittest.TestCase):
         self.poses = []   # (stamp, pose) of ground truth
         self.sub = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
                                     queue_size=1000)
+        # The simulator starts paused, so that no ground truth goes by unheard.
+        self.assertTrue(wait_until(lambda: self.sub.get_num_connections() > 0, WALL_LIMIT),
+                        'no ground truth publisher')
+        rospy.wait_for_service('unpause_physics', timeout=WALL_LIMIT)
+        rospy.ServiceProxy('unpause_physics', Empty)()
 
     def _on_truth(self, msg):
         with self.lock:
