@@ -123,14 +123,20 @@ def readme_rows():
     return rows
 
 
+SHOWN_DECIMALS = 4
+"""A default that needs more decimals than this (an angle in radians) is shown to this many."""
+
+
 def readme_value_matches(text, default):
-    """True when a README default is the declared one, to the digits it shows."""
+    """True when a README default is the declared one, shown to every decimal it has."""
     if isinstance(default, bool):
         return text == str(default).lower()
     if isinstance(default, str):
         return text == '"%s"' % default
-    decimals = len(text.split('.')[1]) if '.' in text else 0
-    return abs(float(text) - default) <= 0.5 * 10.0 ** -decimals + 1e-12
+    shown = len(text.split('.')[1]) if '.' in text else 0
+    needed = next((d for d in range(SHOWN_DECIMALS) if round(default, d) == default),
+                  SHOWN_DECIMALS)
+    return shown >= needed and round(float(text), shown) == round(default, shown)
 
 
 def test_the_readme_tables_show_the_defaults():
