@@ -16,6 +16,7 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from drive_guard import DriveGuard
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
@@ -34,6 +35,7 @@ class Course(unittest.TestCase):
         cls.world = rospy.get_param('~world')
         cls.tolerance = rospy.get_param('/odom_recorder/close_tolerance', 0.3)
         cls.period = rospy.get_param('/odom_recorder/sample_period', 1.0)
+        cls.guard = DriveGuard()
         cls.monitor = CourseMonitor(CourseMap(world_path(cls.world)), start_on_goal=True)
         # The simulator starts paused: nothing moves until the monitor hears everything.
         assert cls.monitor.start_world(CONNECT_LIMIT), 'the monitor could not connect'
@@ -64,6 +66,9 @@ class Course(unittest.TestCase):
         self.assertLessEqual(spans[-1][0] - spans[-2][1], self.period + 1e-3)
         gap = math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1])
         self.assertLessEqual(gap, self.tolerance)
+
+    def test_within_the_limits_without_contact(self):
+        self.guard.assert_safe(self)
 
     def test_lap_declared_where_the_robot_came_back(self):
         start = self.monitor.goal_pose

@@ -10,11 +10,9 @@ import unittest
 
 import rospy
 import rostest
+from drive_guard import DriveGuard
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.nodes.find_trials import FindTrials
-
-LIMIT_SLACK = 1e-6
 
 
 class FindWallFromPoses(unittest.TestCase):
@@ -24,6 +22,7 @@ class FindWallFromPoses(unittest.TestCase):
         world = rospy.get_param('~world')
         cls.starts = rospy.get_param('~poses')[world]
         cls.trials = FindTrials(world)
+        cls.guard = DriveGuard()
 
     def check_start(self, index):
         result = self.trials.run(self.starts[index])
@@ -32,8 +31,7 @@ class FindWallFromPoses(unittest.TestCase):
         self.assertAlmostEqual(result['distance'], 0.30, delta=0.03)
         self.assertLess(abs(result['heading_error_deg']), 5.0)
         self.assertFalse(result['contact'], 'touched an obstacle')
-        self.assertLessEqual(result['max_linear'], MAX_LINEAR + LIMIT_SLACK)
-        self.assertLessEqual(result['max_angular'], MAX_ANGULAR + LIMIT_SLACK)
+        self.guard.assert_safe(self)
 
 
 for _index in range(5):

@@ -1,5 +1,6 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
+import signal
 import threading
 from collections import namedtuple
 
@@ -22,25 +23,64 @@ def to_twist(command):
 class VelocityCommander(object):
     """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
 
-    The limits are the private parameters ~max_linear and ~max_angular,
-    defaulting to the real robot's 0.19 m/s and 0.49 rad/s.
+    The limits (m/s, rad/s) are the node's ~max_linear and ~max_angular,
+    defaulting to the real robot's (motion.MAX_LINEAR, MAX_ANGULAR); they
+    may be changed between two commands. Once shutdown has begun, every
+    command is a stop: a controller thread still answering a scan must not
+    follow the shutdown's zero Twist with a last move.
     """
 
-    def __init__(self, topic='cmd_vel'):
-        self.max_linear = abs(float(rospy.get_param('~max_linear', MAX_LINEAR)))
-        self.max_angular = abs(float(rospy.get_param('~max_angular', MAX_ANGULAR)))
+    def __init__(self, topic='cmd_vel', max_linear=MAX_LINEAR, max_angular=MAX_ANGULAR):
+        self.max_linear = abs(max_linear)
+        self.max_angular = abs(max_angular)
         self._pub = rospy.Publisher(topic, Twist, queue_size=1)
+        self._lock = threading.Lock()
+        self._halted = False
         self.last = STOP
-        rospy.on_shutdown(self.stop)
+        rospy.on_shutdown(self._halt)
 
     def send(self, command):
         """Clamp and publish a Command; returns what was actually sent."""
-        self.last = clamp(Command(*command), self.max_linear, self.max_angular)
-        self._pub.publish(to_twist(self.last))
-        return self.last
+        with self._lock:
+            if self._halted:
+                command = STOP
+            self.last = clamp(Command(*command), self.max_linear, self.max_angular)
+            self._pub.publish(to_twist(self.last))
+            return self.last
 
     def stop(self):
         self.send(STOP)
+
+    def _halt(self):
+        with self._lock:
+            self._halted = True
+        self.stop()
+
+
+def init_node(name):
+    """rospy.init_node, with SIGINT and SIGTERM answered from a thread of the node's own.
+
+    rospy runs its shutdown hooks inside its signal handler, that is in the
+    main thread wherever the signal caught it. A hook that publishes (every
+    driving node's last stop) then deadlocks on a publisher lock whenever
+    the signal lands while the main thread is publishing, and the node
+    never exits. Here the handler only wakes a thread that shuts rospy down.
+    """
+    rospy.init_node(name, disable_signals=True)
+    caught = []
+    wake = threading.Event()
+
+    def shut_down():
+        wake.wait()
+        rospy.signal_shutdown('signal %d' % caught[0])
+
+    def on_signal(number, _frame):
+        caught.append(number)
+        wake.set()
+
+    threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, on_signal)
 
 
 Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])

@@ -105,10 +105,9 @@ def _load(table):
 
 def drive_loop(name, values):
     """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value)."""
-    loop = DriveLoop(name, LatestScan('scan'), VelocityCommander('cmd_vel'), values['rate'],
-                     values['keepalive'], values['scan_timeout'], values['ahead_half_width'])
-    tune_drive_loop(loop, values)
-    return loop
+    commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
+    return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
+                     values['scan_timeout'], values['ahead_half_width'])
 
 
 def tune_drive_loop(loop, values):

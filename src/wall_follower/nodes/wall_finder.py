@@ -13,6 +13,7 @@ import rospy
 
 from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
+from wall_follower.nodes.common import init_node
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_finder import FINDER, TABLE
@@ -115,6 +116,6 @@ def _describe(finder):
 
 
 def main():
-    rospy.init_node('wall_finder')
+    init_node('wall_finder')
     WallFinderNode()
     rospy.spin()

@@ -20,6 +20,7 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.common import init_node
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
@@ -134,7 +135,7 @@ class WallFollowingNode(object):
 
 
 def main():
-    rospy.init_node('wall_following')
+    init_node('wall_following')
     node = WallFollowingNode()
     try:
         if node.node['find_wall'] and not node.find_wall():

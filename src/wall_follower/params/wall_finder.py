@@ -1,6 +1,7 @@
 """Parameters of the wall_finder node (the find_wall service): the node's own, then the finder's."""
 import math
 
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.params import Parameter as P, Section
 
 NODE = (
@@ -24,10 +25,10 @@ FINDER = (
         P('laser_x', -0.032, 'laser position ahead of the rotation centre [m]; the robot stops '
           'wall_distance - laser_x from the wall, so that the quarter turn that follows leaves '
           'the laser at wall_distance', -0.3, 0.3),
-        P('max_linear', 0.19, 'speed limit of the behaviour, and the clamp on every command '
-          'sent [m/s]', 0.0, 0.19),
-        P('max_angular', 0.49, 'turn rate limit of the behaviour, and the clamp [rad/s]',
-          0.0, 0.49),
+        P('max_linear', MAX_LINEAR, 'speed limit of the behaviour, and the clamp on every command '
+          'sent [m/s]', 0.0, MAX_LINEAR),
+        P('max_angular', MAX_ANGULAR, 'turn rate limit of the behaviour, and the clamp [rad/s]',
+          0.0, MAX_ANGULAR),
     )),
     Section('behaviour', (
         P('wall_distance', 0.30, 'final distance from the laser to the wall on the right [m]',

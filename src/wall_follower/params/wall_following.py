@@ -4,6 +4,7 @@ Distances are the laser's, to the wall, in metres, unless said otherwise.
 """
 import math
 
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.params import Parameter as P, Section
 
 NODE = (
@@ -16,9 +17,10 @@ NODE = (
           'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
         P('scan_timeout', 0.5, 'stop the robot while the newest scan is older than this [s]',
           0.05, 5.0),
-        P('max_linear', 0.19, 'clamp on every forward speed sent [m/s] (the real robot kills '
-          'a node above the default)', 0.0, 0.19),
-        P('max_angular', 0.49, 'clamp on every turn rate sent [rad/s] (the same)', 0.0, 0.49),
+        P('max_linear', MAX_LINEAR, 'clamp on every forward speed sent [m/s] (the real robot kills '
+          'a node above the default)', 0.0, MAX_LINEAR),
+        P('max_angular', MAX_ANGULAR, 'clamp on every turn rate sent [rad/s] (the same)',
+          0.0, MAX_ANGULAR),
         P('find_wall', True, 'call the find_wall service first; do not follow if it fails '
           '(read at start)'),
         P('record_odom', True, 'send a goal to the record_odom action before following '

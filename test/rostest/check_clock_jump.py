@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""rostest: ROS time moving back leaves the follower and the finder working.
+
+The test is the clock: it publishes /clock and a scan of a wall on the
+right every simulated 0.1 s, for the follower and (in its own namespace)
+for the finder, lets the follower drive, then sets the clock back. Both
+nodes must warn once that time moved back, the follower must drive on the
+scans of the new clock, and the finder must still answer a call.
+"""
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from rosgraph_msgs.msg import Clock, Log
+from sensor_msgs.msg import LaserScan
+from synthetic_scans import wall_on_the_right
+
+from wall_follower.srv import FindWall
+
+STEP = 0.1         # simulated s per tick
+TICK = 0.02        # wall s per tick
+START = 100.0      # simulated s
+JUMP_BACK = 40.0   # simulated s
+WAIT_LIMIT = 30.0  # wall s
+
+
+class TestClock(object):
+    """Publishes /clock and scans, one tick at a time, until shut down."""
+
+    def __init__(self):
+        self.now = START
+        self.lock = threading.Lock()
+        self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
+        self.scans = [(rospy.Publisher('scan', LaserScan, queue_size=1), wall_on_the_right()),
+                      (rospy.Publisher('finder/scan', LaserScan, queue_size=1),
+                       wall_on_the_right(0.30))]
+        threading.Thread(target=self._run, daemon=True).start()
+
+    def jump_to(self, when):
+        with self.lock:
+            self.now = when
+
+    def _run(self):
+        while not rospy.core.is_shutdown():
+            with self.lock:
+                self.now += STEP
+                stamp = rospy.Time.from_sec(self.now)
+            self.clock.publish(Clock(clock=stamp))
+            for publisher, scan in self.scans:
+                scan.header.stamp = stamp
+                publisher.publish(scan)
+            time.sleep(TICK)
+
+
+class ClockJump(unittest.TestCase):
+
+    def wait_for(self, predicate, what):
+        deadline = time.monotonic() + WAIT_LIMIT
+        while not predicate():
+            self.assertLess(time.monotonic(), deadline, 'timed out waiting for ' + what)
+            time.sleep(0.01)
+
+    def test_both_nodes_carry_on_after_time_moves_back(self):
+        logs, commands = [], []
+        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
+                         queue_size=1000)
+        rospy.Subscriber('cmd_vel', Twist, lambda msg: commands.append(msg.linear.x),
+                         queue_size=1000)
+        clock = TestClock()
+        self.wait_for(lambda: any(v > 0.1 for v in commands), 'the follower to drive')
+        clock.jump_to(START - JUMP_BACK)
+        self.wait_for(lambda: any(name == '/wall_following' and 'ROS time moved back' in text
+                                  for name, text in list(logs)), 'the follower to warn')
+        after = len(commands)
+        self.wait_for(lambda: sum(v > 0.1 for v in commands[after:]) >= 10,
+                      'the follower to drive on the new clock')
+        rospy.wait_for_service('finder/find_wall', WAIT_LIMIT)
+        self.assertTrue(rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound)
+        clock.jump_to(START - 2.0 * JUMP_BACK)
+        self.assertTrue(rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound)
+        warnings = [text for name, text in list(logs)
+                    if name == '/wall_following' and 'ROS time moved back' in text]
+        self.assertLessEqual(len(warnings), 2, 'one warning per jump')
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_clock_jump')
+    rostest.rosrun('wall_follower', 'check_clock_jump', ClockJump, sys.argv)

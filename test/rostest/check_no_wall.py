@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""rostest: with no wall in laser range the chain ends cleanly and the robot never moves.
+
+find_wall must answer false and say why, wall_following must exit saying
+that it will not follow, and ground truth must show the robot where it
+started, with the drive guard's limits kept throughout.
+"""
+import math
+import sys
+import time
+import unittest
+from xmlrpc.client import ServerProxy
+
+import rosgraph
+import rospy
+import rostest
+from drive_guard import DriveGuard
+from rosgraph_msgs.msg import Log
+from sim_probe import SimProbe, pose_of
+
+EXIT_LIMIT = 60.0   # wall s
+
+
+def node_running(name):
+    """True while the node answers on its XML-RPC address (a dead one may stay registered)."""
+    try:
+        uri = rosgraph.Master('/check_no_wall').lookupNode(name)
+        ServerProxy(uri).getPid('/check_no_wall')
+        return True
+    except (rosgraph.MasterError, OSError):
+        return False
+
+
+class NoWall(unittest.TestCase):
+
+    def test_find_wall_fails_and_the_follower_exits_without_moving(self):
+        logs = []
+        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
+                         queue_size=1000)
+        guard = DriveGuard()
+        probe = SimProbe()
+        probe.wait_ready()
+        start = pose_of(probe.latest_truth())
+        deadline = time.monotonic() + EXIT_LIMIT
+        while node_running('/wall_following') and time.monotonic() < deadline:
+            time.sleep(0.1)
+        self.assertFalse(node_running('/wall_following'), 'wall_following still runs')
+        self.assertTrue(any(name == '/wall_finder' and 'no wall in range' in text
+                            for name, text in logs), 'find_wall did not say why')
+        self.assertTrue(any(name == '/wall_following' and 'found no wall' in text
+                            for name, text in logs), 'wall_following did not say why')
+        end = pose_of(probe.latest_truth())
+        self.assertLess(math.hypot(end[0] - start[0], end[1] - start[1]), 1e-3)
+        guard.assert_safe(self)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_no_wall')
+    rostest.rosrun('wall_follower', 'check_no_wall', NoWall, sys.argv)

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""rostest: a find_wall call made while another searches is refused at once, with a warning.
+
+The first call is made from the middle of the room; once it is searching,
+the world is paused (pause_physics), so that it cannot end before the
+second call is made. The second must answer false and say why; after the
+world goes on, the first must still find the wall.
+"""
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from drive_guard import DriveGuard
+from rosgraph_msgs.msg import Log
+from std_srvs.srv import Empty
+
+from wall_follower.srv import FindWall
+
+WAIT_LIMIT = 30.0   # wall s
+
+
+class TwoCalls(unittest.TestCase):
+
+    def test_the_second_call_is_refused_while_the_first_searches(self):
+        logs = []
+        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
+                         queue_size=1000)
+        guard = DriveGuard()
+        rospy.wait_for_service('find_wall', WAIT_LIMIT)
+        find_wall = rospy.ServiceProxy('find_wall', FindWall)
+        answers = []
+        first = threading.Thread(target=lambda: answers.append(find_wall().wallfound))
+        first.start()
+        deadline = time.monotonic() + WAIT_LIMIT
+        while not any('ROTATE_TO_WALL' in text for _, text in logs):
+            self.assertLess(time.monotonic(), deadline, 'the first call never searched')
+            time.sleep(0.01)
+        rospy.ServiceProxy('pause_physics', Empty)()
+        self.assertFalse(rospy.ServiceProxy('find_wall', FindWall)().wallfound)
+        self.assertTrue(any(name == '/wall_finder' and 'refused: a search is already running'
+                            in text for name, text in list(logs)), 'no warning')
+        rospy.ServiceProxy('unpause_physics', Empty)()
+        first.join(WAIT_LIMIT)
+        self.assertEqual(answers, [True])
+        guard.assert_safe(self)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_two_calls')
+    rostest.rosrun('wall_follower', 'check_two_calls', TwoCalls, sys.argv)

@@ -1,0 +1,42 @@
+"""init_node: a signal is answered by shutting rospy down from another thread than the main one.
+
+rospy's own handler runs the shutdown hooks in the main thread, wherever
+the signal caught it; a hook that publishes can then deadlock on a lock the
+main thread holds mid-publish. Needs ROS's Python modules but no master:
+rospy's init_node and signal_shutdown are replaced by the test's.
+"""
+import os
+import signal
+import threading
+
+import pytest
+import rospy
+
+from wall_follower.nodes.common import init_node
+
+
+@pytest.fixture
+def handlers():
+    """Restore the process's signal handlers after the test."""
+    saved = dict((number, signal.getsignal(number)) for number in (signal.SIGINT, signal.SIGTERM))
+    yield
+    for number, handler in saved.items():
+        signal.signal(number, handler)
+
+
+@pytest.mark.parametrize('number', [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_shuts_rospy_down_from_a_thread_of_its_own(monkeypatch, handlers, number):
+    calls = []
+    done = threading.Event()
+
+    def signal_shutdown(reason):
+        calls.append((reason, threading.current_thread() is threading.main_thread()))
+        done.set()
+
+    monkeypatch.setattr(rospy, 'init_node', lambda name, **kwargs: calls.append(kwargs))
+    monkeypatch.setattr(rospy, 'signal_shutdown', signal_shutdown)
+    init_node('test')
+    assert calls == [{'disable_signals': True}]
+    os.kill(os.getpid(), number)
+    assert done.wait(5.0)
+    assert calls[1] == ('signal %d' % number, False)

@@ -1,0 +1,46 @@
+"""VelocityCommander: clamps every command, and once shutdown begins sends nothing but stops.
+
+Needs ROS's Python modules but no master: rospy's Publisher and shutdown
+hooks are replaced by the test's.
+"""
+import pytest
+import rospy
+
+from wall_follower.control.motion import Command
+from wall_follower.nodes.common import VelocityCommander
+
+
+class Publisher(object):
+    def __init__(self, *args, **kwargs):
+        self.sent = []
+
+    def publish(self, twist):
+        self.sent.append((twist.linear.x, twist.angular.z))
+
+
+@pytest.fixture
+def commander(monkeypatch):
+    hooks = []
+    monkeypatch.setattr(rospy, 'Publisher', Publisher)
+    monkeypatch.setattr(rospy, 'on_shutdown', hooks.append)
+    made = VelocityCommander()
+    made.hooks = hooks
+    return made
+
+
+def test_commands_are_clamped_to_the_robot_limits(commander):
+    assert commander.send(Command(0.5, -2.0)) == Command(0.19, -0.49)
+    assert commander._pub.sent == [(0.19, -0.49)]
+
+
+def test_after_shutdown_begins_every_command_is_a_stop(commander):
+    commander.send(Command(0.1, 0.2))
+    for hook in commander.hooks:
+        hook()
+    commander.send(Command(0.1, 0.2))
+    assert commander._pub.sent == [(0.1, 0.2), (0.0, 0.0), (0.0, 0.0)]
+
+
+def test_limits_given_or_changed_are_the_clamp(commander):
+    commander.max_linear, commander.max_angular = 0.1, 0.3
+    assert commander.send(Command(0.5, -2.0)) == Command(0.1, -0.3)
