@@ -20,7 +20,7 @@ import math
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.scan import RIGHT, wrap_angle
 from wall_follower.control.walls import closest_match, extract_walls, path_is_clear, refine
-from wall_follower.params import checked, defaults
+from wall_follower.params import checked
 from wall_follower.params.wall_finder import FINDER
 
 CHOOSE_WALL = 'CHOOSE_WALL'
@@ -31,19 +31,18 @@ DONE = 'DONE'
 FAILED = 'FAILED'
 IDLE = 'IDLE'
 
-DEFAULTS = defaults(FINDER)
-"""Parameters of WallFinder: their defaults, ranges and meanings are the FINDER table.
-
-Turns and the approach aim for half of distance_tolerance and
-heading_tolerance, so that what the robot still moves after a stop command
-keeps it within them; the approach accepts the whole band once it has
-crossed the target, as Stage's grid moves the measured distance in steps of
-up to a cell.
-"""
-
 
 class WallFinder(object):
-    """Find-wall state machine: call start(), then update(scan) until done."""
+    """Find-wall state machine: call start(), then update(scan) until done.
+
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the FINDER table) are the defaults overridden by those given.
+    Turns and the approach aim for half of distance_tolerance and
+    heading_tolerance, so that what the robot still moves after a stop
+    command keeps it within them; the approach accepts the whole band once
+    it has crossed the target, as Stage's grid moves the measured distance
+    in steps of up to a cell.
+    """
 
     def __init__(self, **params):
         self.reconfigure(**params)

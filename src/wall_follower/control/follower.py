@@ -48,7 +48,7 @@ from wall_follower.control.corner import CornerArc, OuterTurn
 from wall_follower.control.left_turn import LeftTurn
 from wall_follower.control.motion import Command, seen_after_move
 from wall_follower.control.scan import RIGHT, fit_line, wrap_angle
-from wall_follower.params import checked, defaults
+from wall_follower.params import checked
 from wall_follower.params.wall_following import FOLLOWER
 
 FOLLOW = 'FOLLOW'
@@ -72,11 +72,6 @@ class FollowerParams(object):
     def __init__(self, **overrides):
         for name, value in checked(PARAMETERS, overrides).items():
             setattr(self, name, value)
-
-    @staticmethod
-    def defaults():
-        """name -> default, e.g. for reading them as ROS private parameters."""
-        return defaults(PARAMETERS)
 
 
 class Observation(object):
