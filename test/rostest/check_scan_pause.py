@@ -2,8 +2,9 @@
 """rostest: scans stop mid-lap; the robot stands still within 0.5 s and drives on when they return.
 
 Judged from ground truth: no pose stamped from 0.5 s after the last scan
-the follower heard (plus the one simulated step its stop takes to act)
-differs from the next, and the robot moves again once the gate reopens.
+the gate passed on (plus the step its stop takes to act, and the steps the
+scan may take to reach the follower) differs from the next, and the robot
+moves again once the gate reopens.
 """
 import math
 import sys
@@ -17,6 +18,9 @@ from std_srvs.srv import SetBool
 
 STEP = 0.1          # the world's interval_sim [s]
 STOP_WITHIN = 0.5   # [simulated s]
+# The gate's scan reaches the follower on another connection: on a busy machine the
+# world may step (on the follower's keepalive commands) before it is heard.
+DELIVERY = 2 * STEP
 PAUSE = 3.0         # [simulated s]
 
 
@@ -39,7 +43,7 @@ class ScanPause(unittest.TestCase):
         probe.wait_for(lambda: moved(probe.truths_since(start)) > 0.01, 'the robot to drive')
         last_scan = float(gate(False).message)
         rospy.sleep(PAUSE)
-        still = probe.truths_since(last_scan + STOP_WITHIN + STEP)
+        still = probe.truths_since(last_scan + STOP_WITHIN + STEP + DELIVERY)
         self.assertGreater(len(still), 10)
         self.assertLess(moved(still), 1e-4, 'moved while blind')
         gate(True)

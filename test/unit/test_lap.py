@@ -3,7 +3,8 @@ import math
 
 import pytest
 
-from wall_follower.control.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
+from wall_follower.control.lap import (JumpDetector, LapDetector, LapRecorder, PathLength,
+                                       PeriodicSampler, odometry_problem)
 
 RATE = 10.0  # odometry messages per second
 SPEED = 0.19
@@ -159,3 +160,83 @@ def test_crossing_backwards_does_not_close():
     detector.update(1.0, 0.0, 0.0, travelled=3.0)
     assert not detector.update(-0.1, 0.0, math.pi, travelled=4.0)
     assert not detector.update(0.1, 0.0, math.pi, travelled=4.2)
+
+
+# A lap of a 2 m x 1.5 m rectangle from the origin, heading +x: 7 m.
+RECTANGLE = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.5), (-1.0, 1.5), (-1.0, 0.0), (0.5, 0.0)]
+
+
+def path_length(poses):
+    return sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(poses, poses[1:]))
+
+
+def test_a_reset_to_the_spawn_pose_is_not_travel_and_the_lap_ends_a_lap_later():
+    """reset_positions mid-lap: the robot is back at its spawn pose, 0.19 m behind
+    the start line (it drove 1 s before the goal came); the jump is left out."""
+    spawned = walk(RECTANGLE)
+    before = spawned[10:150]                   # 14 s from x = 0.19: round the first corner
+    after = walk(RECTANGLE, start_time=before[-1][0] + 0.1)
+    recorder = LapRecorder()
+    closing = feed(recorder, before + after)
+    assert len(recorder.jumps) == 1
+    stamp, distance = recorder.jumps[0]
+    assert stamp == after[0][0]
+    assert distance == pytest.approx(math.hypot(before[-1][1], before[-1][2]))
+    # Not as the robot drives off over the start line, but a whole lap after the reset.
+    start_x = before[0][1]
+    corner = after.index(next(p for p in after if p[1:3] == (-1.0, 0.0)))
+    assert closing == next(p for p in after[corner:] if p[1] >= start_x)
+    assert recorder.total_distance == pytest.approx(
+        path_length(before) + path_length(after[:after.index(closing) + 1]), abs=1e-9)
+    assert recorder.points[0] == before[0][1:]
+
+
+def test_an_odometry_reset_across_the_start_line_closes_nothing():
+    """A jump from just behind the start line to just ahead of it is not a crossing."""
+    recorder = LapRecorder()
+    lap = walk(RECTANGLE)
+    behind = [pose for pose in lap if pose[1] < -0.05]
+    feed(recorder, lap[:lap.index(behind[-1]) + 1])
+    assert recorder.total_distance > recorder.lap.min_travel and recorder.lap.left_start
+    t = behind[-1][0]
+    # The odometry's origin moves to where the robot stands: it reads 0.1 m past the start.
+    recorder.add(t + 0.1, 0.1, 0.0, 0.0)
+    recorder.add(t + 0.2, 0.12, 0.0, 0.0)
+    assert not recorder.closed
+    assert len(recorder.jumps) == 1
+
+
+def test_driving_at_the_speed_limit_is_never_a_jump():
+    for speed, rate in ((0.19, 30.0), (0.26, 10.0), (0.19, 1.0)):
+        recorder = LapRecorder(max_speed=0.5, jump_allowance=0.1)
+        feed(recorder, walk(RECTANGLE, speed=speed, rate=rate))
+        assert recorder.jumps == []
+        assert recorder.closed
+
+
+def test_jump_detector_allows_max_speed_times_the_time_plus_the_allowance():
+    detector = JumpDetector(max_speed=0.5, allowance=0.1)
+    assert detector.jump(0.0, 0.0, 0.0) is None
+    assert detector.jump(1.0, 0.59, 0.0) is None          # 0.5 m/s over 1 s, + 0.09
+    assert detector.jump(1.0, 0.68, 0.0) is None          # same stamp: the allowance only
+    assert detector.jump(1.0, 0.80, 0.0) == pytest.approx(0.12)
+    assert detector.jump(0.5, 0.85, 0.0) is None          # a stamp going back counts as 0 s
+    assert detector.jump(0.6, 0.0, 0.0) == pytest.approx(0.85)
+    with pytest.raises(ValueError):
+        JumpDetector(max_speed=0.0)
+
+
+@pytest.mark.parametrize('pose, words', [
+    ((float('nan'), 0.0, 0.0, 0.0, 0.0, 1.0), 'not finite'),
+    ((0.0, float('inf'), 0.0, 0.0, 0.0, 1.0), 'not finite'),
+    ((0.0, 0.0, 0.0, 0.0, 0.0, 0.0), 'not a unit quaternion'),
+    ((0.0, 0.0, 0.0, 0.0, 1.0, 1.0), 'not a unit quaternion'),
+    ((0.0, 0.0, 0.0, 0.0, float('nan'), 1.0), 'not a unit quaternion'),
+])
+def test_malformed_odometry_is_named(pose, words):
+    assert words in odometry_problem(*pose)
+
+
+def test_unit_quaternions_are_accepted_with_float32_rounding():
+    assert odometry_problem(1.0, -2.0, 0.0, 0.0, math.sin(0.3), math.cos(0.3)) is None
+    assert odometry_problem(0.0, 0.0, 0.0, 0.0, 0.0, 0.9999) is None

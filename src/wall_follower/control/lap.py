@@ -10,10 +10,46 @@ Here a lap can end only after the robot has both travelled a minimum
 distance and been well away from the start, and it ends when the robot
 crosses the line through the start point, perpendicular to the start
 heading, heading roughly the way it started, close enough to the start.
+
+Odometry can jump: a simulator's reset_positions puts the robot back at its
+spawn pose, and a real robot's odometry can be reset to zero. A pose
+further from the one before than the robot can drive in the time between
+them is a jump, not travel: it is not counted, and the recording goes on
+from the new pose with the lap's start kept where it was. The lap is armed
+afresh, as at the start: it can end only once the robot has travelled the
+minimum distance again and been away from the start, so a reset to a spawn
+pose just behind the start line does not end the lap as the robot drives
+off; no crossing is seen across the jump itself. After a simulator's reset
+the lap so ends a full lap later; after a real robot's odometry reset the
+start line keeps its coordinates, which now mark another place.
 """
 import math
 
 from wall_follower.control.scan import wrap_angle
+from wall_follower.params import defaults
+from wall_follower.params.odom_recorder import TABLE
+
+# The defaults of the keyword arguments below: the odom_recorder node's.
+_DEFAULT = defaults(TABLE)
+
+# How far a quaternion's norm may be from 1 (float32 rounding, say) for its yaw to be trusted.
+QUATERNION_TOLERANCE = 0.01
+
+
+def odometry_problem(x, y, qx, qy, qz, qw):
+    """What makes an odometry pose unusable, in a few words; None when it is usable.
+
+    The yaw is read from the orientation as from a unit quaternion; one
+    that is far from unit length (a zero one, say) holds no trustworthy
+    heading, and a position that is not finite would poison the path length.
+    """
+    if not (math.isfinite(x) and math.isfinite(y)):
+        return 'position (%r, %r) is not finite' % (x, y)
+    norm = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw)
+    if not abs(norm - 1.0) <= QUATERNION_TOLERANCE:
+        return 'orientation (%r, %r, %r, %r) is not a unit quaternion (norm %r)' % (
+            qx, qy, qz, qw, norm)
+    return None
 
 
 class PathLength(object):
@@ -29,6 +65,36 @@ class PathLength(object):
         self._last = (x, y)
         return self.total
 
+    def jump_to(self, x, y):
+        """Go on from (x, y) without counting the way there."""
+        self._last = (x, y)
+
+
+class JumpDetector(object):
+    """Tells a jump of the odometry (a reset, a teleport) from travel.
+
+    max_speed: the fastest (m/s) the robot can really move, with a margin.
+    allowance: metres allowed on top of max_speed times the time between two
+        poses, for jitter in the odometry's stamps.
+    """
+
+    def __init__(self, max_speed=_DEFAULT['max_speed'], allowance=_DEFAULT['jump_allowance']):
+        if not max_speed > 0.0 or not allowance >= 0.0:
+            raise ValueError('max_speed must be positive and allowance not negative, '
+                             'got %r and %r' % (max_speed, allowance))
+        self.max_speed = float(max_speed)
+        self.allowance = float(allowance)
+        self._last = None
+
+    def jump(self, stamp, x, y):
+        """Feed the next pose; the distance (m) it jumped from the last one, or None."""
+        last, self._last = self._last, (stamp, x, y)
+        if last is None:
+            return None
+        distance = math.hypot(x - last[1], y - last[2])
+        reach = self.max_speed * max(0.0, stamp - last[0]) + self.allowance
+        return distance if distance > reach else None
+
 
 class PeriodicSampler(object):
     """Says when a sample is due: at the first call, then every `period` seconds.
@@ -38,7 +104,7 @@ class PeriodicSampler(object):
     the input, the next sample is simply the next one due.
     """
 
-    def __init__(self, period=1.0):
+    def __init__(self, period=_DEFAULT['sample_period']):
         if period <= 0.0:
             raise ValueError('sample period must be positive, got %r' % period)
         self.period = float(period)
@@ -69,8 +135,10 @@ class LapDetector(object):
         obliquely (the middle of a figure of eight) does not end the lap.
     """
 
-    def __init__(self, start, min_travel=2.0, leave_radius=0.5, close_tolerance=0.3,
-                 max_heading_error=math.radians(60.0)):
+    def __init__(self, start, min_travel=_DEFAULT['min_travel'],
+                 leave_radius=_DEFAULT['leave_radius'],
+                 close_tolerance=_DEFAULT['close_tolerance'],
+                 max_heading_error=_DEFAULT['max_heading_error']):
         self.x0, self.y0, self.yaw0 = start
         self.min_travel = min_travel
         self.leave_radius = leave_radius
@@ -79,12 +147,22 @@ class LapDetector(object):
         self.left_start = False
         self.closed = False
         self._previous = self._frame(self.x0, self.y0)
+        self._travelled_before = 0.0   # path length (m) before the latest jump
 
     def _frame(self, x, y):
         """(along, across) position relative to the start pose's heading."""
         dx, dy = x - self.x0, y - self.y0
         c, s = math.cos(self.yaw0), math.sin(self.yaw0)
         return dx * c + dy * s, -dx * s + dy * c
+
+    def resume_at(self, x, y, travelled):
+        """Go on from (x, y) after a jump, `travelled` metres into the recording.
+
+        The jump itself crosses no line, and the lap is armed afresh.
+        """
+        self._previous = self._frame(x, y)
+        self._travelled_before = travelled
+        self.left_start = False
 
     def update(self, x, y, yaw, travelled):
         """Feed the next pose and the distance travelled so far; True once the lap is closed."""
@@ -95,7 +173,7 @@ class LapDetector(object):
         self._previous = (along, across)
         if math.hypot(along, across) >= self.leave_radius:
             self.left_start = True
-        if not (self.left_start and travelled >= self.min_travel):
+        if not (self.left_start and travelled - self._travelled_before >= self.min_travel):
             return False
         if not (previous_along < 0.0 <= along):
             return False
@@ -119,15 +197,22 @@ class LapRecorder(object):
     start: poses stamped before this time (s) are skipped. A recorder that
     has fallen behind its odometry still holds poses from before it was
     asked to record; they are not part of the recording.
+    max_speed, jump_allowance: a pose further from the one before than
+    these allow (see JumpDetector) is a jump, recorded in `jumps` as
+    (stamp, distance) and not counted (see the module's docstring).
     """
 
-    def __init__(self, sample_period=1.0, start=None, **lap_params):
+    def __init__(self, sample_period=_DEFAULT['sample_period'], start=None,
+                 max_speed=_DEFAULT['max_speed'], jump_allowance=_DEFAULT['jump_allowance'],
+                 **lap_params):
         self.start = start
         self.sampler = PeriodicSampler(sample_period)
         self.length = PathLength()
+        self.jump_detector = JumpDetector(max_speed, jump_allowance)
         self.lap_params = lap_params
         self.lap = None
         self.points = []
+        self.jumps = []
 
     @property
     def total_distance(self):
@@ -146,6 +231,11 @@ class LapRecorder(object):
         if self.closed or not self.takes(stamp):
             return False
         pose = (x, y, yaw)
+        jump = self.jump_detector.jump(stamp, x, y)
+        if jump is not None:
+            self.jumps.append((stamp, jump))
+            self.length.jump_to(x, y)
+            self.lap.resume_at(x, y, self.length.total)
         travelled = self.length.add(x, y)
         if self.lap is None:
             self.lap = LapDetector(pose, **self.lap_params)

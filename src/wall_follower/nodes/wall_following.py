@@ -7,11 +7,9 @@ VelocityCommander, which clamps it to ~max_linear and ~max_angular and
 stops the robot on shutdown.
 
 Exit status: 0 after a recorded lap (with ~stop_after_lap) or a plain
-shutdown; 1 when find_wall or record_odom is missing, or find_wall fails.
+shutdown; 1 when find_wall or record_odom is missing, find_wall fails, or
+record_odom aborts the lap (its odometry stopped, say).
 """
-import threading
-import time
-
 import actionlib
 from actionlib.action_client import CommState
 import rospy
@@ -20,11 +18,15 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import init_node
+from wall_follower.nodes.common import init_node, wait_in_wall_time
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
+
+
+LAP_RECORDED = 'lap recorded'
+RECORDING_FAILED = 'recording failed'
 
 
 class WallFollowingNode(object):
@@ -37,7 +39,7 @@ class WallFollowingNode(object):
         self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))
         self._state = None
         self.loop = drive_loop('wall_following', values)
-        self.lap_done = threading.Event()
+        self.ended = None   # LAP_RECORDED or RECORDING_FAILED, set by the action's thread
         self._recorder = None
         self._recording = None
         self._distance = 0.0
@@ -78,11 +80,16 @@ class WallFollowingNode(object):
         return True
 
     def _wait_for_recorder(self):
-        """Wait up to service_wait seconds of wall time, whatever the ROS clock does."""
-        deadline = time.monotonic() + self.node['service_wait']
-        while not rospy.is_shutdown() and time.monotonic() < deadline:
-            if self._recorder.wait_for_server(rospy.Duration(0.1)):
-                return True
+        """Wait up to service_wait seconds of wall time, whatever the ROS clock does.
+
+        actionlib's own time-out is counted in ROS time, which stands still
+        on simulated time until a /clock comes: that wait never ended.
+        """
+        if wait_in_wall_time(self._recorder.wait_for_server, self.node['service_wait']):
+            return True
+        if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
+            rospy.logerr('wall_following: /use_sim_time is set and no /clock has come; '
+                         'is the simulator running?')
         return False
 
     def _on_feedback(self, _goal, feedback):
@@ -99,22 +106,35 @@ class WallFollowingNode(object):
         and loses the transition (ros/actionlib#206).
         """
         if goal.get_comm_state() == CommState.DONE:
-            self._on_recorded(goal.get_goal_status(), goal.get_result())
+            self._on_recorded(goal)
 
-    def _on_recorded(self, state, result):
-        if state != GoalStatus.SUCCEEDED:
+    def _on_recorded(self, goal):
+        """Stop after a recorded lap (with stop_after_lap), or when the recording failed.
+
+        record_odom aborts a goal when odometry stops or jumps back in time:
+        the base that reports it may be gone, and there is no lap left to
+        drive for, so the robot stops. A goal cancelled by someone else only
+        ends the recording.
+        """
+        state = goal.get_goal_status()
+        if state == GoalStatus.ABORTED:
+            rospy.logerr('wall_following: record_odom aborted the lap (%s); stopping',
+                         goal.get_goal_status_text())
+            self.ended = RECORDING_FAILED
+        elif state != GoalStatus.SUCCEEDED:
             rospy.logwarn('wall_following: record_odom ended without a lap (%s); '
                           'following on', GoalStatus.to_string(state))
-            return
-        points = len(result.list_of_odoms) if result is not None else 0
-        rospy.loginfo('wall_following: lap recorded: %d points, %.2f m', points, self._distance)
-        if self.node['stop_after_lap']:
-            self.lap_done.set()
+        else:
+            result = goal.get_result()
+            points = len(result.list_of_odoms) if result is not None else 0
+            rospy.loginfo('wall_following: lap recorded: %d points, %.2f m', points,
+                          self._distance)
+            if self.node['stop_after_lap']:
+                self.ended = LAP_RECORDED
 
     def follow(self):
-        """Answer each scan until shutdown or, with stop_after_lap, the recorded lap."""
-        self.loop.run(self._answer, lambda: 'lap' if self.lap_done.is_set() else None,
-                      on_clock_reset=self._restart_controller)
+        """Answer each scan until shutdown, the recorded lap (stop_after_lap) or a failed one."""
+        self.loop.run(self._answer, lambda: self.ended, on_clock_reset=self._restart_controller)
 
     def _answer(self, view, taken):
         values = self.params.take_update()
@@ -146,6 +166,6 @@ def main():
         node.follow()
     except rospy.ROSInterruptException:
         pass
-    if node.lap_done.is_set():
+    if node.ended == LAP_RECORDED:
         rospy.signal_shutdown('lap recorded')
-    return 0
+    return 1 if node.ended == RECORDING_FAILED else 0

@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""rostest: waiting for record_odom ends in wall time while the ROS clock stands still.
+
+/use_sim_time is set and nobody publishes /clock, so ROS time stays at 0;
+no record_odom server runs. wall_following must log an error naming
+record_odom and exit once its ~service_wait wall seconds are up, not
+wait for a clock that never comes. Everything here is timed on the wall
+clock, as this node's ROS clock stands still too.
+"""
+import sys
+import time
+import unittest
+
+import rosnode
+import rospy
+import rostest
+from rosgraph_msgs.msg import Log
+
+from waiting import wait_until
+
+NODE = '/wall_following'
+# Wall seconds past the node's ~service_wait by which it must have exited: it starts
+# before this test, and exiting takes a moment.
+MARGIN = 10.0
+
+
+def alive():
+    return NODE in rosnode.get_node_names()
+
+
+class WaitOnFrozenClock(unittest.TestCase):
+
+    def test_gives_up_in_wall_time_with_an_error(self):
+        started = time.time()
+        errors = []
+        rospy.Subscriber('/rosout', Log, lambda msg: errors.append(msg.msg)
+                         if msg.name == NODE and msg.level >= Log.ERROR else None)
+        service_wait = rospy.get_param(NODE + '/service_wait')
+        self.assertTrue(wait_until(alive, MARGIN), 'wall_following is not running')
+        self.assertTrue(wait_until(lambda: not alive(), service_wait + MARGIN),
+                        'wall_following still waits after %.0f wall s' % (time.time() - started))
+        self.assertTrue(wait_until(lambda: any('record_odom' in e for e in errors), 1.0),
+                        'no error naming record_odom: %s' % errors)
+        self.assertEqual(rospy.get_time(), 0.0, 'the clock moved: the test proves nothing')
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_recorder_wait_frozen_clock')
+    rostest.rosrun('wall_follower', 'check_recorder_wait_frozen_clock', WaitOnFrozenClock,
+                   sys.argv)
