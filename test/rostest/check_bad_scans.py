@@ -117,6 +117,8 @@ class BadScans(unittest.TestCase):
     def test_find_wall_answers_false_on_a_dead_laser_without_moving(self):
         feed = Feed('finder/')
         feed.scan = unusable_scans()['all 0.0']
+        # Connected first: a call that heard no scan at all would fail for that reason.
+        self.wait_for(lambda: feed.publisher.get_num_connections() > 0, 'find_wall to subscribe')
         rospy.wait_for_service('finder/find_wall', timeout=WAIT_LIMIT)
         started = time.monotonic()
         found = rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound

@@ -22,7 +22,6 @@ goal status keeps coming, and the next goal starts from fresh odometry.
 Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
-import math
 import threading
 from collections import deque
 
@@ -32,10 +31,10 @@ from actionlib.server_goal_handle import ServerGoalHandle
 from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
+from wall_follower.cfg import OdomRecorderConfig
 from wall_follower.control.lap import LapRecorder, odometry_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
-from wall_follower.cfg import OdomRecorderConfig
-from wall_follower.nodes.common import pose_of
+from wall_follower.nodes.common import init_node, pose_message, pose_of
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.odom_recorder import RECORDING, TABLE
@@ -304,18 +303,12 @@ def _path(points, frame_id):
     path = Path()
     path.header.stamp = rospy.Time.now()
     path.header.frame_id = frame_id
-    for x, y, yaw in points:
-        pose = PoseStamped()
-        pose.header = path.header
-        pose.pose.position.x = x
-        pose.pose.position.y = y
-        pose.pose.orientation.z = math.sin(yaw / 2.0)
-        pose.pose.orientation.w = math.cos(yaw / 2.0)
-        path.poses.append(pose)
+    path.poses = [PoseStamped(header=path.header, pose=pose_message(x, y, yaw))
+                   for x, y, yaw in points]
     return path
 
 
 def main():
-    rospy.init_node('odom_recorder')
+    init_node('odom_recorder')
     OdomRecorderNode()
     rospy.spin()
