@@ -1,12 +1,12 @@
 /*
- * Stage's laser raytrace, one beam after another, as a C loop.
+ * Stage's laser raytrace, one beam after another, stepped cell by cell.
  *
- * The same model of Stage's beam as src/wall_follower/sim/raytrace.py (read
- * its docstring for what Stage does and why), stepped cell by cell instead
- * of in closed form: numpy pays per call, so it needs about a thousand calls
- * per scan whatever the number of beams, while this loop pays per cell
- * visited. The simulator loads this library through ctypes
- * (wall_follower/sim/compiled_raytrace.py) and falls back on numpy without it.
+ * The simulator's only raytrace (src/wall_follower/sim/raytrace.py's docstring
+ * says what Stage does to a beam and why); it loads this library through
+ * ctypes (wall_follower/sim/compiled_raytrace.py), whose Structures mirror the
+ * two structs below field for field. test/unit/stage_raytrace_oracle.py is
+ * this loop transliterated into scalar Python, the oracle the tests hold it to:
+ * change the two together.
  *
  * Positions are doubles in cell units, moved by +-1 per cell step and by the
  * crossings of each flight as running sums, as in Stage, so that rounding
@@ -19,13 +19,24 @@
 #define REGION_BITS 5
 #define REGION_WIDTH (1 << REGION_BITS)
 
-/* The grid's lookup tables, as laid out by raytrace.py's _GridTables. */
+/* The grid's lookup tables (compiled_raytrace.GridTables); outside them nothing is visible
+   and no region is populated. */
 struct grid_tables {
   const uint8_t *visible;   /* per cell, rows of `width` cells from cell (cx0, cy0) */
   const double *returns;    /* intensity of a visible cell, same layout */
   int64_t width, height, cx0, cy0;
   const uint8_t *populated; /* per region, rows of `region_cols` from region (rx0, ry0) */
   int64_t region_cols, region_rows, rx0, ry0;
+  double ppm;               /* cells per metre */
+};
+
+/* The beams of one scan (compiled_raytrace.Beams), and where their readings go. */
+struct beams {
+  int64_t count;
+  const double *cosa, *sina, *tana; /* direction (tana = sina / cosa, 0 rad already nudged) */
+  const int64_t *ax, *ay;           /* the cells to range_max along x and along y */
+  double range_max;                 /* metres */
+  double *ranges, *intensities;     /* out, per beam */
 };
 
 /* Region of a truncated cell coordinate: floor division, also below zero. */
@@ -153,28 +164,22 @@ static int trace_beam(const struct grid_tables *t, double startx, double starty,
 }
 
 /*
- * All beams of a scan. ranges and intensities are filled in for every beam:
- * in metres (range_max exactly, intensity 0, for a beam that hits nothing).
+ * All beams of a scan from (x, y), in metres. Fills in every beam's range, in metres
+ * (range_max exactly, intensity 0, for a beam that hits nothing), and intensity.
  */
-void stage_raytrace(const uint8_t *visible, const double *returns, int64_t width, int64_t height,
-                    int64_t cx0, int64_t cy0, const uint8_t *populated_regions,
-                    int64_t region_cols, int64_t region_rows, int64_t rx0, int64_t ry0,
-                    double ppm, double startx, double starty, int64_t count, const double *cosa,
-                    const double *sina, const double *tana, const int64_t *ax, const int64_t *ay,
-                    double range_max, double *ranges, double *intensities)
+void stage_raytrace(const struct grid_tables *t, const struct beams *b, double x, double y)
 {
-  const struct grid_tables t = {visible, returns, width, height, cx0, cy0,
-                                populated_regions, region_cols, region_rows, rx0, ry0};
+  const double startx = x * t->ppm, starty = y * t->ppm;
   int64_t beam;
-  for (beam = 0; beam < count; ++beam) {
+  for (beam = 0; beam < b->count; ++beam) {
     double cells = 0.0, intensity = 0.0;
-    if (trace_beam(&t, startx, starty, cosa[beam], sina[beam], tana[beam], ax[beam], ay[beam],
-                   &cells, &intensity)) {
-      ranges[beam] = cells / ppm;
-      intensities[beam] = intensity;
+    if (trace_beam(t, startx, starty, b->cosa[beam], b->sina[beam], b->tana[beam], b->ax[beam],
+                   b->ay[beam], &cells, &intensity)) {
+      b->ranges[beam] = cells / t->ppm;
+      b->intensities[beam] = intensity;
     } else {
-      ranges[beam] = range_max;
-      intensities[beam] = 0.0;
+      b->ranges[beam] = b->range_max;
+      b->intensities[beam] = 0.0;
     }
   }
 }

@@ -3,7 +3,7 @@
 
 The geometry below is the single source of truth for each map: a free-space
 outline in world metres (counter-clockwise), drawn at 0.02 m per pixel with
-everything outside it black. The image is the free-space bounding box plus a
+everything outside it black, and round pillars inside it, black too. The image is the free-space bounding box plus a
 0.10 m wall on every side, so its black pixels reach all four edges; Stage
 then scales the whole image to the floorplan `size` (image pixels x 0.02)
 and centres it on the floorplan `pose` (the bounding-box centre), which puts
@@ -42,6 +42,15 @@ OUTLINES = {
     'obstacles': [(-2.0, -1.5), (2.0, -1.5), (2.0, -0.2), (1.4, -0.2),
                   (1.4, 0.2), (2.0, 0.2), (2.0, 1.5), (0.2, 1.5), (0.2, 0.9),
                   (-0.2, 0.9), (-0.2, 1.5), (-2.0, 1.5)],
+    # Like ROBOTIS's turtlebot3_world, for the lab exercises: a hexagon 5.0 m
+    # corner to corner (4.32 m flat to flat) round a 3 x 3 grid of pillars.
+    'pillars': [(-2.5, 0.0), (-1.24, -2.16), (1.24, -2.16), (2.5, 0.0), (1.24, 2.16),
+                (-1.24, 2.16)],
+}
+
+# name -> round pillars standing in the free space, (x, y, radius) in metres.
+PILLARS = {
+    'pillars': [(x, y, 0.15) for x in (-1.1, 0.0, 1.1) for y in (-1.1, 0.0, 1.1)],
 }
 
 
@@ -65,8 +74,8 @@ def inside(points_x, points_y, outline):
     return result
 
 
-def render(outline_m):
-    """The floorplan image of one outline, and its size [m] and centre [m]."""
+def render(outline_m, pillars_m=()):
+    """The floorplan image of one outline and its pillars, and its size [m] and centre [m]."""
     outline = [(to_centimetres(x), to_centimetres(y)) for x, y in outline_m]
     wall = to_centimetres(WALL)
     pixel = to_centimetres(METRES_PER_PIXEL)
@@ -79,6 +88,9 @@ def render(outline_m):
     centre_x = left + pixel * columns + pixel // 2
     centre_y = top - pixel * rows - pixel // 2
     free = inside(centre_x, centre_y, outline)
+    for x, y, radius in pillars_m:
+        cx, cy, r = to_centimetres(x), to_centimetres(y), to_centimetres(radius)
+        free &= (centre_x - cx) ** 2 + (centre_y - cy) ** 2 > r * r
     image = Image.fromarray(np.where(free, 255, 0).astype(np.uint8), mode='L')
     size = (width * METRES_PER_PIXEL, height * METRES_PER_PIXEL)
     centre = ((left + right) / 200.0, (bottom + top) / 200.0)
@@ -100,7 +112,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     stale = []
     for name, outline in sorted(OUTLINES.items()):
-        image, size, centre = render(outline)
+        image, size, centre = render(outline, PILLARS.get(name, ()))
         path = os.path.join(args.worlds, name + '.png')
         print('%s.png: %dx%d px, floorplan size [%.3f %.3f], pose [%.3f %.3f]'
               % (name, image.width, image.height, size[0], size[1], centre[0], centre[1]))

@@ -4,10 +4,12 @@
 Against laser_profiles.test: the arena, the robot at (-1.5, 0.3) facing -x,
 so the laser (32 mm behind the axle, at x = -1.468) is 0.282 m from the nook's
 back wall ahead and 3.218 m from the right wall behind, and the beams
-towards the arena's far corner (3.69 m) return nothing.
+towards the arena's far corner (3.69 m) return nothing, but for the LDS-02's,
+which reach 8 m.
 """
 import math
 import sys
+import time
 import unittest
 
 import numpy as np
@@ -22,10 +24,24 @@ BEHIND = 3.218
 STAGE_SLACK = 0.025
 NOISY_SLACK = 0.07
 WAIT_LIMIT = 20.0
+# Scans of the LDS-02 heard in a row, to see its beam count change.
+LDS02_SCANS = 10
 
 
 def scan_of(profile):
     return rospy.wait_for_message(profile + '/base_scan', LaserScan, timeout=WAIT_LIMIT)
+
+
+def scans_of(profile, count):
+    """`count` successive scans of a profile (waiting in wall time: each
+    simulator has its own clock, and this node none)."""
+    heard = []
+    subscriber = rospy.Subscriber(profile + '/base_scan', LaserScan, heard.append)
+    deadline = time.monotonic() + WAIT_LIMIT
+    while len(heard) < count and time.monotonic() < deadline and not rospy.is_shutdown():
+        time.sleep(0.1)
+    subscriber.unregister()
+    return heard[:count]
 
 
 def beams_towards(scan, angle, half_width=2):
@@ -82,6 +98,39 @@ class LaserProfiles(unittest.TestCase):
         self.assertAlmostEqual(np.median(beams_towards(scan, 0.0)), FRONT, delta=NOISY_SLACK)
         self.assertAlmostEqual(np.median(beams_towards(scan, math.pi)), BEHIND,
                                delta=NOISY_SLACK)
+
+    def test_lds02_as_the_ld08_driver(self):
+        scans = scans_of('lds02', LDS02_SCANS)
+        self.assertEqual(len(scans), LDS02_SCANS)
+        counts = [len(scan.ranges) for scan in scans]
+        self.assertTrue(all(230 <= count <= 260 for count in counts), counts)
+        self.assertGreater(len(set(counts)), 1, 'the beam count should change: %s' % counts)
+        for scan in scans:
+            ranges = np.array(scan.ranges)
+            self.assertEqual(scan.angle_min, 0.0)
+            self.assertAlmostEqual(scan.angle_increment,
+                                   (scan.angle_max - scan.angle_min) / len(ranges), delta=1e-6)
+            self.assertEqual((scan.range_min, scan.range_max), (0.0, 100.0))
+            self.assertTrue(np.all(np.isfinite(ranges)), 'the LDS-02 reports no return as 0.0')
+            self.assertEqual(len(scan.intensities), len(ranges))
+        scan = scans[-1]
+        front = [r for r in beams_towards(scan, 0.0) if r > 0.0]
+        self.assertAlmostEqual(np.median(front), FRONT, delta=NOISY_SLACK)
+        behind = [r for r in beams_towards(scan, math.pi) if r > 0.0]
+        self.assertAlmostEqual(np.median(behind), BEHIND, delta=NOISY_SLACK)
+
+    def test_course720_as_the_course_simulation(self):
+        scan = scan_of('course720')
+        ranges = np.array(scan.ranges)
+        self.assertEqual(len(ranges), 720)
+        self.assertEqual(scan.angle_min, np.float32(-math.pi))
+        self.assertEqual(scan.angle_increment, np.float32(2 * math.pi / 720))
+        self.assertGreater(np.sum(np.isinf(ranges)), 0, 'no return should read inf')
+        self.assertFalse(np.any(ranges == 0.0))
+        # index 0 points backwards, index 360 forwards
+        self.assertAlmostEqual(np.median(beams_towards(scan, -math.pi)), BEHIND,
+                               delta=NOISY_SLACK)
+        self.assertAlmostEqual(np.median(ranges[358:363]), FRONT, delta=NOISY_SLACK)
 
 
 if __name__ == '__main__':

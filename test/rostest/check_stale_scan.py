@@ -42,11 +42,13 @@ class StaleScan(unittest.TestCase):
         self.wait_for(lambda: self.scans.get_num_connections() > 0, 'the follower to subscribe')
         scan = wall_on_the_right()
         end = time.monotonic() + FEED_TIME
-        while time.monotonic() < end:
+        while True:
             scan.header.stamp = rospy.Time.now()
             self.scans.publish(scan)
+            last_scan = time.monotonic()
+            if last_scan >= end:
+                break
             time.sleep(SCAN_PERIOD)
-        last_scan = time.monotonic()
         with self.lock:
             self.assertTrue(any(v > 0.1 for _, v, _ in self.commands), 'never drove')
 

@@ -54,6 +54,7 @@ def scan_view(segments, pose, convention):
     return ScanView(cast(segments, pose, convention), convention.angle_min,
                     convention.increment, convention.range_min, convention.range_max)
 
+
 # Beam 0 backwards and the sweep clockwise (a negative increment): no laser
 # of the table does this, but nothing may depend on the sweep's direction.
 REVERSED = Convention('reversed', math.pi, 360, -2.0 * math.pi / 360, 0.12, 3.5, math.inf)

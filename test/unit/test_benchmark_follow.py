@@ -28,3 +28,8 @@ def test_one_lap_in_contact_or_too_fast_marks_the_row():
 def test_laps_that_wrote_nothing_are_left_out_and_none_at_all_is_no_row():
     assert combined([None, lap(1.18), {}])['laps'] == 1
     assert combined([None, None]) is None
+
+
+def test_a_row_says_which_simulator_its_laps_ran_on():
+    assert combined([dict(lap(1.2), simulator='stageros')])['simulator'] == 'stageros'
+    assert combined([lap(1.2)])['simulator'] == '?'

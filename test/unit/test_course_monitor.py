@@ -14,7 +14,8 @@ from geometry_msgs.msg import Point
 from nav_msgs.msg import Odometry
 
 from wall_follower.msg import OdomRecordActionGoal, OdomRecordActionResult
-from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.nodes.course_monitor import (BUILTIN, NEEDED_TOPICS, STAGEROS, CourseMonitor,
+                                                simulator_of)
 from wall_follower.evaluation.scoring import CourseMap
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
@@ -147,3 +148,18 @@ def test_a_result_stamped_between_two_steps_is_caught_up_by_the_next_one(monitor
     assert not monitor.caught_up()
     monitor._on_truth(_truth(2.7))
     assert monitor.caught_up()
+
+
+def test_the_score_does_not_need_stalled_which_real_stageros_lacks():
+    assert 'stalled' not in NEEDED_TOPICS
+    assert 'base_pose_ground_truth' in NEEDED_TOPICS
+
+
+@pytest.mark.parametrize('publications, simulator', [
+    ([('/base_pose_ground_truth', ['/simulator']), ('/stalled', ['/simulator'])], BUILTIN),
+    ([('/base_pose_ground_truth', ['/simulator']), ('/odom', ['/simulator'])], STAGEROS),
+    ([('/base_pose_ground_truth', ['/stageros']), ('/stalled', ['/other'])], STAGEROS),
+    ([('/odom', ['/robot'])], None),
+])
+def test_simulator_told_apart_by_what_it_publishes(publications, simulator):
+    assert simulator_of(publications, '/base_pose_ground_truth', '/stalled') == simulator

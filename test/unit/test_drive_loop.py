@@ -153,3 +153,23 @@ def test_a_clock_moving_back_drops_the_scan_and_tells_the_node():
     after_jump = sent[jump:]
     assert all(c == STOP for t, c in after_jump if t < 0.3)
     assert any(c == Command(0.1, 0.2) for t, c in after_jump if t >= 0.3)
+
+
+def test_with_a_tick_the_loop_answers_on_a_steady_beat_between_scans():
+    scans, commander = Scans([(0.1 + 0.2 * i, GOOD) for i in range(5)]), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
+                     tick=0.1)
+    answers = []
+    loop.run(lambda view, taken: answers.append(Clock.now) or Command(0.1, 0.0),
+             lambda: 'end' if Clock.now >= 1.0 else None)
+    assert answers[0] == pytest.approx(0.1)
+    assert [b - a for a, b in zip(answers, answers[1:])] == pytest.approx([0.1] * (len(answers) - 1))
+    assert len(answers) == 9
+
+
+def test_with_a_tick_a_stale_scan_still_stops_the_robot():
+    scans, commander = Scans([(0.1, GOOD)]), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
+                     tick=0.1)
+    loop.run(lambda view, taken: Command(0.1, 0.0), lambda: 'end' if Clock.now >= 1.5 else None)
+    assert all(c == STOP for t, c in commander.sent if t > 0.65)

@@ -11,11 +11,13 @@ import pytest
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from scan_queries import min_range
 from wall_follower.control.corner import CornerArc
-from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD, FollowerParams,
-                                    Observation, WallFollower, as_planned, consensus_line,
-                                    unbiased)
+from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
+                                            FollowerParams, WallFollower)
+from wall_follower.control.lines import Line
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
+from wall_follower.control.observation import Observation, unbiased
 from wall_follower.control.scan import ScanView
+from wall_follower.control.wall_fit import as_planned
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]
@@ -76,7 +78,8 @@ def test_inside_the_band_it_only_nudges():
     """Inside 0.2-0.3 m the turn is gentle, outside it is strong (the course's band)."""
     turns = dict((d, update(right_wall(d))[1].angular) for d in (0.17, 0.22, 0.25, 0.28, 0.33))
     assert turns[0.17] > turns[0.22] > turns[0.25] > turns[0.28] > turns[0.33]
-    assert abs(turns[0.22]) < 0.7 * EXACT.max_turn_rate and abs(turns[0.28]) < 0.7 * EXACT.max_turn_rate
+    assert abs(turns[0.22]) < 0.7 * EXACT.max_turn_rate
+    assert abs(turns[0.28]) < 0.7 * EXACT.max_turn_rate
     assert turns[0.17] == EXACT.max_turn_rate and turns[0.33] == -EXACT.max_turn_rate
     assert turns[0.17] >= 0.4 and turns[0.33] <= -0.4
 
@@ -182,10 +185,10 @@ def test_the_course_rule_turn_left_when_a_wall_is_within_half_a_metre(ahead):
 
 
 def planned_turn(params, right=0.25):
-    """The left turn a robot right metres from the right wall plans (see WallFollower.turn)."""
+    """The left turn a robot right metres from the right wall plans (see InnerCorner.turn)."""
     controller = WallFollower(params)
     update(corridor_end(1.5, right), (params.laser_x, 0.0, 0.0), controller=controller)
-    return controller.turn
+    return controller.inner_corner.turn
 
 
 def turn_start(params, right=0.25):
@@ -218,8 +221,8 @@ def test_a_turn_begun_farther_from_the_wall_starts_less_wide_and_later():
         controller, _ = update(corridor_end(start + 0.01, right))
         assert controller.state == FOLLOW
         allowed = EXACT.target_distance + EXACT.wide_allowance - right
-        assert controller.turn.drift(math.pi / 2) <= max(0.0, allowed) + 1e-9
-        drifts.append(controller.turn.drift(math.pi / 2))
+        assert controller.inner_corner.turn.drift(math.pi / 2) <= max(0.0, allowed) + 1e-9
+        drifts.append(controller.inner_corner.turn.drift(math.pi / 2))
         controller, _ = update(corridor_end(start - 0.01, right), controller=controller)
         assert controller.state == WALL_AHEAD
     assert drifts[1] < drifts[0] and starts[1] < starts[0]
@@ -229,7 +232,7 @@ def test_a_turn_begun_without_room_to_ride_nearer_is_the_short_wall_turn():
     # Having ridden nearer, the robot flies the turn with the wide start
     # and the near pivot; still at the target distance (a short wall), its
     # wide start would be cut short, and it flies the short-wall turn.
-    dip = WallFollower(EXACT).left_turn.drift(math.pi / 2) - EXACT.wide_allowance
+    dip = WallFollower(EXACT).inner_corner.left_turn.drift(math.pi / 2) - EXACT.wide_allowance
     assert planned_turn(EXACT, EXACT.target_distance - dip).radius == EXACT.inner_corner_radius
     short = planned_turn(EXACT, EXACT.target_distance)
     assert short.radius == EXACT.short_turn_radius
@@ -239,9 +242,9 @@ def test_a_turn_begun_without_room_to_ride_nearer_is_the_short_wall_turn():
 def test_a_turn_once_begun_keeps_its_plan():
     controller, _ = update(corridor_end(0.4))
     assert controller.state == WALL_AHEAD
-    planned = controller.turn
+    planned = controller.inner_corner.turn
     update(corridor_end(0.38, 0.3), controller=controller)
-    assert controller.turn is planned
+    assert controller.inner_corner.turn is planned
 
 
 def test_a_distant_wall_ahead_is_not_turned_for_yet():
@@ -269,7 +272,7 @@ def test_a_wall_ahead_coming_up_is_approached_a_little_nearer():
     controller, near = update(corridor_end(0.8))
     assert controller.state == FOLLOW
     assert far.angular == pytest.approx(0.0, abs=0.01)
-    dip = controller.left_turn.drift(math.pi / 2) - EXACT.wide_allowance
+    dip = controller.inner_corner.left_turn.drift(math.pi / 2) - EXACT.wide_allowance
     assert 0.005 < dip < 0.04
     assert near.angular == pytest.approx(-EXACT.k_distance * dip, rel=0.05)
 
@@ -297,7 +300,6 @@ def test_a_left_turn_ends_wide_again_when_planned_to(wide_end, ends_wide):
     assert end and (max(end) > 0.8 * EXACT.cruise_speed) == ends_wide
 
 
-
 def test_after_a_turn_onto_a_wall_ahead_it_steers_back_out_harder_for_a_while():
     """The turn lands the robot near closest_distance on purpose, an error well above the
     laser's noise: for settle_time the distance gain is raised by settle_gain."""
@@ -310,12 +312,13 @@ def test_after_a_turn_onto_a_wall_ahead_it_steers_back_out_harder_for_a_while():
         assert controller.state == WALL_AHEAD
         turns[settle_time] = controller.update(near, 0.1).angular
         assert controller.state == FOLLOW
-        assert controller.settling == pytest.approx(max(0.0, settle_time - 0.1))
+        assert controller.follow_wall.settling == pytest.approx(max(0.0, settle_time - 0.1))
     assert EXACT.settle_gain > 1.0
     extra = (EXACT.settle_gain - 1.0) * EXACT.k_distance * 0.03
     assert turns[EXACT.settle_time] - turns[0.0] == pytest.approx(extra, rel=0.2)
     controller.update(near, 0.1 + EXACT.settle_time)
-    assert controller.settling == 0.0
+    assert controller.follow_wall.settling == 0.0
+
 
 def tilted_end(crossing, angle_deg, right=0.25):
     """A right wall that meets a wall crossing the way crossing metres ahead.
@@ -343,8 +346,8 @@ def test_a_wall_ahead_turned_onto_on_the_tight_arc_alone_is_not_approached_neare
 
 
 def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
-    assert as_planned((0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
-    distance, angle = as_planned((0.45, math.radians(120.0)))
+    assert as_planned(Line(0.5, math.radians(80.0))) == (0.5, math.radians(80.0))
+    distance, angle = as_planned(Line(0.45, math.radians(120.0)))
     assert distance == pytest.approx(0.45 / math.sin(math.radians(120.0)))
     assert angle == pytest.approx(math.pi / 2)
     # So the turn starts where it would for a square wall at that crossing,
@@ -357,12 +360,12 @@ def test_a_wall_ahead_past_a_right_angle_is_planned_where_it_crosses_the_way():
 
 def test_heading_into_the_right_wall_a_wall_ahead_is_planned_square_to_it():
     into = math.radians(8.0)
-    distance, angle = as_planned((0.45, math.pi / 2 + into), (0.25, into))
+    distance, angle = as_planned(Line(0.45, math.pi / 2 + into), Line(0.25, into))
     assert angle == pytest.approx(math.pi / 2 + into)
     assert distance == pytest.approx(0.45)
     # Parallel to the right wall, or heading away from it, it is square to the way.
-    for wall in (None, (0.25, 0.0), (0.25, -into)):
-        assert as_planned((0.45, math.pi / 2 + into), wall) == pytest.approx(
+    for wall in (None, Line(0.25, 0.0), Line(0.25, -into)):
+        assert as_planned(Line(0.45, math.pi / 2 + into), wall) == pytest.approx(
             (0.45 / math.cos(into), math.pi / 2))
 
 
@@ -407,7 +410,7 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
     controller, command = update(convex_corner(1.0), convention=convention)
     assert controller.state == FOLLOW and abs(command.angular) < 0.01
     # The turn round the end starts where it was planned to (lead) before the end.
-    lead = controller.right_turn.lead
+    lead = controller.outer_corner.turn.lead
     controller, command = update(convex_corner(lead + 0.04), convention=convention,
                                  controller=controller)
     assert controller.state == FOLLOW
@@ -420,7 +423,7 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
 @pytest.mark.parametrize('outer_turn_lead', [0.0, 0.06])
 def test_the_turn_round_a_walls_end_starts_outer_turn_lead_early(outer_turn_lead):
     params = FollowerParams(range_bias=0.0, laser_x=0.0, outer_turn_lead=outer_turn_lead)
-    start = WallFollower(params).right_turn.lead + outer_turn_lead
+    start = WallFollower(params).outer_corner.turn.lead + outer_turn_lead
     for end_x, state in ((start + 0.025, FOLLOW), (start - 0.025, OUTER_CORNER)):
         controller = WallFollower(params)
         controller.state = FOLLOW
@@ -440,8 +443,8 @@ def rounding(tip_distance, turned_deg, ending_wide=False):
            x * math.sin(heading) + (-0.25 - y) * math.cos(heading))
     along = (math.cos(heading), -math.sin(heading))
     controller.state = OUTER_CORNER
-    controller.arc = CornerArc(tip, along, controller.right_turn.center)
-    controller.ending_wide = ending_wide
+    controller.outer_corner.arc = CornerArc(tip, along, controller.outer_corner.turn.center)
+    controller.outer_corner.ending_wide = ending_wide
     return controller, (x, y, heading)
 
 
@@ -449,7 +452,7 @@ def test_a_wide_end_once_begun_goes_on():
     # Here the wide end would land a little far from the next wall ...
     controller, pose = rounding(0.25, 60.0)
     _, command = update(convex_corner(0.0), pose, controller=controller)
-    assert not controller.ending_wide
+    assert not controller.outer_corner.ending_wide
     assert command.linear < 0.9 * EXACT.cruise_speed
     # ... but the tip is seen only to a grid cell or so, and a wide end
     # begun a scan before goes on rather than tighten again.
@@ -461,7 +464,7 @@ def test_a_wide_end_once_begun_goes_on():
 def test_a_wide_end_begins_where_it_lands_at_the_target_distance():
     controller, pose = rounding(0.2, 60.0)
     _, command = update(convex_corner(0.0), pose, controller=controller)
-    assert controller.ending_wide
+    assert controller.outer_corner.ending_wide
     assert command == pytest.approx((EXACT.cruise_speed, -EXACT.max_turn_rate))
 
 
@@ -471,30 +474,43 @@ def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(
     # scans it turns, seen from the robot, by the robot's own turn, which
     # is the command times the time between the scans' stamps.
     controller = WallFollower(EXACT)
-    view = scan_view(convex_corner(controller.right_turn.lead - 0.03), (0.0, 0.0, 0.0), STAGE)
+    lead = controller.outer_corner.turn.lead
+    view = scan_view(convex_corner(lead - 0.03), (0.0, 0.0, 0.0), STAGE)
     controller.update(scan_view(convex_corner(1.0), (0.0, 0.0, 0.0), STAGE), stamp=9.9)
     controller.update(view, stamp=10.0)
     assert controller.state == OUTER_CORNER
-    before = controller.arc.center - controller.arc.tip
+    arc = controller.outer_corner.arc
+    before = arc.center - arc.tip
     turn = controller.command.angular * period
     controller.update(view, stamp=10.0 + period)
-    after = controller.arc.center - controller.arc.tip
+    after = arc.center - arc.tip
     turned = math.atan2(after[1], after[0]) - math.atan2(before[1], before[0])
     assert turned == pytest.approx(-turn)
 
 
 def test_circling_a_hit_ends_on_a_wall_that_an_arc_would_still_turn_for():
     # With no wall to pin an arc to (a box's short side, mid-turn) the robot
-    # circles the nearest hit, and any straight wall within rejoin_angle_deg
-    # ends that; an arc ends only within arc_exit_angle_deg, where it was
+    # circles the nearest hit, and any straight wall within rejoin_angle
+    # ends that; an arc ends only within arc_exit_angle, where it was
     # planned to.
     pose = (0.0, 0.0, math.radians(15.0))
     circling = WallFollower(EXACT)
     circling.state = OUTER_CORNER
     assert update(right_wall(0.25), pose, controller=circling)[0].state == FOLLOW
     on_arc = WallFollower(EXACT)
-    on_arc.state, on_arc.arc = OUTER_CORNER, CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
+    on_arc.state = OUTER_CORNER
+    on_arc.outer_corner.arc = CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
     assert update(right_wall(0.25), pose, controller=on_arc)[0].state == OUTER_CORNER
+
+
+def test_an_arc_is_dropped_once_its_corner_is_over():
+    # Parallel to the next wall, the arc has ended where it was planned to:
+    # the robot follows that wall, and the next corner gets an arc of its own.
+    controller = WallFollower(EXACT)
+    controller.state = OUTER_CORNER
+    controller.outer_corner.arc = CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
+    assert update(right_wall(0.25), controller=controller)[0].state == FOLLOW
+    assert controller.outer_corner.arc is None
 
 
 def test_an_outer_corner_is_rounded_onto_the_next_wall():
@@ -545,8 +561,8 @@ def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
     # the one the turn left behind, 60 degrees off: its end is not the
     # corner that came up, so the robot circles the nearest hit instead.
     seen = Observation.__new__(Observation)
-    seen.wall, seen.wall_end = (0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
-    assert (WallFollower(EXACT)._corner_arc(seen) is not None) == pinned
+    seen.wall, seen.wall_end = Line(0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
+    assert (WallFollower(EXACT).outer_corner._corner_arc(seen) is not None) == pinned
 
 
 @pytest.mark.parametrize('before, starting_wide', [(FOLLOW, True), (WALL_AHEAD, False)])
@@ -556,8 +572,8 @@ def test_only_a_corner_met_while_following_the_wall_starts_wide(before, starting
     controller = WallFollower(EXACT)
     controller.state = before
     controller, command = update(convex_corner(0.0), controller=controller)
-    assert controller.state == OUTER_CORNER and controller.arc is not None
-    assert controller.starting_wide == starting_wide
+    assert controller.state == OUTER_CORNER and controller.outer_corner.arc is not None
+    assert controller.outer_corner.starting_wide == starting_wide
     assert (command.linear == pytest.approx(EXACT.cruise_speed)) == starting_wide
 
 
@@ -632,13 +648,6 @@ def test_look_ahead_moves_hits_against_the_motion():
 def test_range_bias_pulls_hits_in_along_their_beams():
     points = np.array([[0.3, 0.4], [0.0, -0.25]])
     assert unbiased(points, 0.05) == pytest.approx(np.array([[0.27, 0.36], [0.0, -0.2]]))
-
-
-def test_consensus_line_ignores_stray_hits_that_would_tilt_a_fit():
-    wall = np.array([[0.69, y] for y in np.linspace(0.05, 0.13, 7)])
-    stray = np.array([[0.82, 0.05]])
-    distance, angle = consensus_line(np.vstack((stray, wall)), 0.025, 6)
-    assert distance == pytest.approx(0.69) and angle == pytest.approx(0.0, abs=1e-9)
 
 
 # --- a small kinematic loop ------------------------------------------------------------

@@ -36,7 +36,8 @@ def test_a_wide_end_takes_the_turns_last_angles_on_the_wide_arc():
     assert turn.gap(math.pi / 2) == pytest.approx(expected)
     assert [turn.arc_radius(math.radians(a)) for a in (80.0, 50.0, 20.0)] == [WIDE, TIGHT, WIDE]
     # A turn through less than the wide end's share is all wide.
-    assert turn.gap(math.radians(20.0)) == pytest.approx(WIDE * (1.0 - math.cos(math.radians(20.0))))
+    assert turn.gap(math.radians(20.0)) == pytest.approx(
+        WIDE * (1.0 - math.cos(math.radians(20.0))))
 
 
 def test_wide_ends_that_meet_leave_no_tight_arc():
@@ -74,7 +75,8 @@ def test_the_wide_start_drifts_off_the_old_wall_as_its_arc_does():
 
 def test_a_turn_short_of_the_tight_arcs_share_has_no_wide_start_and_no_drift():
     assert plan().drift(math.radians(45.0)) == 0.0
-    assert plan().drift(math.radians(80.0)) == pytest.approx(WIDE * (1.0 - math.cos(math.radians(5.0))))
+    assert plan().drift(math.radians(80.0)) == pytest.approx(
+        WIDE * (1.0 - math.cos(math.radians(5.0))))
 
 
 def test_with_the_gap_it_plans_the_turn_flies_the_planned_arc():

@@ -16,5 +16,9 @@ def test_the_follower_steers_for_a_new_target_distance_at_the_next_scan():
 
 def test_a_new_turn_is_planned_with_the_new_parameters():
     controller = WallFollower(FollowerParams())
-    controller.reconfigure(FollowerParams(inner_corner_radius=0.12, wide_start=0.0))
-    assert controller.left_turn.radius == 0.12 and controller.left_turn.wide_start == 0.0
+    controller.reconfigure(FollowerParams(inner_corner_radius=0.12, wide_start=0.0,
+                                          outer_corner_radius=0.3))
+    turn = controller.inner_corner.left_turn
+    assert turn.radius == 0.12 and turn.wide_start == 0.0
+    assert controller.params.outer_corner_radius == 0.3
+    assert controller.outer_corner.params is controller.params

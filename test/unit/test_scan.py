@@ -6,7 +6,7 @@ import pytest
 
 from laser_conventions import CONVENTIONS, REVERSED, box, cast, scan_view
 from scan_queries import fit_wall, min_range, nearest, range_at
-from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView, fit_line, wrap_angle
+from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView, wrap_angle
 
 ALL = CONVENTIONS + [REVERSED]
 
@@ -88,15 +88,6 @@ def test_fit_wall_needs_enough_hits():
     view = ScanView(ranges, 0.0, 2.0 * math.pi / 360, 0.12, 3.5)
     assert fit_wall(view, RIGHT, math.radians(30.0), min_points=5) is None
     assert fit_wall(view, RIGHT, math.radians(30.0), min_points=4) is not None
-
-
-def test_fit_line_through_chosen_points():
-    points = np.array([[x, 0.4 - 0.5 * x] for x in np.linspace(-1.0, 1.0, 9)])
-    distance, normal = fit_line(points)
-    # The line y = 0.4 - x/2 passes 0.4 / sqrt(1.25) from the origin, normal up-right.
-    assert distance == pytest.approx(0.4 / math.sqrt(1.25))
-    assert normal == pytest.approx(math.atan2(1.0, 0.5))
-    assert fit_line(points[:3], min_points=4) is None
 
 
 @pytest.mark.parametrize('convention', ALL, ids=lambda c: c.name)

@@ -1,67 +1,103 @@
-"""The compiled raytrace (src/stage_raytrace.c) against the numpy one, beam for beam.
+"""The raytrace library (src/stage_raytrace.c) against its scalar Python transliteration,
+beam for beam, and what happens without the library.
 
-Both follow the same model of Stage's beam; the numpy one is checked against
-real Stage's recordings in test_sim_stage_reference.py (as is the compiled one)
-and test_sim_raytrace.py. Here they must agree on every beam of random scans,
-from anywhere in and around each shipped and reference world, with robot
-bodies in the way: the same intensity and the same range up to the last bits
-(C moves its position by a running sum of cell steps, as Stage does, and numpy
-by whole numbers of steps at once).
+Real Stage's recordings (test_sim_stage_reference.py) take every branch of the
+loop but its guards for cells and regions beyond the tables, and only from poses
+inside a world with one robot. Here the oracle, stage_raytrace_oracle.py, must
+give the same bits on random scans from anywhere in and around each shipped and
+reference world, off the grid too, with the own body and another robot in the
+way and beams low enough to pass over some blocks.
 """
 import glob
 import math
 import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
+import stage_raytrace_oracle
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.grid import footprint_cells
 from wall_follower.sim.raytrace import stage_ranges
 from wall_follower.sim.worldfile import load_world
 
-HERE = os.path.dirname(__file__)
-WORLDS = sorted(glob.glob(os.path.join(HERE, '..', '..', 'worlds', '*.world')) +
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.join(HERE, os.pardir, os.pardir)
+WORLDS = sorted(glob.glob(os.path.join(REPO, 'worlds', '*.world')) +
                 glob.glob(os.path.join(HERE, '..', 'data', 'stage_reference', '*.world')))
 AXES = np.array([0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi, math.pi / 4, -3 * math.pi / 4])
-# Far below a cell (0.02 m): only the last bits of a double may differ.
-LAST_BITS = 1e-12
 
 
 def test_the_library_is_built_and_found():
-    assert compiled_raytrace.available(), compiled_raytrace.NOT_FOUND
+    assert compiled_raytrace.available(), compiled_raytrace.MISSING
 
 
 @pytest.mark.parametrize('path', WORLDS, ids=lambda p: os.path.basename(p))
-def test_both_implementations_trace_the_same_beams(path):
+def test_the_library_traces_every_beam_as_its_oracle(path, monkeypatch):
+    traced = []
+    library_trace = compiled_raytrace.trace
+
+    def trace(tables, beams, x, y):
+        readings = library_trace(tables, beams, x, y)
+        traced.append(stage_raytrace_oracle.trace(tables, beams, x, y))
+        return readings
+
+    monkeypatch.setattr(compiled_raytrace, 'trace', trace)
     sim = Simulation(load_world(path))
     grid = sim.grid
     spec = sim.robots[0].spec
     low = np.array([grid.ix0, grid.iy0]) / grid.ppm
     high = low + np.array(grid.occupied.shape[::-1]) / grid.ppm
     rng = np.random.default_rng(7)
-    beams = differ = 0
-    for scan in range(60):
-        x, y = rng.uniform(low - 0.5, high + 0.5)
+    hits = 0
+    for scan in range(40):
+        x, y = rng.uniform(low - 1.0, high + 1.0)
         angles = np.concatenate([AXES, rng.uniform(-math.pi, math.pi, 353)])
         body = footprint_cells(spec, (x, y, rng.uniform(-math.pi, math.pi)), grid.ppm)
         other = footprint_cells(spec, tuple(rng.uniform(low, high)) + (0.0,), grid.ppm)
-        options = dict(robot_cells=[body])
+        # without a body at the laser, a beam can start beyond the populated regions
+        options = dict(robot_cells=[body] if scan % 4 else [], height=(None, 0.05, 0.2)[scan % 3])
         if scan % 2:
             options['other_cells'] = [other + (2.0,)]
-        numpy_ranges, numpy_intensities = stage_ranges(grid, x, y, angles, 3.5,
-                                                       implementation='numpy', **options)
-        ranges, intensities = stage_ranges(grid, x, y, angles, 3.5,
-                                           implementation='compiled', **options)
-        assert np.array_equal(intensities, numpy_intensities)
-        assert np.all(np.abs(ranges - numpy_ranges) <= LAST_BITS)
-        beams += len(angles)
-        differ += np.count_nonzero(ranges != numpy_ranges)
-    assert differ <= 0.01 * beams
+        ranges, intensities = stage_ranges(grid, x, y, angles, 3.5, **options)
+        expected_ranges, expected_intensities = traced.pop()
+        assert np.array_equal(ranges, expected_ranges), 'scan %d from (%g, %g)' % (scan, x, y)
+        assert np.array_equal(intensities, expected_intensities), 'scan %d' % scan
+        hits += np.count_nonzero(ranges < 3.5)
+    assert hits > 40 * len(AXES)
 
 
-def test_an_unknown_implementation_is_an_error():
-    grid = Simulation(load_world(WORLDS[0])).grid
-    with pytest.raises(ValueError, match='fast'):
-        stage_ranges(grid, 0.0, 0.0, [0.0], 3.5, implementation='fast')
+def _without_the_library():
+    """This environment with no LD_LIBRARY_PATH entry that holds the library."""
+    env = dict(os.environ)
+    env['LD_LIBRARY_PATH'] = os.pathsep.join(
+        entry for entry in env.get('LD_LIBRARY_PATH', '').split(os.pathsep)
+        if entry and not os.path.exists(os.path.join(entry, compiled_raytrace.LIBRARY)))
+    return env
+
+
+def test_without_the_library_a_scan_says_how_to_build_it():
+    probe = ('from wall_follower.sim import compiled_raytrace\n'
+             'from wall_follower.sim.engine import Simulation\n'
+             'from wall_follower.sim.worldfile import load_world\n'
+             'try:\n'
+             '    Simulation(load_world(%r)).step()\n'
+             'except compiled_raytrace.LibraryMissing as error:\n'
+             '    print(error)\n' % WORLDS[0])
+    run = subprocess.run([sys.executable, '-c', probe], env=_without_the_library(),
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == compiled_raytrace.MISSING
+    assert compiled_raytrace.LIBRARY in run.stdout and 'catkin_make' in run.stdout
+
+
+def test_without_the_library_the_node_exits_with_an_error_not_a_traceback():
+    run = subprocess.run([sys.executable, os.path.join(REPO, 'scripts', 'stage_sim'),
+                          '--simulator', 'builtin', '-g', WORLDS[0]],
+                         env=_without_the_library(), stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
+    assert run.returncode == 1
+    assert run.stderr == 'stage_sim: error: %s\n' % compiled_raytrace.MISSING

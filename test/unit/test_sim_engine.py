@@ -6,8 +6,9 @@ import textwrap
 import numpy as np
 import pytest
 
+from cell_geometry import footprint_clearance
 from wall_follower.sim.engine import Simulation
-from wall_follower.sim.grid import footprint_clearance, footprint_collides
+from wall_follower.sim.grid import footprint_collides
 from wall_follower.sim.worldfile import load_world
 
 REFERENCE = os.path.join(os.path.dirname(__file__), '..', 'data', 'stage_reference')

@@ -25,10 +25,11 @@ import textwrap
 import numpy as np
 import pytest
 
+from cell_geometry import exact_ranges
 from wall_follower.sim import engine
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.grid import OccupancyGrid, footprint_cells
-from wall_follower.sim.raytrace import exact_ranges, stage_beam_angles, stage_ranges
+from wall_follower.sim.raytrace import stage_beam_angles, stage_ranges
 from wall_follower.sim.worldfile import load_world
 
 REFERENCE = os.path.join(os.path.dirname(__file__), '..', 'data', 'stage_reference')
@@ -105,8 +106,8 @@ def test_along_an_axis_stage_reads_whole_cells_within_reach_of_a_wall(monkeypatc
             cells = np.round(travelled / resolution)
             assert np.all(np.abs(travelled - cells * resolution) <= RANGE_ROUNDING)
             ranges, _ = stage_ranges(grid, x, y, angles[close], range_max, **options)
-            assert ranges * np.cos(offset[close]) == pytest.approx(cells * resolution,
-                                                                    abs=1e-9)
+            along_axis = ranges * np.cos(offset[close])
+            assert along_axis == pytest.approx(cells * resolution, abs=1e-9)
             checked += len(close)
     assert checked >= 8
 
@@ -315,10 +316,9 @@ def test_stage_beam_angles_are_a_float32_running_sum():
         value = np.float32(float(value) + np.float32(2 * math.pi / 359))
 
 
-def test_the_own_body_populates_its_regions_as_if_drawn_into_the_world():
-    # Per scan the body is laid over the cached tables of the world; drawing it into
-    # freshly built tables (as happens when other robots are in the scan, here one
-    # far out of reach) must give the same beams, bit for bit.
+def test_a_robot_out_of_reach_changes_no_beam():
+    # Another robot far off the grid is neither drawn onto it nor walked to, though its
+    # region is populated: every beam, with and without it, the same bit for bit.
     world = load_world(os.path.join(REFERENCE, 'ref_room.world'))
     sim = Simulation(world)
     grid = sim.grid
@@ -329,8 +329,8 @@ def test_the_own_body_populates_its_regions_as_if_drawn_into_the_world():
     for x, y, yaw in zip(rng.uniform(-1.5, 1.5, 8), rng.uniform(-1.5, 1.5, 8),
                          rng.uniform(-math.pi, math.pi, 8)):
         own = [footprint_cells(spec, (x, y, yaw), grid.ppm)]
-        laid_over = stage_ranges(grid, x, y, angles + yaw, 3.5, robot_cells=own)
-        drawn_in = stage_ranges(grid, x, y, angles + yaw, 3.5, robot_cells=own,
+        alone = stage_ranges(grid, x, y, angles + yaw, 3.5, robot_cells=own)
+        with_far = stage_ranges(grid, x, y, angles + yaw, 3.5, robot_cells=own,
                                 other_cells=[far])
-        assert np.array_equal(laid_over[0], drawn_in[0])
-        assert np.array_equal(laid_over[1], drawn_in[1])
+        assert np.array_equal(alone[0], with_far[0])
+        assert np.array_equal(alone[1], with_far[1])

@@ -4,7 +4,7 @@ import math
 import pytest
 
 from wall_follower.sim.stage_interface import (parse_pose, quit_report, rate_in_quit_report,
-                                           robot_prefix)
+                                               robot_prefix)
 
 
 def test_a_lone_robot_has_unprefixed_names():

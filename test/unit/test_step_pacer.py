@@ -113,4 +113,3 @@ def test_a_held_rate_waits_no_longer_than_its_patience():
 def test_a_held_rate_waits_for_nobody_when_no_robot_is_driven():
     pacer = StepPacer(period=0.01, patience=30.0)
     assert run_steps(pacer, 5, driving=[False]) < 20.0
-

@@ -81,4 +81,5 @@ def test_closest_match_keeps_the_same_wall_and_ignores_the_next_one():
     match = closest_match(after, tracked, math.radians(25.0), 0.2)
     assert match.distance == pytest.approx(0.5, abs=0.005)
     assert degrees(match) == pytest.approx(90.0 - math.degrees(0.05), abs=0.5)
-    assert closest_match(after, tracked._replace(angle=0.0), math.radians(25.0), 0.05) is None
+    turned = tracked._replace(line=tracked.line._replace(angle=0.0))
+    assert closest_match(after, turned, math.radians(25.0), 0.05) is None

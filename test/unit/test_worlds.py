@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from cell_geometry import exact_ranges
 from wall_follower.sim.grid import OccupancyGrid
-from wall_follower.sim.raytrace import exact_ranges
 from wall_follower.sim.worldfile import load_world
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)

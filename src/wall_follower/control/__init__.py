@@ -1,1 +1,2 @@
-"""The robot's behaviours: scan reading, walls, the follower and its manoeuvres, the finder, the lap."""
+"""The robot's behaviours: scan reading and checking, walls, the follower and its
+manoeuvres, the finder, the lap."""

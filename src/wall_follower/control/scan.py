@@ -68,33 +68,3 @@ class ScanView(object):
         mask = self.in_sector(center, half_width) & self.valid
         r, a = self.ranges[mask], self.angles[mask]
         return np.column_stack((r * np.cos(a), r * np.sin(a)))
-
-
-def line_through(points):
-    """Total-least-squares line through (N >= 2, 2) points in the laser frame.
-
-    Returns (mean, normal, distance): the points' centroid, the unit normal
-    pointing away from the laser, and the laser's perpendicular distance to
-    the line. The principal direction of the points is the line's direction,
-    which, unlike a least-squares y(x), does not care how the wall is turned.
-    """
-    mean = points.mean(axis=0)
-    _, _, vt = np.linalg.svd(points - mean, full_matrices=False)
-    normal = vt[1]
-    distance = float(np.dot(mean, normal))
-    if distance < 0.0:
-        normal, distance = -normal, -distance
-    return mean, normal, distance
-
-
-def fit_line(points, min_points=5):
-    """The wall through (N, 2) points as (distance, angle), or None below min_points.
-
-    distance is the laser's perpendicular distance to the line, angle the
-    direction of that perpendicular. Shared by ScanView.fit_wall and by
-    callers that pick their own points (e.g. only those near an earlier fit).
-    """
-    if len(points) < min_points:
-        return None
-    _, normal, distance = line_through(points)
-    return distance, float(math.atan2(normal[1], normal[0]))

@@ -48,8 +48,8 @@ def malformation(msg):
     if msg.angle_increment == 0.0:
         return 'its angle_increment is 0'
     if msg.range_max <= msg.range_min or msg.range_max <= 0.0:
-        return 'its range_max (%g) is not above its range_min (%g)' % (msg.range_max,
-                                                                    msg.range_min)
+        return ('its range_max (%g) is not above its range_min (%g)'
+                % (msg.range_max, msg.range_min))
     expected = (msg.angle_max - msg.angle_min) / msg.angle_increment + 1.0
     if abs(count - expected) > COUNT_SLACK:
         return ('its %d ranges do not match its angles (%g to %g by %g: %.0f beams)'

@@ -12,19 +12,19 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.control.scan import line_through, wrap_angle
+from wall_follower.control.lines import Line, line_through
+from wall_follower.control.scan import wrap_angle
 
 # A hit this much (m) nearer than the end of a run hides what lies beyond it.
 OCCLUSION_STEP = 0.05
 
 
-class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
-                               'start', 'end', 'foot', 'start_open', 'end_open'])):
+class Wall(namedtuple('Wall', ['line', 'length', 'rms', 'count', 'start', 'end', 'foot',
+                               'start_open', 'end_open'])):
     """A straight piece of wall in the laser frame.
 
-    distance: perpendicular distance from the laser to the wall's line (m).
-    angle: direction of that perpendicular, i.e. of the wall's normal seen
-        from the laser (rad, 0 = ahead, -pi/2 = right).
+    line: the Line it lies on, its angle from the laser's x axis (0 =
+        ahead, -pi/2 = right); distance, angle and normal are the line's.
     length: extent of the hits along the line (m); rms: their residual (m).
     count: number of hits. start, end, foot: positions along the line (m,
         from the hits' mean, increasing to the left seen from the laser) of
@@ -33,6 +33,20 @@ class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
     start_open, end_open: True when the hits stop at that end only because
         something nearer hides the rest of the wall.
     """
+
+    __slots__ = ()
+
+    @property
+    def distance(self):
+        return self.line.distance
+
+    @property
+    def angle(self):
+        return self.line.angle
+
+    @property
+    def normal(self):
+        return self.line.normal
 
     def foot_inside(self, margin=0.0):
         """True when the point of the wall straight across from the laser was seen,
@@ -46,10 +60,6 @@ class Wall(namedtuple('Wall', ['distance', 'angle', 'length', 'rms', 'count',
         low = self.start if self.start_open else self.start + margin
         high = self.end if self.end_open else self.end - margin
         return low <= self.foot <= high
-
-    @property
-    def normal(self):
-        return np.array([math.cos(self.angle), math.sin(self.angle)])
 
 
 def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,
@@ -187,8 +197,7 @@ def _fit(points):
     direction = np.array([-normal[1], normal[0]])
     along = (points - mean).dot(direction)
     across = (points - mean).dot(normal)
-    return Wall(distance=distance,
-                angle=float(math.atan2(normal[1], normal[0])),
+    return Wall(line=Line(distance, float(math.atan2(normal[1], normal[0]))),
                 length=float(along.max() - along.min()),
                 rms=float(np.sqrt(np.mean(across ** 2))),
                 count=len(points),
@@ -210,7 +219,7 @@ def refine(view, wall, gate=0.05, min_points=6):
     if len(points) == 0:
         return wall
     for _ in range(2):
-        near = points[np.abs(points.dot(wall.normal) - wall.distance) <= gate]
+        near = points[np.abs(wall.line.offsets(points)) <= gate]
         if len(near) < min_points:
             return wall
         wall = _fit(near)

@@ -12,6 +12,8 @@ PARTS = {
     'sim': 'simulator speed: free run, held speed-up with a controller, raytrace',
     'follow': 'wall following: time in band, RMS error, clearance, lap time',
     'find': 'find_wall: time to align, final distance and heading errors',
+    'wander': 'lab exercise wander: share of the free floor visited in 5 simulated minutes',
+    'mapping': 'mapping a lap with drifting odometry: map precision, recall, pose errors, CPU',
 }
 
 

@@ -14,7 +14,8 @@ import numpy as np
 from wall_follower.evaluation.geometry import cast_rays, polygon_clearance, solid_edges
 from wall_follower.control.lap import LapRecorder
 from wall_follower.control.motion import MAX_LINEAR
-from wall_follower.control.scan import RIGHT, fit_line, wrap_angle
+from wall_follower.control.lines import fit_line
+from wall_follower.control.scan import RIGHT, wrap_angle
 from wall_follower.sim.grid import footprint_corners
 from wall_follower.sim.worldfile import load_world
 

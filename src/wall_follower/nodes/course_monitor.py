@@ -1,20 +1,25 @@
 """Watches a simulated run from outside the robot, for reports, tests and benchmarks.
 
 It listens to what the simulator knows and the robot does not (ground
-truth, stalls) and to what the nodes say (cmd_vel, the record_odom action's
-goal, feedback and result), and scores the run with wall_follower.evaluation.scoring.
+truth, and stalls where the built-in simulator reports them) and to what the
+nodes say (cmd_vel, the record_odom action's goal, feedback and result), and
+scores the run with wall_follower.evaluation.scoring. Contact is judged from
+ground truth and the map too, so the score works on real stageros, which
+publishes no `stalled`.
 """
 import threading
 import time
+import xmlrpc.client
 
 import numpy as np
+import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 
-from actionlib_msgs.msg import GoalStatusArray
+from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 
 from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
@@ -23,6 +28,59 @@ from wall_follower.evaluation.scoring import RunScore, stretches_on_trail
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.
 QUEUE = 10000
+# The topics a score cannot do without: ground truth, and the recorder's.
+# `stalled` is not one: only the built-in simulator publishes it.
+NEEDED_TOPICS = ('base_pose_ground_truth', 'feedback', 'result', 'status')
+BUILTIN = 'builtin stage_sim'
+STAGEROS = 'stageros'
+# Wall seconds a node has to answer the master's ping.
+PING_TIMEOUT = 3.0
+
+
+def simulator_of(publications, truth_topic, stalled_topic):
+    """Which simulator publishes truth_topic, from the master's [(topic, [node, ...])].
+
+    Only the built-in simulator publishes `stalled` beside ground truth; any
+    other publisher is real stageros (or one that speaks its interface).
+    None when nobody publishes ground truth.
+    """
+    publishers = dict(publications)
+    truth = set(publishers.get(truth_topic, ()))
+    if not truth:
+        return None
+    return BUILTIN if truth & set(publishers.get(stalled_topic, ())) else STAGEROS
+
+
+class _TimeoutTransport(xmlrpc.client.Transport):
+    """An XML-RPC transport whose connections give up after a time-out."""
+
+    def __init__(self, timeout):
+        xmlrpc.client.Transport.__init__(self)
+        self._timeout = timeout
+
+    def make_connection(self, host):
+        connection = xmlrpc.client.Transport.make_connection(self, host)
+        connection.timeout = self._timeout
+        return connection
+
+
+def node_alive(name):
+    """Whether the node `name` is registered and answers a ping.
+
+    A node that ends cleanly unregisters from the master; one that was killed
+    stays registered but no longer answers.
+    """
+    caller = rospy.get_name()
+    try:
+        uri = rosgraph.Master(caller).lookupNode(name)
+    except (rosgraph.MasterError, OSError):
+        return False
+    proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(PING_TIMEOUT))
+    try:
+        proxy.getPid(caller)
+    except (OSError, xmlrpc.client.Error):
+        return False
+    return True
 
 
 class CourseMonitor(object):
@@ -47,6 +105,8 @@ class CourseMonitor(object):
         self.feedback = []
         self.result = None
         self.result_time = None
+        self.result_status = None
+        self.result_text = ''
         self.trail = []
         self._trail_stamps = []
         self._backlog = []
@@ -175,6 +235,8 @@ class CourseMonitor(object):
         with self.lock:
             self.result = [(p.x, p.y, p.z) for p in msg.result.list_of_odoms]
             self.result_time = msg.header.stamp.to_sec()
+            self.result_status = msg.status.status
+            self.result_text = msg.status.text
             self.score.finish(self.result_time)
         if self.start_on_goal:
             self.done.set()
@@ -226,18 +288,28 @@ class CourseMonitor(object):
             heard = self._trail_stamps[-1] if self._trail_stamps else None
             return None not in (heard, self.result_time) and heard >= self.result_time
 
+    @property
+    def lap_recorded(self):
+        """Whether record_odom's goal ended with a lap (False before its result)."""
+        return self.result_status == GoalStatus.SUCCEEDED
+
     def connected(self):
-        """Whether every topic that the simulator or the recorder publishes is connected."""
+        """Whether every topic that the score needs is connected (see NEEDED_TOPICS)."""
         return all(sub.get_num_connections() > 0 for sub in self._subs
-                   if sub.name.rsplit('/', 1)[-1] in ('base_pose_ground_truth', 'stalled',
-                                                       'feedback', 'result', 'status'))
+                   if sub.name.rsplit('/', 1)[-1] in NEEDED_TOPICS)
+
+    def simulator(self):
+        """Which simulator the run is on (simulator_of), asked of the master."""
+        publications, _, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+        return simulator_of(publications, rospy.resolve_name('base_pose_ground_truth'),
+                            rospy.resolve_name('stalled'))
 
     def start_world(self, limit=30.0):
         """Once every subscription is connected, unpause a simulator started paused.
 
         A monitor that starts listening late misses the start of the run;
         so the launch starts the simulator paused and the monitor lets it go
-        only when it hears everything. A simulator without pause_physics
+        only when it hears everything it needs. A simulator without pause_physics
         (real stageros) is left as it is. False if the monitor could not
         connect within limit wall seconds.
         """

@@ -3,18 +3,73 @@
 The follower already logs the search and the lap's progress; this node
 waits for the record_odom result, then prints what the robot recorded next
 to what really happened (ground truth, scored against the map), saves the
-plot and ends, which ends the launch.
+plot and ends, which ends the launch (it is the launch's required node).
+
+When no lap can come (the follower has ended, because find_wall failed or
+for any other reason, or record_odom ended its goal without a lap) it says
+so and exits with status 1 instead of waiting for ever, and writes no plot
+or figures: those exist only for a recorded lap. (roslaunch itself exits 0
+whatever its required node's status; tools/run-main checks for the plot.)
+
+Private parameters: ~world (arena), ~plot and ~json (files to write, '' for
+none), ~follower (wall_following: the node whose end means no lap can come).
 """
 import json
 import math
+import time
 
 import rospy
 
 from wall_follower.nodes.common import world_path
-from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.evaluation.plot import plot_course
 from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.sim.worldfile import WorldFileError
+
+
+# Wall seconds between checks that the follower still runs: often enough to see
+# one that ends a second after it starts (find_wall failing at once).
+FOLLOWER_POLL = 0.2
+# Wall seconds the lap's result has to arrive once the follower is gone: a
+# follower that stops after the lap ends as soon as it hears the result,
+# perhaps before this node has.
+RESULT_GRACE = 3.0
+# Wall seconds for the follower to show up at all.
+FOLLOWER_START_LIMIT = 20.0
+
+
+def no_lap_reason(monitor, follower, alive=node_alive, clock=time.monotonic,
+                  poll=FOLLOWER_POLL):
+    """Wait for record_odom's result; None once it came, else why no lap can come.
+
+    Polls the follower (alive(name), every poll wall seconds): once it has
+    been gone for RESULT_GRACE with no result (or never appeared within
+    FOLLOWER_START_LIMIT), nothing will drive the lap any more.
+    """
+    started = clock()
+    seen = False
+    gone_since = None
+    while not monitor.done.is_set():
+        if rospy.is_shutdown():
+            return 'shut down before the lap was recorded'
+        now = clock()
+        if alive(follower):
+            seen, gone_since = True, None
+        elif not seen:
+            if now - started > FOLLOWER_START_LIMIT:
+                return ('the follower %s is not running (it never started, or ended at once: '
+                        'see its log above); no lap can come' % follower)
+        elif gone_since is None:
+            gone_since = now
+        elif now - gone_since > RESULT_GRACE:
+            if monitor.goal_time is None:
+                return ('the follower %s ended before it started the lap (no record_odom goal '
+                        'was sent: find_wall failed? see its log above); no lap can come'
+                        % follower)
+            return ('the follower %s ended during the lap (see its log above); no lap can come'
+                    % follower)
+        monitor.done.wait(poll)
+    return None
 
 
 def course_figures(monitor):
@@ -39,9 +94,10 @@ def course_figures(monitor):
 
 
 def format_summary(f):
-    """The report's lines, from course_figures()."""
+    """The report's lines, from course_figures() (and 'simulator')."""
     truth = f['true_distance']
     return [
+        'simulator: %s' % (f.get('simulator') or 'unknown'),
         'record_odom result: %d points over %.1f s, %.2f m travelled (feedback)'
         % (f['points'], f['recording_time'], f['recorded_distance']),
         'ground truth: %.2f m travelled (the feedback is off by %.1f %%); '
@@ -69,16 +125,29 @@ def main():
     except (WorldFileError, EnvironmentError) as err:
         rospy.logerr('course_report: cannot read world %s: %s', world, err)
         return 1
+    follower = rospy.resolve_name(rospy.get_param('~follower', 'wall_following'))
     monitor = CourseMonitor(course_map, start_on_goal=True)
     if not monitor.start_world():
-        rospy.logerr('course_report: could not connect to the simulator and record_odom')
+        rospy.logerr('course_report: could not connect to the simulator (%s) and record_odom',
+                     rospy.resolve_name('base_pose_ground_truth'))
         return 1
-    rospy.loginfo('course_report: waiting for the lap to be recorded')
+    simulator = monitor.simulator() or 'an unknown simulator'
+    rospy.loginfo('course_report: on %s; waiting for the lap to be recorded', simulator)
+    reason = no_lap_reason(monitor, follower)
+    if reason is not None:
+        rospy.logerr('course_report: %s', reason)
+        return 1
     if not monitor.wait():
-        return 0
+        return 1
     figures = course_figures(monitor)
+    figures['simulator'] = simulator
     for line in format_summary(figures):
         rospy.loginfo('course_report: %s', line)
+    if not monitor.lap_recorded:
+        # No files: the plot and the figures exist only for a recorded lap.
+        rospy.logerr('course_report: record_odom ended its goal without a lap (status %d: %s)',
+                     monitor.result_status, monitor.result_text or 'no text')
+        return 1
     if output:
         with open(output, 'w') as stream:
             json.dump(figures, stream, indent=1)

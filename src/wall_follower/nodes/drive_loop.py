@@ -12,6 +12,10 @@ straight ahead holds no valid reading (neither a hit nor a proven
 no-return): a laser that sees nothing there may be blind, not looking at
 free space. A clock that jumps back (a simulator restarted, a bag looped)
 drops the scan held and lets the node reset what it timed on the old clock.
+
+A node whose commands change between scans (keyboard teleop) can ask for a
+steady beat instead: `tick` answers on a fixed ROS-time schedule with the
+newest usable scan, however often the laser sends one (an LDS-01 sends 5).
 """
 import math
 
@@ -21,6 +25,7 @@ from wall_follower.control.motion import Command
 
 FINISHED_NO_SCAN = 'no scan'
 WARNING_PERIOD = 5.0   # ROS s between repeats of one warning
+TICK_SLACK = 0.01      # share of a tick by which an answer may come early (clock rounding)
 
 
 class DriveLoop(object):
@@ -29,15 +34,18 @@ class DriveLoop(object):
     scan: a LatestScan; commander: a VelocityCommander; name: the prefix
     of every log line. rate: how often (Hz) the loop looks at the clock
     while it waits for scans. keepalive, scan_timeout: ROS seconds.
-    ahead_half_width: rad either side of straight ahead.
+    ahead_half_width: rad either side of straight ahead. tick: None to
+    answer each new scan once; else answer every tick ROS seconds, on a
+    steady schedule, with the newest usable scan.
     """
 
     def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
-                 ahead_half_width=math.radians(30.0)):
+                 ahead_half_width=math.radians(30.0), tick=None):
         self.name = name
         self.scan = scan
         self.commander = commander
         self.tune(rate, keepalive, scan_timeout, ahead_half_width)
+        self.tick = tick
         self._warned = (None, None)   # (text, ROS time) of the last warning
 
     def tune(self, rate, keepalive, scan_timeout, ahead_half_width):
@@ -59,7 +67,7 @@ class DriveLoop(object):
         Returns None on shutdown. The robot is stopped on every way out.
         """
         seen = None
-        now = started = sent = rospy.get_time()
+        now = started = sent = due = rospy.get_time()
         try:
             while not rospy.is_shutdown():
                 outcome = finished()
@@ -68,7 +76,7 @@ class DriveLoop(object):
                 previous, now = now, rospy.get_time()
                 if now < previous:
                     self._clock_moved_back(previous, now, on_clock_reset)
-                    started = sent = now
+                    started = sent = due = now
                 reading = self.scan.latest(self.scan_timeout)
                 if reading.view is None:
                     if patience is not None and now - started > patience:
@@ -78,8 +86,9 @@ class DriveLoop(object):
                     sent = now
                     if reading.check is not None or now - started > self.scan_timeout:
                         self._warn('%s; stopped' % reading.problem, now)
-                elif reading.check is not seen:
+                elif self._due(reading.check is not seen, now, due):
                     started = now
+                    due = self._next_due(due, now)
                     self.commander.send(self._safe(answer(reading.view, reading.taken),
                                                    reading.view, now))
                     sent = now
@@ -94,6 +103,18 @@ class DriveLoop(object):
             return None
         finally:
             self.commander.stop()
+
+    def _due(self, fresh, now, due):
+        """Whether to answer now: at each new scan, or with a tick, once the tick is due."""
+        if self.tick is None:
+            return fresh
+        return now >= due - TICK_SLACK * self.tick
+
+    def _next_due(self, due, now):
+        """When the next tick falls: a steady beat, restarted from now if it fell behind."""
+        if self.tick is None:
+            return due
+        return due + self.tick if now < due + self.tick else now + self.tick
 
     def _safe(self, command, view, now):
         """command, with no forward motion into a sector ahead that the laser cannot see."""

@@ -31,10 +31,12 @@ from wall_follower.params import ParameterError, checked, names
 class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
-    def __init__(self, table, config_type=None):
+    def __init__(self, table, config_type=None, found=None):
+        """found: name -> value of parameters the node has found out for itself
+        (laser_x from tf, say), in force as if given on the parameter server."""
         self._table = table
         self._lock = threading.Lock()
-        self._values = _load(table)
+        self._values = _load(table, found or {})
         self._version = 0
         self._taken = 0
         self.server = None
@@ -76,8 +78,9 @@ class NodeParameters(object):
         return config
 
 
-def _load(table):
-    """The node's ~parameters checked against its table; exits with an error on bad values.
+def _load(table, found):
+    """The node's ~parameters, and those found, checked against its table; exits with an
+    error on bad values.
 
     Unknown keys only warn: the node may run on a parameter server that
     also holds settings for another version of it. The values read are
@@ -92,6 +95,7 @@ def _load(table):
                       rospy.get_name(), ', '.join('~' + name for name in unknown),
                       rospy.get_name())
     known = dict((name, value) for name, value in given.items() if name not in unknown)
+    known.update(found)
     try:
         values = checked(table, known)
     except ParameterError as error:

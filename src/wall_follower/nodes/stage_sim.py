@@ -12,9 +12,11 @@ holds ~speedup headless, and subscribes cmd_pose (geometry_msgs/Pose: a
 teleport with no collision check, as stage_ros' add_pose_sub branch). -g
 (headless) is accepted for compatibility: this simulator has no GUI anyway.
 
---simulator stage or auto hands the process over to the real stageros when
-the stage_ros package is installed (exec, so that roslaunch keeps watching
-the same process); auto falls back to this simulator, stage fails without it.
+--simulator stage or auto may hand the process over to the real stageros
+(exec, so that roslaunch keeps watching the same process), by the rule of
+wall_follower.sim.simulator_choice: real stageros only with its window (no
+-g), since headless it cannot be paced; auto falls back to this simulator,
+stage refuses with a clear error.
 
 Private parameters: the table in wall_follower.params.stage_sim, read once
 at start. The world file's `speedup` is ignored, as stageros -g ignores it.
@@ -50,11 +52,11 @@ from wall_follower.params.stage_sim import TABLE
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choose_simulator
 from wall_follower.sim.worldfile import WorldFileError, load_world
 from wall_follower.sim.stage_interface import parse_pose, quit_report, robot_prefix
 from wall_follower.sim.step_pacer import StepPacer
 
-SIMULATORS = ('builtin', 'stage', 'auto')
 # Outgoing queue of the topics whose every message counts (a recorder sums odometry, a
 # monitor scores ground truth): rospy sends from a thread per connection, which the
 # stepping loop can starve for a while at high speed-ups, and a full queue drops the
@@ -273,9 +275,11 @@ def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog='stage_sim', description='Stage-compatible simulator with the stageros interface.')
     parser.add_argument('-g', dest='headless', action='store_true',
-                        help='headless (accepted for stageros compatibility; always true here)')
-    parser.add_argument('--simulator', choices=SIMULATORS, default='builtin',
-                        help='stage/auto: run the real stageros when stage_ros is installed')
+                        help='headless, as stageros -g (this simulator has no window anyway)')
+    parser.add_argument('--simulator', choices=SIMULATORS, default=BUILTIN,
+                        help='builtin: this simulator; stage: real stageros (needs stage_ros and '
+                        'no -g); auto: real stageros when stage_ros is installed and -g is not '
+                        'given, else this simulator')
     parser.add_argument('world', help='Stage .world file')
     return parser.parse_args(argv)
 
@@ -289,30 +293,36 @@ def find_stageros():
     return found[0] if found else None
 
 
-def exec_stageros(path, argv, headless, world):
-    """Replaces this process by stageros with the same remappings."""
+def exec_stageros(path, argv, world):
+    """Replaces this process by stageros, with its window, and the same remappings."""
     remaps = [arg for arg in argv[1:] if ':=' in arg]
-    args = [path] + (['-g'] if headless else []) + [world] + remaps
-    print('stage_sim: stage_ros is installed: running %s' % ' '.join(args))
+    args = [path, world] + remaps
+    sys.stderr.write('stage_sim: running real Stage: %s\n' % ' '.join(args))
     sys.stdout.flush()
+    sys.stderr.flush()
     os.execv(path, args)
 
 
 def main(argv=None):
     argv = list(sys.argv if argv is None else argv)
     args = parse_args(rospy.myargv(argv)[1:])
-    if args.simulator != 'builtin':
-        stageros = find_stageros()
-        if stageros is not None:
-            exec_stageros(stageros, argv, args.headless, args.world)
-        if args.simulator == 'stage':
-            sys.stderr.write('stage_sim: error: --simulator stage needs stageros '
-                             '(package stage_ros), which is not installed\n')
-            return 1
+    stageros = find_stageros() if args.simulator != BUILTIN else None
+    choice = choose_simulator(args.simulator, not args.headless, stageros is not None)
+    if choice.error:
+        sys.stderr.write('stage_sim: error: %s\n' % choice.error)
+        return 1
+    if choice.note:
+        # On stderr, which roslaunch shows even for a node whose output is a log file.
+        sys.stderr.write('stage_sim: %s\n' % choice.note)
+    if choice.simulator == STAGE:
+        exec_stageros(stageros, argv, args.world)
     try:
         world = load_world(args.world)
     except WorldFileError as error:
         sys.stderr.write('stage_sim: error: %s\n' % error)
+        return 1
+    if not compiled_raytrace.available():
+        sys.stderr.write('stage_sim: error: %s\n' % compiled_raytrace.MISSING)
         return 1
     try:
         return run_node(world, argv)
@@ -348,9 +358,6 @@ def run_node(world, argv):
                   world.resolution, world.interval_sim,
                   params['speedup'] if params['speedup'] > 0 else 'unlimited',
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
-    if not compiled_raytrace.available():
-        rospy.logwarn('%s; until then the laser is traced in numpy, over 20 times slower',
-                      compiled_raytrace.NOT_FOUND)
     if not node.running:
         rospy.loginfo('paused: call unpause_physics to start the world')
     if world.unknown_keywords:

@@ -14,6 +14,7 @@ import rospy
 from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
 from wall_follower.nodes.common import init_node
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_finder import FINDER, TABLE
@@ -24,7 +25,8 @@ class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
-        self.params = NodeParameters(TABLE, WallFinderConfig)
+        # ~laser_x if set, else read from tf: before the parameters are copied.
+        self.params = NodeParameters(TABLE, WallFinderConfig, found={'laser_x': laser_x()})
         values = self.params.snapshot()
         # max_linear and max_angular are the behaviour's limits and the clamp
         # alike, so the behaviour never asks for more than the node will send.

@@ -19,6 +19,7 @@ from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import init_node, wait_in_wall_time
+from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
@@ -33,7 +34,8 @@ class WallFollowingNode(object):
     """The follower's ROS wiring: scan in, clamped cmd_vel out, plus the two clients."""
 
     def __init__(self):
-        self.params = NodeParameters(TABLE, WallFollowingConfig)
+        # ~laser_x if set, else read from tf: before the parameters are copied.
+        self.params = NodeParameters(TABLE, WallFollowingConfig, found={'laser_x': laser_x()})
         values = self.params.snapshot()
         self.node = pick(values, NODE)
         self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))

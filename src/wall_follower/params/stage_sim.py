@@ -25,7 +25,8 @@ TABLE = (
           'negative: as the world file says', -1.0, 1e9),
     )),
     Section('robot', (
-        P('laser_profile', 'stage', 'the scan convention to emulate: stage, lds01 or gazebo'),
+        P('laser_profile', 'stage', 'the scan convention to emulate: stage, lds01, lds02, gazebo '
+          'or course720'),
         P('seed', 0, 'seed of the laser profile noise', 0, 2 ** 31 - 1),
         P('pose', '', 'x y yaw_deg: start pose of the first robot instead of the world file '
           'one; reset_positions returns there; empty: the world file pose'),

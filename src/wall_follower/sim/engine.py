@@ -27,7 +27,7 @@ import numpy as np
 from .grid import OccupancyGrid, footprint_cells, footprint_collides, footprint_corners, \
     footprints_overlap
 from .kinematics import clamp_velocity, diff_drive_step, normalize_angle
-from .laser_profiles import PROFILES, angle_noise, beam_layout, report
+from .laser_profiles import PROFILES, angle_noise, beam_layout, reach, report
 from .raytrace import stage_beam_angles, stage_ranges
 
 __all__ = ['Simulation', 'Frame', 'RobotFrame', 'Scan', 'Odometry', 'LaserMount', 'RobotState']
@@ -70,12 +70,10 @@ class Simulation(object):
     world: a worldfile.World. laser_profile: one of laser_profiles.PROFILES.
     seed: for laser noise. poses: optional {robot index: (x, y, yaw)} start poses that
     replace the world file's. watchdog_timeout: seconds of sim time (stageros'
-    ~base_watchdog_timeout); 0 disables it. raytrace: the implementation of
-    raytrace.stage_ranges ('compiled', 'numpy', or None for the best one there is).
+    ~base_watchdog_timeout); 0 disables it.
     """
 
-    def __init__(self, world, laser_profile='stage', seed=0, poses=None, watchdog_timeout=0.2,
-                 raytrace=None):
+    def __init__(self, world, laser_profile='stage', seed=0, poses=None, watchdog_timeout=0.2):
         if laser_profile not in PROFILES:
             raise ValueError('unknown laser profile %r (known: %s)'
                              % (laser_profile, ', '.join(PROFILES)))
@@ -86,7 +84,6 @@ class Simulation(object):
         self._dt_us = int(round(world.interval_sim * 1e6))
         self._watchdog_us = int(round(watchdog_timeout * 1e6))
         self._seed = seed
-        self._raytrace = raytrace
         self.rng = np.random.RandomState(seed)
         self._time_us = 0
         poses = poses or {}
@@ -110,13 +107,17 @@ class Simulation(object):
         robot.last_command_us = self._time_us
 
     def reset(self):
-        """Back to the start poses with zero commands (stageros' reset_positions)."""
+        """Back to the start poses with zero commands (stageros' reset_positions).
+
+        As in stageros, only the true pose is set back: "odom" dead reckoning
+        goes on from where it was, as a real robot's odometry would if it
+        were carried back.
+        """
         for robot in self.robots:
             robot.pose = robot.start_pose
             robot.command = (0.0, 0.0)
             robot.velocity = (0.0, 0.0)
             robot.stalled = False
-            robot.odom_pose = (0.0, 0.0, 0.0)
 
     def teleport(self, index, pose):
         """Put a robot at pose (x, y, yaw) at once, with no collision check.
@@ -211,7 +212,8 @@ class Simulation(object):
         if ranger is None:
             return None
         x, y, ranger_yaw = self._ranger_origin(index)
-        layout = beam_layout(self.laser_profile, ranger)
+        layout = beam_layout(self.laser_profile, ranger, self.rng)
+        limits = reach(self.laser_profile, ranger)
         # Stage sweeps from the normalised first-beam angle in float32 steps.
         first = normalize_angle(ranger_yaw + (ranger.sensor_pose[3] + layout.angle_min))
         angles = stage_beam_angles(first, layout.angle_increment, layout.count)
@@ -223,14 +225,15 @@ class Simulation(object):
             if other_index != index:
                 xs, ys = footprint_cells(other.spec, other.pose, self.grid.ppm)
                 others.append((xs, ys, _ROBOT_RANGER_RETURN))
-        ranges, intensities = stage_ranges(self.grid, x, y, angles, ranger.range_max,
+        ranges, intensities = stage_ranges(self.grid, x, y, angles, limits.max,
                                            height=ranger.sensor_height, robot_cells=own,
-                                           other_cells=others, implementation=self._raytrace)
-        hit = ranges < ranger.range_max
+                                           other_cells=others)
+        hit = ranges < limits.max
         ranges, intensities = report(self.laser_profile, ranges, intensities, hit, ranger,
                                      self.rng)
         return Scan(layout.angle_min, layout.angle_max, layout.angle_increment,
-                    ranger.range_min, ranger.range_max, ranges, intensities, self.laser_profile)
+                    limits.published_min, limits.published_max, ranges, intensities,
+                    self.laser_profile)
 
 
 def laser_mount(spec):

@@ -13,7 +13,7 @@ import numpy as np
 from .stage_walk import line_cells
 
 __all__ = ['OccupancyGrid', 'footprint_corners', 'footprint_cells', 'footprint_collides',
-           'footprint_clearance', 'footprints_overlap']
+           'footprints_overlap']
 
 # Empty cells kept around the obstacles, so that every lookup near them stays inside.
 _MARGIN_CELLS = 2
@@ -44,7 +44,6 @@ class OccupancyGrid(object):
         self.ranger_zmax = ranger_zmax
         self.origin = (self.ix0 * self.resolution, self.iy0 * self.resolution)
         self._visible = {}
-        self._occupied_cells = None
         # Derived lookup structures other modules build once per grid (e.g. raytrace).
         self.cache = {}
 
@@ -98,21 +97,6 @@ class OccupancyGrid(object):
         col = np.floor(np.asarray(x) * self.ppm).astype(np.int64) - self.ix0
         row = np.floor(np.asarray(y) * self.ppm).astype(np.int64) - self.iy0
         return row, col
-
-    def cell_to_world(self, row, col):
-        """World (x, y) of the centre of cell(s) (row, col)."""
-        x = (np.asarray(col) + self.ix0 + 0.5) * self.resolution
-        y = (np.asarray(row) + self.iy0 + 0.5) * self.resolution
-        return x, y
-
-    def occupied_cells(self):
-        """(K, 2) world (x, y) lower-left corners of every occupied cell (cached)."""
-        if self._occupied_cells is None:
-            rows, cols = np.nonzero(self.occupied)
-            self._occupied_cells = np.stack(
-                [(cols + self.ix0) * self.resolution, (rows + self.iy0) * self.resolution],
-                axis=1)
-        return self._occupied_cells
 
 
 def _obstacle_cells(obstacle, ppm):
@@ -207,37 +191,6 @@ def footprint_collides(grid, spec, pose):
     corners = footprint_corners(spec, pose)
     cells = _nearby_cells(grid, corners, grid.resolution)
     return bool(len(cells)) and bool(np.any(_squares_overlap(corners, cells, grid.resolution)))
-
-
-def footprint_clearance(grid, spec, pose, reach=0.5):
-    """Smallest distance [m] between the body box at `pose` and any occupied cell's square.
-
-    0 on contact or overlap. Cells within `reach` of the box are searched first; only
-    when none is there are all occupied cells considered.
-    """
-    corners = footprint_corners(spec, pose)
-    cells = _nearby_cells(grid, corners, reach)
-    if not len(cells):
-        cells = grid.occupied_cells()
-        if not len(cells):
-            return float('inf')
-    size = grid.resolution
-    if np.any(_squares_overlap(corners, cells, size)):
-        return 0.0
-    centre, axes, half = _rect_frame(corners)
-    # square corners -> rectangle
-    offsets = np.array([[0.0, 0.0], [size, 0.0], [size, size], [0.0, size]])
-    pts = (cells[:, None, :] + offsets[None, :, :]).reshape(-1, 2)
-    local = (pts - centre).dot(axes.T)
-    outside = np.maximum(np.abs(local) - half, 0.0)
-    best = np.hypot(outside[:, 0], outside[:, 1]).min()
-    # rectangle corners -> squares
-    gap_x = np.maximum(np.maximum(cells[:, None, 0] - corners[None, :, 0],
-                                  corners[None, :, 0] - (cells[:, None, 0] + size)), 0.0)
-    gap_y = np.maximum(np.maximum(cells[:, None, 1] - corners[None, :, 1],
-                                  corners[None, :, 1] - (cells[:, None, 1] + size)), 0.0)
-    best = min(best, np.hypot(gap_x, gap_y).min())
-    return float(best)
 
 
 def footprints_overlap(corners_a, corners_b):

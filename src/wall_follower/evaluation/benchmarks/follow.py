@@ -3,16 +3,22 @@
 Runs main.launch without find_wall, in lockstep simulated time, and reads
 the ground-truth figures written by course_report. The stage profile is
 noise-free and gives the same lap every time, so it runs once. A noisy
-profile (lds01) gives a different lap for every noise seed, and a lap of
-it has been seen to differ between runs at one seed, so one lap is a
-sample, not a figure: its row is the mean over --seeds laps (seeds 0, 1,
-...), with the worst lap's ratio beside it.
+profile (lds01, lds02, gazebo, course720) gives a different lap for every
+noise seed, and a lap of it has been seen to differ between runs at one
+seed, so one lap is a sample, not a figure: its row is the mean over
+--seeds laps (seeds 0, 1, ...), with the worst lap's ratio beside it.
+
+--simulator stage runs the same laps on real stageros (stage_ros installed),
+with its window (under xvfb-run without a display), at the world's pace and
+not in lockstep, with Stage's own laser: one lap per world.
 """
 import argparse
+import sys
 
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, run_launch
+from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
+                                                           print_table, run_launch)
 
-PROFILES = ('stage', 'lds01')
+PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
 MEANS = ('time_in_band', 'rms_error', 'lap_time', 'path_length', 'lap_time_ratio')
 
@@ -31,8 +37,20 @@ def combined(laps):
                max_linear=max(lap['max_linear'] for lap in laps),
                max_angular=max(lap['max_angular'] for lap in laps),
                worst_ratio=max(lap['lap_time_ratio'] for lap in laps),
+               simulator='/'.join(sorted({lap.get('simulator') or '?' for lap in laps})),
                laps=len(laps))
     return row
+
+
+def lap_args(simulator, world, profile, seed):
+    """main.launch's arguments for one lap without find_wall, reported."""
+    args = {'sim': 'true', 'simulator': simulator, 'world': world, 'find_wall': 'false',
+            'report': 'true'}
+    if simulator == 'stage':
+        args['gui'] = 'true'
+    else:
+        args.update(laser_profile=profile, seed=str(seed), lockstep='true', speedup='0')
+    return args
 
 
 def main(argv=None):
@@ -41,16 +59,25 @@ def main(argv=None):
     parser.add_argument('--profiles', nargs='+', default=list(PROFILES))
     parser.add_argument('--seeds', type=int, default=5,
                         help='laps per noisy laser profile, one per noise seed (default 5)')
+    parser.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
+                        help='stage: real stageros, one lap per world with its own laser')
     args = parser.parse_args(argv)
+    wrapper = ()
+    if args.simulator == 'stage':
+        wrapper = display_wrapper()
+        if wrapper is None:
+            sys.stderr.write('benchmark follow: real Stage needs a display: no DISPLAY and '
+                             'no xvfb-run\n')
+            return 1
+        args.profiles, args.seeds = ['stage'], 1
     rows = []
     for world in args.worlds:
         for profile in args.profiles:
             seeds = range(1 if profile in NOISE_FREE else max(1, args.seeds))
-            f = combined([run_launch('main.launch', {
-                'world': world, 'laser_profile': profile, 'seed': str(seed),
-                'find_wall': 'false', 'report': 'true', 'lockstep': 'true', 'speedup': '0'})
-                for seed in seeds]) or {}
-            rows.append([world, profile, str(f.get('laps', 0)),
+            f = combined([run_launch('main.launch', lap_args(args.simulator, world, profile, seed),
+                                     wrapper=wrapper)
+                          for seed in seeds]) or {}
+            rows.append([world, f.get('simulator', '-'), profile, str(f.get('laps', 0)),
                          fmt(100.0 * f.get('time_in_band', float('nan')), '.1f'),
                          fmt(100.0 * f.get('rms_error', float('nan')), '.2f'),
                          fmt(f.get('min_clearance'), '.3f'),
@@ -61,8 +88,9 @@ def main(argv=None):
                          fmt(f.get('worst_ratio'), '.3f'),
                          fmt(f.get('max_linear'), '.3f'),
                          fmt(f.get('max_angular'), '.3f')])
-    print_table(['world', 'laser', 'laps', 'in band %', 'RMS cm', 'min clearance m', 'contact',
-                 'lap s', 'path m', 'lap / (path/0.19)', 'worst lap', 'max v', 'max w'], rows)
+    print_table(['world', 'simulator', 'laser', 'laps', 'in band %', 'RMS cm', 'min clearance m',
+                 'contact', 'lap s', 'path m', 'lap / (path/0.19)', 'worst lap', 'max v',
+                 'max w'], rows)
     print('\nmeans over the laps, but min clearance, contact, worst lap and max v, w '
           'over all of them')
     print('goals: in band >= 97 %, RMS <= 2 cm, lap ratio <= 1.2, no contact, '

@@ -5,6 +5,7 @@ a roscore already running on the machine is left alone.
 """
 import json
 import os
+import shutil
 import signal
 import socket
 import subprocess
@@ -22,28 +23,55 @@ def free_port():
     return port
 
 
-def run_launch(launch_file, args, timeout=600.0):
+def display_wrapper():
+    """The command prefix that gives real Stage's window a display: none when
+    there is one, `xvfb-run -a` when there is not; None when neither can be had."""
+    if os.environ.get('DISPLAY'):
+        return []
+    if shutil.which('xvfb-run'):
+        return ['xvfb-run', '-a']
+    return None
+
+
+def launch_command(launch_file, args, port):
+    """roslaunch wall_follower launch_file args, on its own master at port."""
+    return (['roslaunch', '-p', str(port), 'wall_follower', launch_file]
+            + ['%s:=%s' % item for item in sorted(args.items())])
+
+
+def launch_and_wait(command, port, log, timeout):
+    """Runs a roslaunch command to its end, its output into the file log.
+
+    True when it ended by itself within timeout wall seconds; otherwise it
+    is interrupted (SIGINT, as Ctrl-C) and False is returned.
+    """
+    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+    process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
+                               start_new_session=True)
+    try:
+        process.wait(timeout=timeout)
+        return True
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGINT)
+        process.wait()
+        return False
+
+
+def run_launch(launch_file, args, timeout=600.0, wrapper=()):
     """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
 
+    wrapper: a command prefix (display_wrapper() for real Stage's window).
     None means the run wrote nothing: it failed or ran out of time; its
     roslaunch output is then kept, and its path printed on stderr.
     """
     port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
     fd, output = tempfile.mkstemp(suffix='.json')
     os.close(fd)
     os.unlink(output)
-    command = ['roslaunch', '-p', str(port), 'wall_follower', launch_file]
-    command += ['%s:=%s' % item for item in sorted(args.items())] + ['json:=' + output]
+    command = list(wrapper) + launch_command(launch_file, dict(args, json=output), port)
     with tempfile.NamedTemporaryFile('w', prefix='benchmark-', suffix='.log',
                                      delete=False) as log:
-        process = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=True)
-        try:
-            process.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGINT)
-            process.wait()
+        launch_and_wait(command, port, log, timeout)
     if not os.path.exists(output):
         sys.stderr.write('run failed: %s (roslaunch output: %s)\n' % (' '.join(command), log.name))
         return None
@@ -63,7 +91,9 @@ def fmt(value, spec):
 
 def print_table(header, rows):
     widths = [max(len(str(cell)) for cell in column) for column in zip(header, *rows)]
-    line = lambda cells: '| ' + ' | '.join(str(c).ljust(w) for c, w in zip(cells, widths)) + ' |'
+
+    def line(cells):
+        return '| ' + ' | '.join(str(c).ljust(w) for c, w in zip(cells, widths)) + ' |'
     print(line(header))
     print('|' + '|'.join('-' * (w + 2) for w in widths) + '|')
     for row in rows:

@@ -25,15 +25,14 @@ from sensor_msgs.msg import LaserScan
 import wall_follower
 from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, free_port, print_table
 from wall_follower.nodes.common import world_path
+from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 from wall_follower.sim.stage_interface import rate_in_quit_report
 
 HELD_SPEEDUP = 20.0
 GOAL_FREE_RUN = 500.0
-# The simulator traces with the compiled library; numpy is its fallback and reference.
-RAYTRACE_IMPLEMENTATIONS = ('compiled', 'numpy')
-RAYTRACE_GOALS = {'compiled': '< 1 ms', 'numpy': '(fallback)'}
+RAYTRACE_GOAL = '< 1 ms'
 START_LIMIT = 20.0
 RUN_LIMIT = 120.0
 # Simulated seconds of the first unobserved free run, which sizes the second.
@@ -214,14 +213,14 @@ def held_rate(master, world, speedup, seconds):
     return (twists[-1][0] - twists[0][0]) / elapsed, len(twists) - 1, missed
 
 
-def raytrace_ms(world, repeats, implementation):
-    """Mean wall milliseconds a step spends on its 360-beam scan, traced by `implementation`.
+def raytrace_ms(world, repeats):
+    """Mean wall milliseconds a step spends on its 360-beam scan.
 
     Measured before this process becomes a ROS node: rospy's threads,
     still running after the master is gone, compete for the interpreter
     and made the same scans time two to three times slower.
     """
-    sim = Simulation(load_world(world), raytrace=implementation)
+    sim = Simulation(load_world(world))
     sim.set_command(0, 0.0, 0.3)   # turning in place, so every scan differs
 
     def mean_step(with_scans):
@@ -241,9 +240,11 @@ def main(argv=None):
     parser.add_argument('--seconds', type=float, default=5.0, help='wall seconds per run')
     parser.add_argument('--repeats', type=int, default=200, help='scans per raytrace timing')
     args = parser.parse_args(argv)
+    if not compiled_raytrace.available():
+        sys.stderr.write('benchmark sim: error: %s\n' % compiled_raytrace.MISSING)
+        return 1
     world = world_path(args.world)
-    raytrace = [(name, implementation, raytrace_ms(world_path(name), args.repeats, implementation))
-                for implementation in RAYTRACE_IMPLEMENTATIONS for name in sorted(WORLDS)]
+    raytrace = [(name, raytrace_ms(world_path(name), args.repeats)) for name in sorted(WORLDS)]
     with PrivateMaster() as master:
         # Before this process subscribes to anything: a dropped subscription
         # lingers for a while, and a scan subscriber makes every step trace one.
@@ -259,9 +260,8 @@ def main(argv=None):
          fmt(held, '.1f') + 'x real time', '%.0fx' % HELD_SPEEDUP],
         ['  steps without a fresh command', '%d of %d' % (missed, steps), '0'],
     ]
-    rows += [['raytrace per 360-beam scan (%s, %s)' % (name, implementation),
-              fmt(ms, '.3f') + ' ms', RAYTRACE_GOALS[implementation]]
-             for name, implementation, ms in raytrace]
+    rows += [['raytrace per 360-beam scan (%s)' % name, fmt(ms, '.3f') + ' ms', RAYTRACE_GOAL]
+             for name, ms in raytrace]
     print_table(['measure', 'result', 'goal'], rows)
     print('\nload average (1 min) at the end: %.2f on %d cores; the figures are wall-clock '
           'bound, so a busy machine lowers them' % (os.getloadavg()[0], os.cpu_count()))

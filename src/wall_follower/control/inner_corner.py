@@ -1,0 +1,129 @@
+"""WALL_AHEAD: the left turn onto a wall across the way (an inner corner).
+
+The turn is flown at the full turn rate: wide at first, nearly pivoting
+past the corner, and wide again onto parallel (see left_turn.py). Its
+speed is re-planned from the wall ahead at every scan, so the turn is
+closed-loop, not timed. Its wide end, once the new wall is on the right,
+is flown by FOLLOW's rule for heading into a wall: at cruise speed as far
+as closest_distance allows. While such a wall comes up, the robot rides a
+little nearer the old wall, by as much as the wide start will carry it off
+beyond wide_allowance; a turn begun without that room (after a short wall)
+flies short_turn instead: a shorter wide start and a tight arc rather than
+a pivot.
+"""
+import math
+
+from wall_follower.control.left_turn import LeftTurn
+from wall_follower.control.manoeuvre import Manoeuvre
+from wall_follower.control.motion import Command
+from wall_follower.control.wall_fit import along_the_way, as_planned, from_centre, same_line
+
+
+class InnerCorner(Manoeuvre):
+    """The left turn onto a wall ahead, until that wall has come round to the right.
+
+    left_turn is the turn as configured, short_turn the one after a short
+    wall, and turn the one in force: planned afresh from every scan until
+    it is flown (plan()), and kept while it is.
+    """
+
+    def __init__(self, params):
+        super().__init__(params)
+        self.configure()
+        self.turn = self.left_turn
+
+    def configure(self):
+        """Plan the turns from the parameters, again after they have changed.
+
+        A turn being flown keeps its plan; the next one is planned anew.
+        """
+        p = self.params
+        wide_radius = p.cruise_speed / p.max_turn_rate
+        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, p.wide_start, p.wide_end)
+        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius, p.short_wide_start,
+                                   p.short_wide_end)
+
+    def plan(self, obs):
+        """Choose the turn to fly from here: its wide start ends at most wide_allowance past target.
+
+        A robot that has not ridden nearer first (a short wall left no
+        room) would cut the wide start of left_turn short, and then fly
+        its near pivot for most of the turn: short_turn, tight but not a
+        pivot, is faster there.
+        """
+        if obs.wall is None:
+            self.turn = self.left_turn
+            return
+        p = self.params
+        allowed = p.target_distance + p.wide_allowance - from_centre(obs.wall, p.laser_x).distance
+        turn = self.left_turn.drifting_at_most(allowed)
+        if turn.wide_start < self.left_turn.wide_start - p.short_turn_cut:
+            turn = self.short_turn.drifting_at_most(allowed)
+        self.turn = turn
+
+    def needed(self, obs):
+        """True when anything is near in the lane ahead, or a wall across the way is near
+        enough that the planned turn, begun now, ends inner_corner_distance from it."""
+        p = self.params
+        if obs.front < p.front_turn_distance:
+            return True
+        if not self.blocking(obs):
+            return False
+        distance, angle = self._ahead_as_planned(obs)
+        return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
+
+    def done(self, obs):
+        """True once a straight wall is along the right again and none lies across the way."""
+        p = self.params
+        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.blocking(obs)
+
+    def command(self, obs):
+        """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
+
+        Closed loop on the wall ahead: the speed is set each update to the
+        radius still needed, so a late start slows the robot down instead of
+        carrying it too close, and a wall too near is turned from on the spot.
+        """
+        p = self.params
+        radius = p.inner_corner_radius
+        if obs.ahead is not None:
+            distance, angle = self._ahead_as_planned(obs)
+            radius = self.turn.radius_within(distance - p.inner_corner_distance, angle)
+        if obs.front < p.front_stop_distance:
+            radius = 0.0
+        return Command(radius * p.max_turn_rate, p.max_turn_rate)
+
+    def dip(self, obs, still_turning=0.0):
+        """How much nearer to ride while a wall across the way is within approach_range.
+
+        As much as the wide start of the turn onto that wall will drift,
+        less what it may drift past target_distance (wide_allowance).
+        still_turning: how far (rad) the robot turns right before that turn
+        starts, which adds to the wall's angle.
+        """
+        if not self.blocking(obs):
+            return 0.0
+        distance, angle = self._ahead_square_to_right(obs)
+        if distance >= self.params.approach_range:
+            return 0.0
+        return max(0.0, self.left_turn.drift(angle + still_turning) - self.params.wide_allowance)
+
+    def blocking(self, obs):
+        """True when a wall lies across the way ahead (not the right wall seen ahead)."""
+        steep = self.params.ahead_min_angle
+        if obs.ahead is None or not steep <= obs.ahead.angle <= math.pi - steep:
+            return False  # none, or one nearly along the way (beside the lane)
+        return obs.wall is None or not same_line(obs.ahead, obs.wall)
+
+    def _ahead_as_planned(self, obs):
+        """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
+        return from_centre(self._ahead_square_to_right(obs), self.params.laser_x)
+
+    def _ahead_square_to_right(self, obs):
+        """as_planned of the wall ahead, squared to the wall on the right if that is along the way.
+
+        A right wall fitted farther off parallel is mid-corner, not the
+        wall the one ahead meets.
+        """
+        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle) else None
+        return as_planned(obs.ahead, wall)

@@ -1,0 +1,83 @@
+"""What one scan tells the wall follower, measured once per update for every manoeuvre."""
+import math
+
+import numpy as np
+
+from wall_follower.control.motion import seen_after_move
+from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.wall_fit import along_the_way, right_wall, wall_through
+
+
+class Observation(object):
+    """What one scan tells the controller.
+
+    wall: the straight wall on the right (a Line, angle from the right, > 0
+    when the robot heads into it), or None. wall_end: (x, y) of that wall's
+    farthest hit ahead, and wall_ahead its x: how far ahead of the laser
+    the wall is still seen (-inf without a wall). right: every hit on the
+    right side. front: distance to the nearest hit in the lane the robot is
+    about to drive through. ahead: the straight wall across that lane (a
+    Line measured like the right wall: pi/2 for a wall square ahead), or
+    None. nearest: (distance, bearing) of the closest hit on the right
+    side, or None.
+    """
+
+    def __init__(self, view, params, motion=(0.0, 0.0)):
+        # A command takes effect a scan period or so after the scan it
+        # answers: judging the scan where the robot will be by then, under
+        # the command still running, keeps the loop from overshooting.
+        hits = seen_after_move(unbiased(view.points(), params.range_bias),
+                               motion[0] * params.latency, motion[1] * params.latency,
+                               params.laser_x)
+        off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
+        near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
+        sector = hits[(off_right <= params.wall_sector) & near]
+        self.wall, self.wall_end = right_wall(sector, params)
+        self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
+        self.right = hits[off_right <= math.pi / 2]
+        front = hits[hits[:, 0] > 0.0]
+        lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
+        self.front = second_smallest(lane[:, 0])
+        self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
+        self.nearest = nearest_in(self.right)
+
+    def rejoined(self, max_angle, min_ahead):
+        """True when a corner is over: a straight wall on the right, nearly parallel.
+
+        Nearly: within max_angle (rad); and seen at least min_ahead ahead of the laser.
+        """
+        return along_the_way(self.wall, max_angle) and self.wall_ahead > min_ahead
+
+
+def unbiased(points, bias):
+    """Hits moved bias metres nearer the laser along their beams.
+
+    Stage raytraces in whole grid cells and so reads a wall long, by about
+    0.008 m on average at its default 0.02 m resolution; a laser that reads
+    true wants bias 0.
+    """
+    ranges = np.hypot(points[:, 0], points[:, 1])
+    scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)
+    return points * scale[:, None]
+
+
+def second_smallest(values):
+    """The second-smallest value (inf if fewer than two).
+
+    The second, not the first, so that one spurious beam does not count.
+    """
+    if values.size < 2:
+        return math.inf
+    return float(np.partition(values, 1)[1])
+
+
+def nearest_in(points):
+    """(distance, bearing) of the second-closest hit, or None.
+
+    The second, so that one spurious beam cannot pull the robot off.
+    """
+    if len(points) < 2:
+        return None
+    dist = np.hypot(points[:, 0], points[:, 1])
+    x, y = points[np.argpartition(dist, 1)[1]]
+    return float(math.hypot(x, y)), float(math.atan2(y, x))

@@ -1,0 +1,119 @@
+"""OUTER_CORNER: round the end of a wall that stopped on the right (a convex corner).
+
+A wide arc, an arc round the corner's tip and a wide arc again (see
+corner.py): the middle arc is pinned to the tip at every scan, and the
+last one starts where it will end at the planned distance from the next
+wall (nearer, by the dip, when that wall is a short side with a wall
+across its end), and then goes on. A corner that comes up with no wall
+fitted (the end of a box's short side, mid-turn) is circled instead.
+"""
+import math
+
+from wall_follower.control.corner import CornerArc, OuterTurn
+from wall_follower.control.follow_wall import steer
+from wall_follower.control.manoeuvre import FOLLOW, Manoeuvre
+from wall_follower.control.motion import Command
+from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.wall_fit import along_the_way
+
+
+class OuterCorner(Manoeuvre):
+    """The right turn round a wall's end, until the next wall is along the right.
+
+    turn: the OuterTurn as configured. arc: the CornerArc being driven
+    round, or None while circling the nearest hit instead. starting_wide:
+    whether the turn is still in its wide start (only a turn begun from
+    following the wall has one, and once over it does not come back).
+    ending_wide: whether it has begun its wide end (which, once begun, goes
+    on: the tip's position jitters by a grid cell from scan to scan).
+    inner_corner: the left turn, whose approach dip a wall across the way
+    just past the corner leaves no room for.
+    """
+
+    def __init__(self, params, inner_corner):
+        super().__init__(params)
+        self.configure()
+        self.inner_corner = inner_corner
+        self.arc = None
+        self.starting_wide = False
+        self.ending_wide = False
+
+    def configure(self):
+        """Plan the turn from the parameters, again after they have changed."""
+        p = self.params
+        self.turn = OuterTurn(p.outer_corner_radius, p.cruise_speed / p.max_turn_rate,
+                              p.outer_wide_start, p.outer_wide_end, p.target_distance,
+                              p.outer_wide_tolerance)
+
+    def due(self, obs):
+        """True unless the wall on the right goes on past where the arc round its end starts."""
+        p = self.params
+        return obs.wall is None or obs.wall_ahead + p.laser_x <= self.turn.lead + p.outer_turn_lead
+
+    def begin(self, obs, previous):
+        self.arc = self._corner_arc(obs)
+        self.starting_wide = previous == FOLLOW
+        self.ending_wide = False
+        self._track_wide(obs)
+
+    def carry_on(self, obs, motion, dt):
+        if self.arc is not None:
+            self.arc.moved(motion.linear * dt, motion.angular * dt)
+            self.arc.observe(obs.right, self.params.corner_gate)
+        self._track_wide(obs)
+
+    def end(self):
+        self.arc = None
+
+    def done(self, obs):
+        """True on a wall along the right: an arc ends nearly parallel to it, where it was planned
+        to; circling a hit has no such end, and takes any wall."""
+        p = self.params
+        exit_angle = p.arc_exit_angle if self.arc is not None else p.rejoin_angle
+        return obs.rejoined(exit_angle, p.rejoin_ahead)
+
+    def command(self, obs):
+        p = self.params
+        if self.arc is not None:
+            if self.starting_wide or self.ending_wide:
+                return Command(p.cruise_speed, -p.max_turn_rate)
+            distance, bearing = self.arc.offset()
+            radius, share = p.outer_corner_radius, 1.0
+        else:
+            distance, bearing = obs.nearest
+            radius, share = p.target_distance, p.circling_speed_share
+        speed = min(p.cruise_speed, share * radius * p.max_turn_rate)
+        # The arc's curvature as a feed-forward, and the PD law on its
+        # centre as if that were a wall tangent to the arc.
+        turn = -speed / radius + steer(p, distance, float(wrap_angle(bearing - RIGHT)), radius)
+        return Command(speed, turn)
+
+    def _track_wide(self, obs):
+        """End the wide start, or begin the wide end, where the arc has got to."""
+        if self.arc is None:
+            return
+        self.starting_wide = self.starting_wide and self.turn.starts_wide(
+            self.arc.turned(), self.arc.offset()[0])
+        # A wall across the way just past the corner (beyond a pillar's
+        # short side) leaves no room to ride nearer before the turn onto
+        # it: the corner lands that much nearer the side instead.
+        nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
+        self.ending_wide = self.ending_wide or self.turn.ends_wide(
+            self.arc.turned(), self.arc.past_tip(), nearer)
+
+    def _corner_arc(self, obs):
+        """The arc round the end of the wall that just ended; None without such a wall.
+
+        Without it (the corner comes up in the middle of a left turn, at
+        the end of a short wall or a box's side) which way the corner points
+        is unknown, and the robot circles the nearest hit instead. A wall
+        fitted far off parallel (beyond rejoin_angle) is not the one
+        that ended either: mid-turn onto a box's short side, it is the wall
+        the turn left behind, and an arc pinned to its end would circle a
+        point nowhere near the corner.
+        """
+        if not along_the_way(obs.wall, self.params.rejoin_angle):
+            return None
+        angle = obs.wall.angle
+        return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.turn.center,
+                         self.params.laser_x)

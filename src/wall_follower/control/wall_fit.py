@@ -1,0 +1,101 @@
+"""The follower's walls: fitted by consensus through the hits, and seen as a turn plans them.
+
+The follower's walls are Lines (lines.py) whose angle is measured from the
+right: 0 for a wall parallel on the right, > 0 when the robot heads into
+it, pi/2 for a wall square across the way ahead. Every function here takes
+and returns them so.
+
+walls.py cuts the whole scan into walls for the finder, which picks one
+and tracks it; the follower instead asks, at every scan, for the one
+straight wall through the hits in a sector, which a consensus fit finds
+even where a stray beam, an obstacle or the other leg of a corner lies in
+that sector too.
+"""
+import math
+
+import numpy as np
+
+from wall_follower.control.lines import Line, consensus_line, fit_line
+from wall_follower.control.scan import RIGHT, wrap_angle
+
+
+def right_wall(points, params):
+    """(the Line, (x, y) of its farthest hit ahead) of the wall on the right, or None, None.
+
+    Seeded by the hits straight to the right only, so that the other leg of
+    a corner, or an obstacle, in the wider sector is not averaged into it.
+    """
+    bearings = np.arctan2(points[:, 1], points[:, 0])
+    seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
+    wall = wall_through(seed, points, params)
+    if wall is None or wall.distance > params.wall_lost_distance:
+        return None, None
+    line = Line(wall.distance, wall.angle + RIGHT)
+    inliers = points[np.abs(line.offsets(points)) < params.wall_inlier_distance]
+    return wall, inliers[np.argmax(inliers[:, 0])]
+
+
+def wall_through(seed, points, params):
+    """The Line of the straight wall through most of the seed hits, or None.
+
+    The line through most of the seed is refitted through every hit of
+    points that lies near it, and must then be straight (small residual)
+    and still pass through most of the seed.
+    """
+    first = consensus_line(seed, params.wall_inlier_distance, params.wall_min_points)
+    if first is None:
+        return None
+    inliers = points[np.abs(first.offsets(points)) < params.wall_inlier_distance]
+    fit = fit_line(inliers, params.wall_min_points)
+    if fit is None:
+        return None
+    residual = float(np.sqrt(np.mean(fit.offsets(inliers) ** 2)))
+    kept = np.abs(fit.offsets(seed)) < params.wall_inlier_distance
+    if residual > params.wall_max_residual or kept.mean() < params.wall_seed_support:
+        return None
+    return Line(fit.distance, float(wrap_angle(fit.angle - RIGHT)))
+
+
+def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
+    """True when two walls are one and the same, within fit error."""
+    return (abs(float(wrap_angle(first.angle - second.angle))) < max_angle
+            and abs(first.distance - second.distance) < max_distance)
+
+
+def along_the_way(wall, max_angle):
+    """True for a wall within max_angle (rad) of parallel; False for None."""
+    return wall is not None and abs(wall.angle) < max_angle
+
+
+def from_centre(wall, laser_x):
+    """The wall seen by the laser, as the rotation centre has it.
+
+    A turn is an arc of the rotation centre, so that is the distance it must
+    be planned by. Heading into a wall at angle, the centre is nearer it
+    than the laser by -laser_x * sin(angle): on a Burger (laser 32 mm
+    behind the centre) 32 mm when heading square at a wall ahead, nothing
+    once parallel. Angles past a right angle count as a right angle.
+    """
+    return Line(wall.distance + laser_x * math.sin(min(wall.angle, math.pi / 2)), wall.angle)
+
+
+def as_planned(ahead, wall=None):
+    """The wall ahead that a left turn is planned for.
+
+    A wall ahead at more than a right angle is rare in rooms, but common in
+    the fit of a short wall's few hits, a box's side say, whose angle is
+    the uncertain part: the hits pin down where the wall crosses the way
+    ahead, while a tilted fit brings its foot (the perpendicular distance)
+    nearer, and would start the turn early. Such a wall counts as a square
+    wall where its line crosses the way: square to the way itself, or, when
+    the robot heads into the wall on its right, square to that wall. That
+    is common while riding nearer before the turn, and after an outer
+    corner, whose arc hands over still turning right: the turn then has
+    those degrees more to go, and flown at its start, wide, they carry the
+    robot nearer the wall ahead (see LeftTurn.gap).
+    """
+    if ahead.angle <= math.pi / 2:
+        return ahead
+    into = max(0.0, wall.angle) if wall is not None else 0.0
+    return Line(ahead.distance / max(math.sin(ahead.angle), 1e-6) * math.cos(into),
+                math.pi / 2 + into)

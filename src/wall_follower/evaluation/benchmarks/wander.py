@@ -1,0 +1,62 @@
+"""wander in every shipped world: the share of the free floor it visits in five simulated minutes.
+
+Runs the wander rostest (test/rostest/wander.test: the simulator in
+lockstep, scored from ground truth) once per world and laser profile and
+prints the figures it writes: the share of the free floor's 0.2 m cells
+that the robot's axle passed through (evaluation/coverage.py), the path
+driven, the smallest clearance and whether anything was touched.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table
+
+EXERCISE_WORLDS = WORLDS + ('pillars',)
+
+
+def run_wander(world, profile, duration, timeout=900.0):
+    """The figures of one wander run as a dict, or None when it wrote none."""
+    fd, output = tempfile.mkstemp(suffix='.json')
+    os.close(fd)
+    os.unlink(output)
+    command = ['rostest', 'wall_follower', 'wander.test', 'world:=' + world,
+               'laser_profile:=' + profile, 'duration:=%g' % duration, 'json:=' + output]
+    try:
+        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT,
+                       timeout=timeout)
+    except subprocess.TimeoutExpired:
+        pass
+    if not os.path.exists(output):
+        sys.stderr.write('run failed: %s\n' % ' '.join(command))
+        return None
+    with open(output) as stream:
+        figures = json.load(stream)
+    os.unlink(output)
+    return figures
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog='benchmark wander', description=__doc__)
+    parser.add_argument('--worlds', nargs='+', default=list(EXERCISE_WORLDS))
+    parser.add_argument('--profiles', nargs='+', default=['stage'])
+    parser.add_argument('--duration', type=float, default=300.0, help='simulated seconds')
+    args = parser.parse_args(argv)
+    rows = []
+    for world in args.worlds:
+        for profile in args.profiles:
+            f = run_wander(world, profile, args.duration) or {}
+            rows.append([world, profile, fmt(f.get('duration'), '.0f'),
+                         fmt(100.0 * f.get('visited_share', float('nan')), '.1f'),
+                         fmt(f.get('path_length'), '.1f'),
+                         fmt(f.get('min_clearance'), '.3f'),
+                         {True: 'yes', False: 'no'}.get(f.get('contact'), '-'),
+                         fmt(f.get('max_linear'), '.3f'), fmt(f.get('max_angular'), '.3f')])
+    print_table(['world', 'laser', 'sim s', 'visited %', 'path m', 'min clearance m', 'contact',
+                 'max v', 'max w'], rows)
+    print('\nvisited: share of the free floor (0.2 m cells the robot can stand in, reachable '
+          'from the start) that its axle passed through')
+    return 0

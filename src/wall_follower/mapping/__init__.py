@@ -1,0 +1,1 @@
+"""Mapping a room: a log-odds occupancy grid built at poses found by scan matching."""

@@ -1,0 +1,117 @@
+"""A log-odds occupancy grid and its update from one laser scan.
+
+Each cell holds log(p / (1 - p)) of being occupied, 0 (p = 0.5) until a beam
+has told anything about it. A scan updates each cell at most once, so that
+a cell crossed by many beams of one scan is not counted free many times:
+the cell a beam ends in is a hit, the cells it crossed on the way are
+misses, and cells beyond its end are left alone. The last cell before a hit
+is left alone too: a beam that grazes a wall crosses the wall's own cells
+just before it ends, and would otherwise wear the wall away.
+"""
+import math
+
+import numpy as np
+
+__all__ = ['LogOddsGrid', 'probability']
+
+
+def probability(logodds):
+    """p of occupancy from log-odds."""
+    return 1.0 - 1.0 / (1.0 + np.exp(logodds))
+
+
+class LogOddsGrid(object):
+    """Cells of `resolution` metres over [xmin, xmax) x [ymin, ymax) of the map frame.
+
+    logodds[row, col] is the cell whose lower-left corner is
+    (xmin + col * resolution, ymin + row * resolution), row 0 at the bottom,
+    as nav_msgs/OccupancyGrid orders its data. `observed` marks the cells a
+    beam has updated.
+    """
+
+    def __init__(self, resolution, xmin, ymin, xmax, ymax, hit=0.85, miss=-0.4,
+                 bounds=(-4.0, 4.0)):
+        if resolution <= 0.0 or xmax <= xmin or ymax <= ymin:
+            raise ValueError('a grid needs resolution > 0 and xmax > xmin, ymax > ymin '
+                             '(got %r, x %r..%r, y %r..%r)' % (resolution, xmin, xmax, ymin, ymax))
+        self.resolution = float(resolution)
+        self.origin = (float(xmin), float(ymin))
+        cols = int(math.ceil((xmax - xmin) / resolution - 1e-9))
+        rows = int(math.ceil((ymax - ymin) / resolution - 1e-9))
+        self.logodds = np.zeros((rows, cols), dtype=np.float32)
+        self.observed = np.zeros((rows, cols), dtype=bool)
+        self.hit = float(hit)
+        self.miss = float(miss)
+        self.bounds = (float(bounds[0]), float(bounds[1]))
+
+    @property
+    def shape(self):
+        return self.logodds.shape
+
+    def cells(self, points):
+        """(rows, cols) integer indices of (N, 2) map-frame points, and which lie inside."""
+        points = np.asarray(points, dtype=float).reshape(-1, 2)
+        cols = np.floor((points[:, 0] - self.origin[0]) / self.resolution).astype(np.int64)
+        rows = np.floor((points[:, 1] - self.origin[1]) / self.resolution).astype(np.int64)
+        inside = (rows >= 0) & (rows < self.shape[0]) & (cols >= 0) & (cols < self.shape[1])
+        return rows, cols, inside
+
+    def centre(self, rows, cols):
+        """Map-frame (x, y) of cell centres."""
+        return (self.origin[0] + (np.asarray(cols) + 0.5) * self.resolution,
+                self.origin[1] + (np.asarray(rows) + 0.5) * self.resolution)
+
+    def _flat(self, points):
+        rows, cols, inside = self.cells(points)
+        return rows[inside] * self.shape[1] + cols[inside]
+
+    def integrate(self, origin, ends, hit):
+        """One scan: beams from the map-frame point `origin` to `ends` (N, 2).
+
+        hit[i] says whether beam i ended on an obstacle (its end cell is
+        occupied) or is free all the way to its end (no return, or cut at the
+        range limit). Returns the flat indices of the cells marked occupied.
+        """
+        ends = np.asarray(ends, dtype=float).reshape(-1, 2)
+        hit = np.asarray(hit, dtype=bool)
+        origin = np.asarray(origin, dtype=float)
+        delta = ends - origin
+        length = np.hypot(delta[:, 0], delta[:, 1])
+        # Free stretch: to the end for a free beam, one cell short of it for a hit.
+        free_length = np.where(hit, np.maximum(length - self.resolution, 0.0), length)
+        step = 0.5 * self.resolution
+        samples = int(np.ceil(free_length.max() / step)) + 1 if len(length) else 0
+        hit_cells = np.unique(self._flat(ends[hit]))
+        if samples > 0:
+            t = np.arange(samples) * step
+            keep = t[None, :] <= free_length[:, None]
+            direction = delta / np.maximum(length, 1e-12)[:, None]
+            points = origin + direction[:, None, :] * t[None, :, None]
+            free_cells = np.unique(self._flat(points[keep]))
+            free_cells = np.setdiff1d(free_cells, hit_cells, assume_unique=True)
+        else:
+            free_cells = np.zeros(0, dtype=np.int64)
+        flat = self.logodds.reshape(-1)
+        seen = self.observed.reshape(-1)
+        flat[free_cells] += self.miss
+        flat[hit_cells] += self.hit
+        np.clip(flat, self.bounds[0], self.bounds[1], out=flat)
+        seen[free_cells] = True
+        seen[hit_cells] = True
+        return hit_cells
+
+    def occupancy(self):
+        """nav_msgs/OccupancyGrid values: -1 never observed, else round(100 p)."""
+        values = np.rint(100.0 * probability(self.logodds)).astype(np.int8)
+        values[~self.observed] = -1
+        return values
+
+    def observed_box(self, margin=0):
+        """(row0, row1, col0, col1) bounding the observed cells, widened by margin cells;
+        None while nothing has been observed."""
+        rows = np.flatnonzero(self.observed.any(axis=1))
+        if not len(rows):
+            return None
+        cols = np.flatnonzero(self.observed.any(axis=0))
+        return (max(rows[0] - margin, 0), min(rows[-1] + 1 + margin, self.shape[0]),
+                max(cols[0] - margin, 0), min(cols[-1] + 1 + margin, self.shape[1]))

@@ -1,0 +1,83 @@
+"""The `map_saver` node: map_server's `map_saver -f NAME`, plus saving when a lap ends.
+
+Without --after-lap it saves the first `map` it hears and exits, as
+map_server's map_saver does. With --after-lap it first waits for the
+record_odom action's result (the course's lap is over), then saves the
+first map stamped at or after it, so the saved map holds the whole lap.
+"""
+import argparse
+import os
+import threading
+
+import rospy
+from nav_msgs.msg import OccupancyGrid
+
+import numpy as np
+
+from wall_follower.mapping.mapfile import FREE_THRESHOLD, OCCUPIED_THRESHOLD, save_map
+from wall_follower.msg import OdomRecordActionResult
+from wall_follower.nodes.common import yaw_of
+
+
+class MapSaver(object):
+    def __init__(self, name, occupied, free, after_lap):
+        self.name, self.occupied, self.free = name, occupied, free
+        self.lap_end = None if after_lap else rospy.Time(0)
+        self.done = threading.Event()
+        self._lock = threading.Lock()
+        if after_lap:
+            rospy.loginfo('map_saver: waiting for the lap to end (record_odom/result)')
+            rospy.Subscriber('record_odom/result', OdomRecordActionResult, self.on_result)
+        rospy.loginfo('map_saver: waiting for the map')
+        rospy.Subscriber('map', OccupancyGrid, self.on_map, queue_size=1)
+
+    def on_result(self, msg):
+        with self._lock:
+            if self.lap_end is None:
+                self.lap_end = msg.header.stamp
+                rospy.loginfo('map_saver: lap over at %.1f s; saving the next map',
+                              msg.header.stamp.to_sec())
+
+    def on_map(self, msg):
+        with self._lock:
+            if self.done.is_set() or self.lap_end is None or msg.header.stamp < self.lap_end:
+                return
+            info = msg.info
+            rospy.loginfo('map_saver: received a %d X %d map @ %.3f m/pix', info.width,
+                          info.height, info.resolution)
+            data = np.array(msg.data, dtype=np.int8).reshape(info.height, info.width)
+            origin = (info.origin.position.x, info.origin.position.y,
+                      yaw_of(info.origin.orientation))
+            try:
+                image, meta = save_map(self.name, data, info.resolution, origin,
+                                       self.occupied, self.free)
+            except (IOError, OSError) as err:
+                rospy.logerr("map_saver: couldn't save the map to %s (%s)", self.name, err)
+            else:
+                rospy.loginfo('map_saver: wrote %s and %s', image, meta)
+            self.done.set()
+
+
+def main():
+    rospy.init_node('map_saver')
+    parser = argparse.ArgumentParser(prog='map_saver', description=__doc__.splitlines()[0])
+    parser.add_argument('-f', dest='name', default='map', help='file name, without .pgm/.yaml')
+    parser.add_argument('--occ', type=int, default=OCCUPIED_THRESHOLD,
+                        help='occupied from this value on (1-100, default %(default)s)')
+    parser.add_argument('--free', type=int, default=FREE_THRESHOLD,
+                        help='free up to this value (0-100, default %(default)s)')
+    parser.add_argument('--after-lap', action='store_true',
+                        help='save the first map after the record_odom result')
+    args = parser.parse_args(rospy.myargv()[1:])
+    if not 1 <= args.occ <= 100 or not 0 <= args.free <= 100 or args.occ <= args.free:
+        rospy.logerr('map_saver: need 0 <= --free < --occ <= 100 (got --free %d --occ %d)',
+                     args.free, args.occ)
+        return 1
+    directory = os.path.dirname(os.path.abspath(args.name))
+    if not os.path.isdir(directory):
+        rospy.logerr('map_saver: no directory %s for the map', directory)
+        return 1
+    saver = MapSaver(os.path.expanduser(args.name), args.occ, args.free, args.after_lap)
+    while not rospy.is_shutdown() and not saver.done.wait(0.1):
+        pass
+    return 0

@@ -1,0 +1,124 @@
+"""simple_move_square: a square of ~side, ~laps times, closed-loop on odometry, then stop.
+
+The square is laid out from the first odometry pose (wherever the robot
+stands) and driven by exercises.move_square.SquareDriver, answered once per
+scan through the DriveLoop every driving node shares: so the robot stops
+while the laser is stale or unusable and never drives forward into a
+sector ahead that it cannot see, even here where the laser does not steer.
+Each scan is answered from the odometry of the same moment, waited for
+briefly when it has not come yet (in lockstep simulation the scan may come
+first), and the robot stands while odometry lags the scan by more than
+~odom_timeout.
+"""
+import math
+import threading
+import time
+
+import rospy
+from nav_msgs.msg import Odometry
+
+from wall_follower.control.motion import STOP
+from wall_follower.exercises.move_square import DEFAULTS as SQUARE_DEFAULTS
+from wall_follower.exercises.move_square import SquareDriver
+from wall_follower.nodes.common import init_node, pose_of, private_params
+from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
+                                               split_params)
+
+NODE_DEFAULTS = dict(LOOP_DEFAULTS, odom_timeout=0.5, odom_wait=0.05)
+"""The loop's parameters (exercise_loop.LOOP_DEFAULTS) and:
+odom_timeout: stand while the newest odometry is older than the scan by more than this (ROS s).
+odom_wait: how long to wait for odometry as new as the scan (wall s).
+The square's own (~side, ~laps, ...) are exercises.move_square.DEFAULTS;
+its speeds are held to ~max_linear and ~max_angular.
+"""
+
+
+# Stamps of one simulated step are identical; elsewhere odometry this much
+# older than the scan counts as of the same moment.
+SAME_MOMENT = 1e-3
+
+
+class LatestOdom(object):
+    """The newest odometry pose and its stamp, and a wait for one as new as a given time."""
+
+    def __init__(self, topic='odom'):
+        self._latest = (None, None)    # (pose, stamp in s), replaced as one
+        self._arrived = threading.Condition()
+        self._sub = rospy.Subscriber(topic, Odometry, self._on_odom, queue_size=1)
+        self.name = self._sub.resolved_name
+
+    def _on_odom(self, msg):
+        stamp = msg.header.stamp if not msg.header.stamp.is_zero() else rospy.Time.now()
+        with self._arrived:
+            self._latest = (pose_of(msg), stamp.to_sec())
+            self._arrived.notify_all()
+
+    def forget(self):
+        self._latest = (None, None)
+
+    def at(self, when, wait):
+        """(pose, stamp) of the newest odometry, after waiting up to wait wall s for one
+        stamped at when or later."""
+        deadline = time.monotonic() + wait
+        with self._arrived:
+            while (self._latest[1] is None or self._latest[1] < when - SAME_MOMENT) \
+                    and time.monotonic() < deadline:
+                self._arrived.wait(deadline - time.monotonic())
+            return self._latest
+
+
+class SimpleMoveSquareNode(object):
+
+    def __init__(self):
+        params = private_params(dict(SQUARE_DEFAULTS, **NODE_DEFAULTS))
+        loop_params = split_params(params, LOOP_DEFAULTS)
+        self.odom_timeout = params.pop('odom_timeout')
+        self.odom_wait = params.pop('odom_wait')
+        self.loop = drive_loop('simple_move_square', loop_params)
+        commander = self.loop.commander
+        params['max_linear'] = min(params['max_linear'], commander.max_linear)
+        params['max_angular'] = min(params['max_angular'], commander.max_angular)
+        self.driver = behaviour_or_exit('simple_move_square', SquareDriver, params)
+        self.odom = LatestOdom('odom')
+        self._started = False
+
+    def run(self):
+        if self.driver is None:
+            return 2
+        p = self.driver.p
+        rospy.loginfo('simple_move_square: %d lap(s) of a %.2f m square', p['laps'], p['side'])
+        outcome = self.loop.run(self._answer, self._finished, on_clock_reset=self._restart)
+        if outcome == 'done':
+            rospy.loginfo('simple_move_square: done; stopped')
+        return 0
+
+    def _answer(self, _view, taken):
+        pose, stamp = self.odom.at(taken, self.odom_wait)
+        if pose is None or taken - stamp > self.odom_timeout:
+            rospy.logwarn_throttle(5.0, 'simple_move_square: no odometry on %s within %.1f s of '
+                                   'the scan; standing' % (self.odom.name, self.odom_timeout))
+            return STOP
+        if not self._started:
+            self.driver.start(pose)
+            self._started = True
+            rospy.loginfo('simple_move_square: starting at (%.2f, %.2f) heading %.0f deg'
+                          % (pose[0], pose[1], math.degrees(pose[2])))
+        state = self.driver.state
+        command = self.driver.update(pose)
+        if self.driver.state != state:
+            rospy.loginfo('simple_move_square: %s -> %s (side %d)', state, self.driver.state,
+                          self.driver.leg + 1)
+        return command
+
+    def _finished(self):
+        return 'done' if self.driver.done else None
+
+    def _restart(self):
+        """ROS time moved back: start a new square from wherever the robot then stands."""
+        self.odom.forget()
+        self._started = False
+
+
+def main():
+    init_node('simple_move_square')
+    return SimpleMoveSquareNode().run()

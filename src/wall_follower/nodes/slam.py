@@ -1,0 +1,215 @@
+"""The `slam` node: the package's mapper, with gmapping's interface.
+
+Subscribes `scan` and `odom` (nav_msgs/Odometry): the robot's odometry pose
+at each scan's stamp is interpolated between the odometry messages around
+it, and the laser's mount (base_frame -> the scan's frame) read from tf
+once. Publishes `map` (nav_msgs/OccupancyGrid, latched) and `map_metadata`
+every ~map_update_interval seconds of ROS time, and the tf map_frame ->
+odom_frame that puts the robot where scan matching found it. Every scan is
+processed, in order (a deep queue rather than the newest only), so that a
+run in simulated time gives the same map however busy the machine is.
+"""
+import bisect
+import math
+import threading
+import time
+
+import rospy
+import tf2_ros
+from geometry_msgs.msg import TransformStamped
+from nav_msgs.msg import MapMetaData, OccupancyGrid, Odometry
+from sensor_msgs.msg import LaserScan
+
+import numpy as np
+
+from wall_follower.mapping.slam import DEFAULTS, Mapper
+from wall_follower.mapping.poses import wrap
+from wall_follower.nodes.common import pose_message, pose_of, private_params, yaw_of
+
+PARAMS = {
+    'base_frame': 'base_footprint',
+    'odom_frame': 'odom',
+    'map_frame': 'map',
+    'map_update_interval': 2.0,   # s of ROS time between map publications
+    'delta': DEFAULTS.resolution,
+    'xmin': DEFAULTS.extent[0], 'ymin': DEFAULTS.extent[1],
+    'xmax': DEFAULTS.extent[2], 'ymax': DEFAULTS.extent[3],
+    'max_range': DEFAULTS.max_range,
+    'linear_update': DEFAULTS.linear_update,
+    'angular_update': DEFAULTS.angular_update,
+    'match_resolution': DEFAULTS.match_resolution,
+    'match_capture': DEFAULTS.match_capture,
+    'match_reach': DEFAULTS.match_reach,
+    'search_window_linear': DEFAULTS.search_window[0],
+    'search_window_angular': DEFAULTS.search_window[1],
+    'scan_matching': DEFAULTS.scan_matching,
+    'start_patience': DEFAULTS.start_patience,
+    'odom_timeout': 1.0,          # wall s to wait for odometry at or after a scan's stamp
+}
+# Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
+# outpace the mapper for a while, but not lose it scans; one this far behind drops the oldest.
+SCAN_QUEUE = 1000
+# Odometry messages kept to interpolate scans' poses from: more than the scans queued.
+ODOM_KEPT = 4 * SCAN_QUEUE
+
+
+def interpolate(before, after, stamp):
+    """Pose at stamp between two (stamp, (x, y, yaw)) samples."""
+    (t0, p0), (t1, p1) = before, after
+    f = 0.0 if t1 == t0 else (stamp - t0) / (t1 - t0)
+    return (p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1]),
+            wrap(p0[2] + f * wrap(p1[2] - p0[2])))
+
+
+def _pose_of(transform):
+    t = transform.transform
+    return t.translation.x, t.translation.y, yaw_of(t.rotation)
+
+
+class SlamNode(object):
+    def __init__(self):
+        self.p = private_params(PARAMS)
+        p = self.p
+        config = DEFAULTS._replace(
+            resolution=p['delta'], extent=(p['xmin'], p['ymin'], p['xmax'], p['ymax']),
+            max_range=p['max_range'], linear_update=p['linear_update'],
+            angular_update=p['angular_update'], match_resolution=p['match_resolution'],
+            match_capture=p['match_capture'], match_reach=p['match_reach'],
+            search_window=(p['search_window_linear'], p['search_window_angular']),
+            scan_matching=bool(p['scan_matching']), start_patience=p['start_patience'])
+        self.config = config
+        self.mapper = Mapper(config)     # raises ValueError on a grid that cannot be
+        self.laser_known = False         # the laser's mount is read at the first scan
+        self.odom_stamps, self.odom_poses = [], []
+        self.odom_arrived = threading.Condition()
+        self.buffer = tf2_ros.Buffer()
+        self.listener = tf2_ros.TransformListener(self.buffer)
+        self.broadcaster = tf2_ros.TransformBroadcaster()
+        self.map_pub = rospy.Publisher('map', OccupancyGrid, queue_size=1, latch=True)
+        self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
+        self.last_published = None
+        self.cpu = 0.0
+        self.rejected = 0
+        rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE)
+        rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
+
+    def on_odom(self, msg):
+        with self.odom_arrived:
+            stamp = msg.header.stamp.to_sec()
+            if self.odom_stamps and stamp < self.odom_stamps[-1]:
+                self.odom_stamps, self.odom_poses = [], []   # time went back: a new run
+            self.odom_stamps.append(stamp)
+            self.odom_poses.append(pose_of(msg))
+            if len(self.odom_stamps) > ODOM_KEPT:
+                del self.odom_stamps[:ODOM_KEPT // 2], self.odom_poses[:ODOM_KEPT // 2]
+            self.odom_arrived.notify_all()
+
+    def odometry_at(self, stamp):
+        """The odometry pose at stamp (s), waiting up to ~odom_timeout wall s for it; None
+        if it never comes or is older than what is kept."""
+        deadline = time.monotonic() + self.p['odom_timeout']
+        with self.odom_arrived:
+            while not self.odom_stamps or self.odom_stamps[-1] < stamp:
+                left = deadline - time.monotonic()
+                if left <= 0.0 or rospy.is_shutdown():
+                    return None
+                self.odom_arrived.wait(left)
+            i = bisect.bisect_left(self.odom_stamps, stamp)
+            if self.odom_stamps[i] == stamp:
+                return self.odom_poses[i]
+            if i == 0:
+                return None
+            return interpolate((self.odom_stamps[i - 1], self.odom_poses[i - 1]),
+                               (self.odom_stamps[i], self.odom_poses[i]), stamp)
+
+    def _laser_mount(self, frame):
+        try:
+            return self.buffer.lookup_transform(self.p['base_frame'], frame, rospy.Time(0),
+                                                rospy.Duration(self.p['odom_timeout']))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException) as err:
+            rospy.logwarn_throttle(5.0, 'slam: no transform %s -> %s (%s); scan skipped',
+                                   self.p['base_frame'], frame, err)
+            return None
+
+    def on_scan(self, msg):
+        if msg.angle_increment == 0.0 or msg.range_max <= msg.range_min:
+            rospy.logwarn_throttle(5.0, 'slam: malformed scan (angle_increment %g, range %g..%g)'
+                                   ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
+            return
+        if not self.laser_known:
+            mount = self._laser_mount(msg.header.frame_id)
+            if mount is None:
+                return
+            self.mapper.laser = _pose_of(mount)
+            self.laser_known = True
+            rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
+                          'on %s', self.config.resolution, *(self.mapper.laser[:2] + (
+                              math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
+        odom = self.odometry_at(msg.header.stamp.to_sec())
+        if odom is None:
+            rospy.logwarn_throttle(5.0, 'slam: no odometry at the scan of %.3f s; scan skipped',
+                                   msg.header.stamp.to_sec())
+            return
+        angles = msg.angle_min + msg.angle_increment * np.arange(len(msg.ranges))
+        started = time.process_time()
+        pose = self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
+        self.cpu += time.process_time() - started
+        if pose is None:
+            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still to start '
+                                   'the map')
+            return
+        match = self.mapper.last_match
+        if match is not None and not match.ok:
+            self.rejected += 1
+            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used',
+                                   match.reason)
+        self._send_transform(msg.header.stamp)
+        if self.last_published is None or \
+                (msg.header.stamp - self.last_published).to_sec() >= self.p['map_update_interval']:
+            self.publish_map(msg.header.stamp)
+
+    def _send_transform(self, stamp):
+        x, y, yaw = self.mapper.map_to_odom()
+        t = TransformStamped()
+        t.header.stamp = stamp
+        t.header.frame_id = self.p['map_frame']
+        t.child_frame_id = self.p['odom_frame']
+        t.transform.translation.x, t.transform.translation.y = x, y
+        t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+        self.broadcaster.sendTransform(t)
+
+    def publish_map(self, stamp):
+        grid = self.mapper.occupancy_map()
+        if grid is None:
+            return
+        values, origin = grid
+        msg = OccupancyGrid()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.p['map_frame']
+        info = msg.info
+        info.map_load_time = stamp
+        info.resolution = self.config.resolution
+        info.height, info.width = values.shape
+        info.origin = pose_message(*origin)
+        msg.data = values.reshape(-1).tolist()
+        self.map_pub.publish(msg)
+        self.meta_pub.publish(info)
+        self.last_published = stamp
+        rospy.logdebug('slam: map %dx%d after %d scans, %.1f ms CPU per scan', info.width,
+                       info.height, self.mapper.scans, 1000.0 * self.cpu / self.mapper.scans)
+
+
+def main():
+    rospy.init_node('slam')
+    try:
+        node = SlamNode()
+    except ValueError as err:
+        rospy.logerr('slam: bad parameters: %s', err)
+        return 1
+    rospy.spin()
+    if node.mapper.scans:
+        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, '
+                      '%.1f ms CPU per scan', node.mapper.scans, node.mapper.drawn,
+                      node.rejected, 1000.0 * node.cpu / node.mapper.scans)
+    return 0

@@ -1,0 +1,114 @@
+"""teleop_key: drive with the keyboard, as ROBOTIS's turtlebot3_teleop_key does, but safely.
+
+Keys come from standard input: a terminal (put in cbreak mode, so that
+each key counts without Enter, and restored on exit) or a pipe, so that a
+test or a script can drive it. Each key is applied as it comes; commands go
+out on a steady ~tick whether or not a key is pressed (Stage stops a robot
+0.2 s after its last cmd_vel, and ROBOTIS's node publishes only once per
+key or 0.1 s idle), through the DriveLoop every driving node shares: so the
+robot also stops while the laser is stale or unusable, and does not drive
+forward into a sector ahead that it cannot see. Ctrl-C (a signal from a
+terminal, or the byte 0x03 from a pipe) or the end of the input quits with
+a zero Twist.
+"""
+import os
+import queue
+import sys
+import threading
+
+import rospy
+
+from wall_follower.exercises.teleop import ANGULAR_STEP, LINEAR_STEP, USAGE, Teleop
+from wall_follower.nodes.common import init_node, private_params
+from wall_follower.nodes.exercise_loop import LOOP_DEFAULTS, drive_loop, split_params
+
+NODE_DEFAULTS = dict(LOOP_DEFAULTS, tick=0.1, linear_step=LINEAR_STEP,
+                     angular_step=ANGULAR_STEP)
+"""The loop's parameters (exercise_loop.LOOP_DEFAULTS) and:
+tick: ROS seconds between commands, pressed key or not (10 Hz, as ROBOTIS's idle loop).
+linear_step, angular_step: change of the target per key press [m/s, rad/s];
+    the command ramps toward the target by half of it per tick.
+The targets are clamped to ~max_linear and ~max_angular (0.19, 0.49).
+"""
+
+
+class KeyReader(object):
+    """Reads standard input byte by byte in a thread of its own; keys wait in a queue."""
+
+    def __init__(self, stream):
+        self.fd = stream.fileno()
+        self.keys = queue.Queue()
+        self._terminal = None
+        if os.isatty(self.fd):
+            import termios
+            import tty
+            self._terminal = termios.tcgetattr(self.fd)
+            tty.setcbreak(self.fd)
+        thread = threading.Thread(target=self._read, name='keys')
+        thread.daemon = True
+        thread.start()
+
+    def _read(self):
+        while True:
+            data = os.read(self.fd, 1)
+            if not data:
+                self.keys.put(None)     # end of input
+                return
+            self.keys.put(data.decode('latin-1'))
+
+    def pending(self):
+        """The keys that have come since the last call (None for the end of input)."""
+        keys = []
+        while True:
+            try:
+                keys.append(self.keys.get_nowait())
+            except queue.Empty:
+                return keys
+
+    def restore(self):
+        if self._terminal is not None:
+            import termios
+            termios.tcsetattr(self.fd, termios.TCSADRAIN, self._terminal)
+
+
+class TeleopKeyNode(object):
+
+    def __init__(self):
+        params = private_params(NODE_DEFAULTS)
+        self.loop = drive_loop('teleop_key', split_params(params, LOOP_DEFAULTS),
+                               tick=params['tick'])
+        commander = self.loop.commander
+        self.teleop = Teleop(commander.max_linear, commander.max_angular,
+                             params['linear_step'], params['angular_step'])
+        self.keys = KeyReader(sys.stdin)
+
+    def run(self):
+        say(USAGE % (self.teleop.max_linear, self.teleop.max_angular))
+        try:
+            self.loop.run(lambda view, taken: self.teleop.tick(), self._keys)
+        finally:
+            self.keys.restore()
+        return 0
+
+    def _keys(self):
+        """Apply the keys pressed since the last pass; 'quit' once one says so."""
+        for key in self.keys.pending():
+            if key is None:
+                say('teleop_key: end of input; stopping')
+                return 'quit'
+            if self.teleop.press(key):
+                say(self.teleop.describe())
+            if self.teleop.quit:
+                return 'quit'
+        return None
+
+
+def say(text):
+    """Print for the person at the keyboard (not a log line: this is the node's display)."""
+    sys.stdout.write(text + '\n')
+    sys.stdout.flush()
+
+
+def main():
+    init_node('teleop_key')
+    return TeleopKeyNode().run()

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""rostest: forward_stop moves and stands for its periods, and stands short of a wall ahead.
+
+Scored from ground truth: a step in which the robot moved counts as moving.
+The first ~cycles moving and standing stretches must last ~forward_period
+and ~stop_period to within one scan period; the robot then comes up to a
+wall and must stand, with the laser no nearer to the wall ahead than
+~stop_distance less one step of travel (the command answering a scan acts
+on the next step) and two grid cells (Stage's cell-stepping raytrace reads
+a wall up to a cell nearer, and the cells of the wall itself), without
+touching it.
+"""
+import math
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
+
+from drive_guard import DriveGuard
+from paused_world import start_world
+from waiting import wait_until
+from wall_follower.evaluation.geometry import cast_rays
+from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.nodes.common import pose_of, world_path
+
+QUEUE = 10000
+STILL = 1e-5          # m per step: below this the robot stands
+SCAN_PERIOD = 0.1     # s, one simulated step
+SLACK = 1e-6
+WALL_LIMIT = 120.0
+CELL = 0.02           # the simulator's grid
+
+
+class ForwardStopRun(unittest.TestCase):
+
+    def setUp(self):
+        self.guard = DriveGuard()
+        self.lock = threading.Lock()
+        self.truth = []
+        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
+        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
+                     rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.assertTrue(start_world(listening),
+                        'the simulator or the node never connected')
+
+    def _on_truth(self, msg):
+        with self.lock:
+            self.truth.append((msg.header.stamp.to_sec(),) + pose_of(msg))
+
+    def test_periods_and_the_stop_before_the_wall(self):
+        forward = rospy.get_param('~forward_period')
+        stop = rospy.get_param('~stop_period')
+        cycles = rospy.get_param('~cycles')
+        stop_distance = rospy.get_param('~stop_distance')
+        run_time = rospy.get_param('~run_time')
+        self.assertTrue(wait_until(lambda: self.truth and self.truth[-1][0] >= run_time,
+                                   WALL_LIMIT), 'the simulation did not reach %.0f s' % run_time)
+        with self.lock:
+            truth = list(self.truth)
+        stretches = moving_stretches(truth)
+        rospy.loginfo('forward_stop: (moving, duration) stretches %s', stretches)
+        while stretches and not stretches[0][0]:
+            stretches.pop(0)           # standing before the first command
+        for moving, duration in stretches[:2 * cycles]:
+            expected = forward if moving else stop
+            self.assertLessEqual(abs(duration - expected), SCAN_PERIOD + SLACK,
+                                 '%s for %.1f s, not %.1f s' % ('moved' if moving else 'stood',
+                                                               duration, expected))
+        self.assertGreater(len(stretches), 2 * cycles, 'fewer than %d cycles' % cycles)
+        course = CourseMap(world_path(rospy.get_param('~world')))
+        lx, ly, lyaw = course.laser_pose(truth[-1][1:])
+        ahead = cast_rays(course.edges, lx, ly, [lyaw])[0]
+        self.assertFalse(stretches[-1][0], 'still moving at the end')
+        self.assertGreaterEqual(ahead, stop_distance - 0.19 * SCAN_PERIOD - 2 * CELL)
+        self.assertLess(ahead, stop_distance + 0.19 * SCAN_PERIOD + CELL,
+                        'stood %.2f m from the wall: not stopped by it' % ahead)
+        self.guard.assert_safe(self)
+
+
+def moving_stretches(truth):
+    """[(moving, duration s)] of the runs of ground-truth steps with and without motion."""
+    stretches = []
+    for (ta, xa, ya, _), (tb, xb, yb, _) in zip(truth, truth[1:]):
+        moving = math.hypot(xb - xa, yb - ya) > STILL
+        if stretches and stretches[-1][0] == moving:
+            stretches[-1][1] += tb - ta
+        else:
+            stretches.append([moving, tb - ta])
+    return [(moving, round(duration, 6)) for moving, duration in stretches]
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_forward_stop')
+    rostest.rosrun('wall_follower', 'check_forward_stop', ForwardStopRun, sys.argv)

@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""rostest: one lap of mapping.launch with drifting odometry, judged from ground truth.
+
+The saved map must match the world (precision >= 95 %, recall >= 90 %, see
+wall_follower/evaluation/map_scoring.py), and once the robot has stopped
+after the lap, the mapper's pose (tf map -> base_footprint) must be within
+3 cm and 1 degree of the true pose, while the raw odometry is off by more.
+The simulator starts paused and is let go once this check listens.
+"""
+import math
+import os
+import sys
+import threading
+import time
+import unittest
+
+import rosgraph
+import rospy
+import rostest
+import tf2_ros
+from drive_guard import DriveGuard
+from nav_msgs.msg import Odometry
+from std_srvs.srv import Empty
+
+from wall_follower.evaluation.map_scoring import map_quality
+from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.mapping.mapfile import load_map
+from wall_follower.mapping.poses import between, wrap
+from wall_follower.nodes.common import pose_of, world_path, yaw_of
+
+# Wall seconds for the lap, the saved map and the robot to settle.
+RUN_LIMIT = 280.0
+# Simulated seconds the true pose must stay put to call the robot stopped.
+STILL_FOR = 1.0
+
+
+class Mapping(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.world = world_path(rospy.get_param('~world'))
+        cls.map_file = rospy.get_param('~map_file')
+        course = CourseMap(cls.world)
+        cls.start = course.robot.pose
+        cls.max_range = rospy.get_param('/slam/max_range', 3.5)
+        cls.guard = DriveGuard()
+        cls.truth = []   # (stamp, pose)
+        cls.odom = None
+        cls.lock = threading.Lock()
+        rospy.Subscriber('base_pose_ground_truth', Odometry, cls.on_truth, queue_size=100)
+        rospy.Subscriber('odom', Odometry, cls.on_odom, queue_size=10)
+        # The mapper may fall behind a simulation running flat out: keep enough tf.
+        cls.buffer = tf2_ros.Buffer(cache_time=rospy.Duration(600.0))
+        cls.listener = tf2_ros.TransformListener(cls.buffer)
+        deadline = time.monotonic() + RUN_LIMIT
+        # Let the world go only once the mapper hears the laser, or it misses the start.
+        assert cls.wait_for(cls.mapper_listens, deadline), 'slam never subscribed to scan'
+        rospy.wait_for_service('unpause_physics', timeout=30.0)
+        rospy.ServiceProxy('unpause_physics', Empty)()
+        cls.saved = cls.wait_for(lambda: os.path.exists(cls.map_file + '.yaml'), deadline)
+        cls.still = cls.wait_for(cls.stopped, deadline)
+        with cls.lock:
+            cls.final_stamp, cls.final_truth = cls.truth[-1] if cls.truth else (0.0, None)
+            cls.final_odom = cls.odom
+        cls.mapper_pose = None
+        cls.wait_for(lambda: cls.mapper_pose_at(cls.final_stamp), deadline)
+
+    @classmethod
+    def mapper_listens(cls):
+        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+        return any(topic == rospy.resolve_name('scan') and '/slam' in nodes
+                   for topic, nodes in subscribers)
+
+    @classmethod
+    def mapper_pose_at(cls, stamp):
+        """True once the mapper has placed the robot at stamp (it may lag behind)."""
+        try:
+            t = cls.buffer.lookup_transform('map', 'base_footprint', rospy.Time.from_sec(stamp))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException):
+            return False
+        t = t.transform
+        cls.mapper_pose = (t.translation.x, t.translation.y, yaw_of(t.rotation))
+        return True
+
+    @classmethod
+    def wait_for(cls, condition, deadline):
+        while not condition():
+            if rospy.is_shutdown() or time.monotonic() > deadline:
+                return False
+            time.sleep(0.05)
+        return True
+
+    @classmethod
+    def on_truth(cls, msg):
+        with cls.lock:
+            cls.truth.append((msg.header.stamp.to_sec(), pose_of(msg)))
+
+    @classmethod
+    def on_odom(cls, msg):
+        with cls.lock:
+            cls.odom = pose_of(msg)
+
+    @classmethod
+    def stopped(cls):
+        with cls.lock:
+            if not cls.truth:
+                return False
+            last_stamp, last = cls.truth[-1]
+            recent = [pose for stamp, pose in cls.truth if stamp >= last_stamp - STILL_FOR]
+            span = cls.truth[-1][0] - cls.truth[0][0]
+        return span > STILL_FOR and all(pose == last for pose in recent)
+
+    def test_drove_within_limits_without_contact(self):
+        self.guard.assert_safe(self)
+
+    def errors(self, pose):
+        truth = between(self.start, self.final_truth)
+        return (math.hypot(pose[0] - truth[0], pose[1] - truth[1]),
+                abs(math.degrees(wrap(pose[2] - truth[2]))))
+
+    def test_saved_map_matches_the_world(self):
+        self.assertTrue(self.saved, 'no map saved at %s.yaml' % self.map_file)
+        with self.lock:
+            path = [pose for _, pose in self.truth]
+        quality = map_quality(load_map(self.map_file + '.yaml'), self.world, self.start, path,
+                              self.max_range)
+        rospy.loginfo('map: %s', quality)
+        self.assertGreaterEqual(quality.precision, 0.95, quality)
+        self.assertGreaterEqual(quality.recall, 0.90, quality)
+
+    def test_mapper_pose_is_true_and_odometry_is_not(self):
+        self.assertTrue(self.still, 'the robot never stopped after the lap')
+        self.assertIsNotNone(self.mapper_pose, 'no tf map -> base_footprint')
+        mapper = self.errors(self.mapper_pose)
+        odom = self.errors(self.final_odom)
+        rospy.loginfo('final pose error: mapper %.1f cm %.2f deg, odometry %.1f cm %.2f deg',
+                      100 * mapper[0], mapper[1], 100 * odom[0], odom[1])
+        self.assertLess(mapper[0], 0.03)
+        self.assertLess(mapper[1], 1.0)
+        self.assertTrue(odom[0] > 0.03 or odom[1] > 1.0, 'odometry did not drift: %s' % (odom,))
+        self.assertGreater(odom[0] + math.radians(odom[1]), mapper[0] + math.radians(mapper[1]))
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_mapping')
+    rostest.rosrun('wall_follower', 'check_mapping', Mapping, sys.argv)

@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""rostest: the course on real Stage, when stage_ros is installed.
+
+`main.launch sim:=true simulator:=stage gui:=true report:=true` in the room:
+find_wall, one recorded lap, and the report scored from real stageros'
+ground truth (the report must say it ran on stageros). Stage's window needs
+a display: without one the launch runs under `xvfb-run -a`.
+
+Where stage_ros is not installed (Debian, CI) or no display can be had,
+nothing is run, and the one test that passes says so in its name and on
+stdout: a notice, not a silent skip.
+"""
+import json
+import os
+import sys
+import tempfile
+import unittest
+
+import rospkg
+import rospy
+import rostest
+
+from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
+                                                           launch_and_wait, launch_command)
+
+WORLD = 'room'
+# Wall seconds for the launch: real Stage runs at the world's pace (speedup
+# 1), and the room's lap takes about 50 s after find_wall's 10 s.
+BOUND = 180.0
+
+
+def stage_ros_installed():
+    try:
+        rospkg.RosPack().get_path('stage_ros')
+    except rospkg.ResourceNotFound:
+        return False
+    return True
+
+
+class RealStageCourse(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        workdir = tempfile.mkdtemp(prefix='real_stage-')
+        output = os.path.join(workdir, 'course.json')
+        port = free_port()
+        command = display_wrapper() + launch_command('main.launch', {
+            'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD,
+            'report': 'true', 'json': output}, port)
+        with tempfile.TemporaryFile('w+') as log:
+            launch_and_wait(command, port, log, BOUND)
+            log.seek(0)
+            cls.output = log.read()
+        cls.figures = None
+        if os.path.exists(output):
+            with open(output) as stream:
+                cls.figures = json.load(stream)
+
+    def figure(self, name):
+        self.assertIsNotNone(self.figures, 'the report wrote no figures (no lap recorded):\n'
+                             + self.output[-3000:])
+        return self.figures[name]
+
+    def test_ran_on_real_stageros(self):
+        self.assertEqual(self.figure('simulator'), 'stageros')
+
+    def test_find_wall(self):
+        self.assertAlmostEqual(self.figure('found_distance'), 0.30, delta=0.03)
+        self.assertLess(abs(self.figure('found_heading_error_deg')), 5.0)
+
+    def test_one_lap(self):
+        self.assertGreater(self.figure('points'), 10)
+        self.assertLessEqual(self.figure('closing_gap'), 0.3)
+        self.assertAlmostEqual(self.figure('recorded_distance'), self.figure('true_distance'),
+                               delta=0.02 * self.figure('true_distance'))
+
+    def test_report_scores_the_lap(self):
+        self.assertGreaterEqual(self.figure('time_in_band'), 0.9)
+        self.assertFalse(self.figure('contact'))
+        self.assertLessEqual(self.figure('max_linear'), 0.19 + 1e-6)
+        self.assertLessEqual(self.figure('max_angular'), 0.49 + 1e-6)
+
+
+class NotRunStageRosNotInstalled(unittest.TestCase):
+
+    def test_real_stage_not_run__stage_ros_not_installed(self):
+        print('real_stage: NOT RUN: stage_ros is not installed (tools/build-real-stage builds it)')
+
+
+class NotRunNoDisplay(unittest.TestCase):
+
+    def test_real_stage_not_run__no_display_and_no_xvfb_run(self):
+        print('real_stage: NOT RUN: Stage needs a display: no DISPLAY and no xvfb-run')
+
+
+def suite():
+    if not stage_ros_installed():
+        return NotRunStageRosNotInstalled
+    if display_wrapper() is None:
+        return NotRunNoDisplay
+    return RealStageCourse
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_real_stage')
+    rostest.rosrun('wall_follower', 'check_real_stage', suite(), sys.argv)

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""rostest: on a Waffle, with no ~laser_x, the nodes take -0.064 m from tf and lap.
+
+Against waffle.test. The simulator starts paused; /rosout is heard before
+this check lets it go, and the nodes cannot read the mount before the first
+scan, so every node's log line saying which laser_x it took is heard.
+"""
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+from drive_guard import DriveGuard
+from rosgraph_msgs.msg import Log
+
+from wall_follower.nodes.common import world_path
+from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.evaluation.scoring import CourseMap
+
+WAFFLE_LASER_X = -0.064
+TAKEN = 'laser_x %.3f m (from tf base_link -> base_laser_link)' % WAFFLE_LASER_X
+NODES = ('/wall_finder', '/wall_following')
+# Wall seconds allowed for the monitor's subscriptions to connect.
+CONNECT_LIMIT = 30.0
+
+
+class WaffleMount(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.lock = threading.Lock()
+        cls.logs = []
+        cls.rosout = rospy.Subscriber('/rosout', Log, cls._on_log, queue_size=100)
+        cls.guard = DriveGuard()
+        cls.monitor = CourseMonitor(CourseMap(world_path(rospy.get_param('~world'))),
+                                    start_on_goal=True)
+        assert cls.monitor.start_world(CONNECT_LIMIT), 'the monitor could not connect'
+        assert cls.monitor.wait(), 'shut down before the lap was recorded'
+
+    @classmethod
+    def _on_log(cls, msg):
+        with cls.lock:
+            cls.logs.append((msg.name, msg.level, msg.msg))
+
+    def test_each_node_took_the_waffles_laser_x_from_tf(self):
+        with self.lock:
+            for node in NODES:
+                said = [text for name, _, text in self.logs if name == node]
+                self.assertTrue(any(TAKEN in text for text in said),
+                                '%s did not log "%s": %s' % (node, TAKEN, said))
+                self.assertFalse(any('Burger' in text for text in said), said)
+
+    def test_the_chain_laps_within_the_limits_without_contact(self):
+        score = self.monitor.summary()
+        rospy.loginfo('waffle: %s', score)
+        self.assertTrue(score['lap_closed'])
+        self.assertFalse(score['contact'], 'touched a wall (clearance %.3f m)'
+                         % score['min_clearance'])
+        self.guard.assert_safe(self)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_waffle')
+    rostest.rosrun('wall_follower', 'check_waffle', WaffleMount, sys.argv)
