@@ -19,15 +19,15 @@ what it has to remember and says when it is done (see manoeuvre.py):
 - SEARCH (search.py): no wall near, straight ahead until one comes up.
 
 Corners get their own states because a wall fit cannot see them coming.
-The turn rate, not the speed, is what limits a lap: a 90 degree corner
-takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
-largest radius that keeps the wall in the band.
+The turn rate, not the speed, is what limits a lap: a quarter turn takes
+the same time at max_turn_rate whatever the speed, so corners are driven
+at the largest radius that keeps the wall in the band.
 
 Everything is in the laser frame (x ahead, y left, angles counter-clockwise,
 0 = ahead, -pi/2 = right) and read by angle through ScanView, so the
 laser's beam order and its way of writing "no return" do not matter.
 Motion is modelled about the robot's rotation centre; the laser sits
-laser_x ahead of it (on a Burger, 32 mm behind it).
+laser_x ahead of it (on a TurtleBot3, behind it).
 """
 import copy
 
