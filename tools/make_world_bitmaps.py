@@ -3,11 +3,12 @@
 
 The geometry below is the single source of truth for each map: a free-space
 outline in world metres (counter-clockwise), drawn at 0.02 m per pixel with
-everything outside it black, and round pillars inside it, black too. The image is the free-space bounding box plus a
-0.10 m wall on every side, so its black pixels reach all four edges; Stage
-then scales the whole image to the floorplan `size` (image pixels x 0.02)
-and centres it on the floorplan `pose` (the bounding-box centre), which puts
-every wall exactly where the outline says. The .world headers quote these
+everything outside it black, and round pillars inside it, black too. The
+image is the free-space bounding box plus a 0.10 m wall on every side, so
+its black pixels reach all four edges; Stage then scales the whole image to
+the floorplan `size` (image pixels x 0.02) and centres it on the floorplan
+`pose` (the bounding-box centre), which puts every wall exactly where the
+outline says. The .world headers quote these
 numbers; change both together.
 
 Pixels are decided in integer centimetres (pixel centres are odd, vertices

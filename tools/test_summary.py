@@ -68,13 +68,13 @@ def count_results(results_dir):
 def main():
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('results_dir')
-    parser.add_argument('--compat-failed', type=int, default=0)
+    parser.add_argument('--failed-check', action='append', default=[], metavar='WHAT',
+                        help='a check before the tests that failed, counted as one failure')
     parser.add_argument('--log', help='run_tests log to point at on failure')
     args = parser.parse_args()
     passed, failed, failures = count_results(args.results_dir)
-    if args.compat_failed:
-        failed += 1
-        failures.append('vermin: code that Python 3.8 cannot run (see above)')
+    failed += len(args.failed_check)
+    failures.extend(args.failed_check)
     if passed + failed == 0:
         failed = 1
         failures.append('no test results found in %s' % args.results_dir)

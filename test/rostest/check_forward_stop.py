@@ -42,7 +42,8 @@ class ForwardStopRun(unittest.TestCase):
         self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
+        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
+                                 queue_size=QUEUE)
         listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
                      rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.assertTrue(start_world(listening),
@@ -68,9 +69,9 @@ class ForwardStopRun(unittest.TestCase):
             stretches.pop(0)           # standing before the first command
         for moving, duration in stretches[:2 * cycles]:
             expected = forward if moving else stop
+            what = 'moved' if moving else 'stood'
             self.assertLessEqual(abs(duration - expected), SCAN_PERIOD + SLACK,
-                                 '%s for %.1f s, not %.1f s' % ('moved' if moving else 'stood',
-                                                               duration, expected))
+                                 '%s for %.1f s, not %.1f s' % (what, duration, expected))
         self.assertGreater(len(stretches), 2 * cycles, 'fewer than %d cycles' % cycles)
         course = CourseMap(world_path(rospy.get_param('~world')))
         lx, ly, lyaw = course.laser_pose(truth[-1][1:])

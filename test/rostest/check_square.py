@@ -3,8 +3,9 @@
 
 The corners are where the robot stands and pivots (ground truth); each must
 lie within ~tolerance of the ideal square laid out from the start pose
-~start ("x y yaw_deg", where the simulator puts the robot) (side ~side, first side straight ahead, turning left), and the final heading
-within ~heading_tolerance_deg of the start. The square has ended when the
+~start ("x y yaw_deg", where the simulator puts the robot): side ~side,
+first side straight ahead, turning left. The final heading must be within
+~heading_tolerance_deg of the start. The square has ended when the
 robot has pivoted at laps x 4 corners and then stood still for SETTLE
 simulated seconds.
 """
@@ -38,7 +39,8 @@ class Square(unittest.TestCase):
         self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
+        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
+                                 queue_size=QUEUE)
         listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
                      rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.assertTrue(start_world(listening),
@@ -85,7 +87,8 @@ class Square(unittest.TestCase):
             ix = x0 + side * (px * math.cos(yaw0) - py * math.sin(yaw0))
             iy = y0 + side * (px * math.sin(yaw0) + py * math.cos(yaw0))
             error = math.hypot(cx - ix, cy - iy)
-            self.assertLess(error, tolerance, 'corner %d is %.3f m off the true square' % (k + 1, error))
+            self.assertLess(error, tolerance,
+                            'corner %d is %.3f m off the true square' % (k + 1, error))
         heading_error = abs(float(wrap_angle(truth[-1][3] - yaw0)))
         self.assertLess(heading_error, heading_tolerance,
                         'final heading %.2f deg off the start' % math.degrees(heading_error))

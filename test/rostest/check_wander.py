@@ -40,7 +40,8 @@ class Wander(unittest.TestCase):
         self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=QUEUE)
+        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
+                                 queue_size=QUEUE)
         listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
                      rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.assertTrue(start_world(listening),

@@ -22,6 +22,7 @@ def start_world(subscribers, limit=30.0):
     if not wait_until(lambda: all(sub.get_num_connections() > 0 for sub in subscribers), limit):
         return False
     started = time.monotonic()
-    rospy.wait_for_service('unpause_physics', timeout=max(1.0, limit - (time.monotonic() - started)))
+    left = max(1.0, limit - (time.monotonic() - started))
+    rospy.wait_for_service('unpause_physics', timeout=left)
     rospy.ServiceProxy('unpause_physics', Empty)()
     return True

@@ -1,4 +1,4 @@
-"""range_ahead: straight ahead by angle in every laser convention, and plain words without a reading."""
+"""range_ahead: straight ahead by angle in every laser convention, plain words without a reading."""
 import math
 
 import numpy as np
@@ -23,7 +23,8 @@ def test_the_labs_middle_beam_is_not_ahead_on_an_lds01():
     """The lab's ranges[len / 2] reads behind the robot on an LDS-01; ours reads ahead."""
     ranges = cast(ROOM, (0.0, 0.0, 0.0), LDS01)
     assert ranges[len(ranges) // 2] == pytest.approx(2.0, abs=0.01)
-    assert range_ahead(scan_view(ROOM, (0.0, 0.0, 0.0), LDS01)).distance == pytest.approx(1.0, abs=0.005)
+    reading = range_ahead(scan_view(ROOM, (0.0, 0.0, 0.0), LDS01))
+    assert reading.distance == pytest.approx(1.0, abs=0.005)
 
 
 def test_invalid_readings_in_the_window_are_ignored():

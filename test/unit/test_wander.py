@@ -1,4 +1,4 @@
-"""wander: forward until something is close in the cone, then pivot toward the open side until clear."""
+"""wander: forward until something is close in the cone, then pivot to the open side until clear."""
 import math
 
 import pytest

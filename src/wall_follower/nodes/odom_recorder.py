@@ -304,7 +304,7 @@ def _path(points, frame_id):
     path.header.stamp = rospy.Time.now()
     path.header.frame_id = frame_id
     path.poses = [PoseStamped(header=path.header, pose=pose_message(x, y, yaw))
-                   for x, y, yaw in points]
+                  for x, y, yaw in points]
     return path
 
 

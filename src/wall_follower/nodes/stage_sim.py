@@ -366,5 +366,6 @@ def run_node(world, argv):
     rospy.signal_shutdown('simulation ended')
     return 0
 
+
 if __name__ == '__main__':
     sys.exit(main())

@@ -16,7 +16,6 @@ import queue
 import sys
 import threading
 
-import rospy
 
 from wall_follower.exercises.teleop import ANGULAR_STEP, LINEAR_STEP, USAGE, Teleop
 from wall_follower.nodes.common import init_node, private_params

@@ -4,7 +4,6 @@ Answered once per scan through the DriveLoop every driving node shares:
 clamped to ~max_linear and ~max_angular, stopped while the laser is stale
 or unusable, never forward into a sector ahead that it cannot see.
 """
-import math
 
 import rospy
 
