@@ -12,9 +12,7 @@ import sys
 import threading
 import time
 import unittest
-from xmlrpc.client import ServerProxy
 
-import rosgraph
 import rospy
 import rostest
 from drive_guard import DriveGuard
@@ -22,20 +20,11 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 from sim_probe import SimProbe, pose_of
 
+from wall_follower.nodes.course_monitor import node_alive
 from wall_follower.msg import OdomRecordActionFeedback
 
 WAIT_LIMIT = 60.0   # wall s
 STOP_AFTER = 1.0    # metres recorded before the odometry stops
-
-
-def node_running(name):
-    """True while the node answers on its XML-RPC address (a dead one may stay registered)."""
-    try:
-        uri = rosgraph.Master('/check_chain_odom_stops').lookupNode(name)
-        ServerProxy(uri).getPid('/check_chain_odom_stops')
-        return True
-    except (rosgraph.MasterError, OSError):
-        return False
 
 
 class ChainOdometryStops(unittest.TestCase):
@@ -60,7 +49,7 @@ class ChainOdometryStops(unittest.TestCase):
             self.assertLess(time.monotonic(), deadline, 'no feedback past %.1f m' % STOP_AFTER)
             time.sleep(0.01)
         passing.clear()
-        while node_running('/wall_following'):
+        while node_alive('/wall_following'):
             self.assertLess(time.monotonic(), deadline, 'wall_following still runs')
             time.sleep(0.1)
         self.assertTrue(any(name == '/wall_following' and 'record_odom aborted the lap' in text

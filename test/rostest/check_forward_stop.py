@@ -12,23 +12,16 @@ touching it.
 """
 import math
 import sys
-import threading
-import unittest
 
 import rospy
 import rostest
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
-from std_msgs.msg import Bool
 
-from drive_guard import DriveGuard
-from paused_world import start_world
+from paused_world import GroundTruthRun
 from waiting import wait_until
 from wall_follower.evaluation.geometry import cast_rays
 from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import pose_of, world_path
+from wall_follower.nodes.common import world_path
 
-QUEUE = 10000
 STILL = 1e-5          # m per step: below this the robot stands
 SCAN_PERIOD = 0.1     # s, one simulated step
 SLACK = 1e-6
@@ -36,22 +29,7 @@ WALL_LIMIT = 120.0
 CELL = 0.02           # the simulator's grid
 
 
-class ForwardStopRun(unittest.TestCase):
-
-    def setUp(self):
-        self.guard = DriveGuard()
-        self.lock = threading.Lock()
-        self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
-                                 queue_size=QUEUE)
-        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
-                     rospy.Subscriber('stalled', Bool, lambda _: None)]
-        self.assertTrue(start_world(listening),
-                        'the simulator or the node never connected')
-
-    def _on_truth(self, msg):
-        with self.lock:
-            self.truth.append((msg.header.stamp.to_sec(),) + pose_of(msg))
+class ForwardStopRun(GroundTruthRun):
 
     def test_periods_and_the_stop_before_the_wall(self):
         forward = rospy.get_param('~forward_period')

@@ -9,26 +9,16 @@ import math
 import sys
 import time
 import unittest
-from xmlrpc.client import ServerProxy
 
-import rosgraph
 import rospy
 import rostest
 from drive_guard import DriveGuard
 from rosgraph_msgs.msg import Log
 from sim_probe import SimProbe, pose_of
 
+from wall_follower.nodes.course_monitor import node_alive
+
 EXIT_LIMIT = 60.0   # wall s
-
-
-def node_running(name):
-    """True while the node answers on its XML-RPC address (a dead one may stay registered)."""
-    try:
-        uri = rosgraph.Master('/check_no_wall').lookupNode(name)
-        ServerProxy(uri).getPid('/check_no_wall')
-        return True
-    except (rosgraph.MasterError, OSError):
-        return False
 
 
 class NoWall(unittest.TestCase):
@@ -42,9 +32,9 @@ class NoWall(unittest.TestCase):
         probe.wait_ready()
         start = pose_of(probe.latest_truth())
         deadline = time.monotonic() + EXIT_LIMIT
-        while node_running('/wall_following') and time.monotonic() < deadline:
+        while node_alive('/wall_following') and time.monotonic() < deadline:
             time.sleep(0.1)
-        self.assertFalse(node_running('/wall_following'), 'wall_following still runs')
+        self.assertFalse(node_alive('/wall_following'), 'wall_following still runs')
         self.assertTrue(any(name == '/wall_finder' and 'no wall in range' in text
                             for name, text in logs), 'find_wall did not say why')
         self.assertTrue(any(name == '/wall_following' and 'found no wall' in text

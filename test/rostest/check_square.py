@@ -11,44 +11,21 @@ simulated seconds.
 """
 import math
 import sys
-import threading
-import unittest
 
 import rospy
 import rostest
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
-from std_msgs.msg import Bool
 
-from drive_guard import DriveGuard
-from paused_world import start_world
+from paused_world import GroundTruthRun
 from waiting import wait_until
 from wall_follower.control.scan import wrap_angle
-from wall_follower.nodes.common import pose_of
 
-QUEUE = 10000
 STILL = 1e-5          # m per step: below this the robot stands
 TURNING = 1e-4        # rad per step: above this it turns
 WALL_LIMIT = 120.0    # wall s for the whole square
 SETTLE = 2.0          # simulated s standing after the last corner
 
 
-class Square(unittest.TestCase):
-
-    def setUp(self):
-        self.guard = DriveGuard()
-        self.lock = threading.Lock()
-        self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
-                                 queue_size=QUEUE)
-        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
-                     rospy.Subscriber('stalled', Bool, lambda _: None)]
-        self.assertTrue(start_world(listening),
-                        'the simulator or the node never connected')
-
-    def _on_truth(self, msg):
-        with self.lock:
-            self.truth.append((msg.header.stamp.to_sec(),) + pose_of(msg))
+class Square(GroundTruthRun):
 
     def ended(self, corners):
         """The truth so far once laps x 4 corners are turned and the robot has stood SETTLE s."""

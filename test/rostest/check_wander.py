@@ -10,46 +10,24 @@ benchmark figure, not a threshold) and written to ~json when given.
 import json
 import math
 import sys
-import threading
-import unittest
 
 import numpy as np
 import rospy
 import rostest
-from geometry_msgs.msg import Twist
-from nav_msgs.msg import Odometry
-from std_msgs.msg import Bool
 
-from drive_guard import DriveGuard
-from paused_world import start_world
+from paused_world import GroundTruthRun
 from waiting import wait_until
 from wall_follower.evaluation.coverage import visited_share
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import pose_of, world_path
+from wall_follower.nodes.common import world_path
 from wall_follower.sim.grid import footprint_corners
 
-QUEUE = 100000
 STEP = 0.1          # simulated s per step
 MARGIN = 0.01       # m: clearance proven above this between the poses measured
 
 
-class Wander(unittest.TestCase):
-
-    def setUp(self):
-        self.guard = DriveGuard()
-        self.lock = threading.Lock()
-        self.truth = []
-        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
-                                 queue_size=QUEUE)
-        listening = [truth, rospy.Subscriber('cmd_vel', Twist, lambda _: None),
-                     rospy.Subscriber('stalled', Bool, lambda _: None)]
-        self.assertTrue(start_world(listening),
-                        'the simulator or the node never connected')
-
-    def _on_truth(self, msg):
-        with self.lock:
-            self.truth.append((msg.header.stamp.to_sec(),) + pose_of(msg))
+class Wander(GroundTruthRun):
 
     def test_wanders_without_contact_within_the_limits(self):
         world = rospy.get_param('~world')

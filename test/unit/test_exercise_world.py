@@ -1,5 +1,4 @@
 """The lab exercises' world, pillars: bitmap as generated, pillars where its header says."""
-import importlib.util
 import math
 import os
 
@@ -7,19 +6,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from bitmap_generator import generator
 from wall_follower.evaluation.geometry import cast_rays
 from wall_follower.evaluation.scoring import CourseMap
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
 WORLD = os.path.join(REPO, 'worlds', 'pillars.world')
-
-
-def generator():
-    spec = importlib.util.spec_from_file_location(
-        'make_world_bitmaps', os.path.join(REPO, 'tools', 'make_world_bitmaps.py'))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def test_bitmap_matches_its_generator():

@@ -3,7 +3,6 @@ their generator, a Burger that can reach its top speeds, and a start pose
 beside a straight wall on the right, 0.25 m from the laser, with at least
 1 m of it ahead (what the follower tests and the course start from).
 """
-import importlib.util
 import math
 import os
 
@@ -12,20 +11,13 @@ import pytest
 from PIL import Image
 
 from cell_geometry import exact_ranges
+from bitmap_generator import generator
 from wall_follower.sim.grid import OccupancyGrid
 from wall_follower.sim.worldfile import load_world
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
 WORLDS = ('room', 'arena', 'obstacles')
 CELL = 0.02
-
-
-def generator():
-    spec = importlib.util.spec_from_file_location(
-        'make_world_bitmaps', os.path.join(REPO, 'tools', 'make_world_bitmaps.py'))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def world(name):
