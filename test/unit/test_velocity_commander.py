@@ -51,3 +51,8 @@ def test_limits_that_are_not_numbers_fall_back_to_the_robot_limits(monkeypatch):
     monkeypatch.setattr(rospy, 'logerr', lambda *args: None)
     made = VelocityCommander()
     assert (made.max_linear, made.max_angular) == (0.19, 0.49)
+
+
+def test_limits_given_or_changed_are_the_clamp(commander):
+    commander.max_linear, commander.max_angular = 0.1, 0.3
+    assert commander.send(Command(0.5, -2.0)) == Command(0.1, -0.3)

@@ -20,6 +20,8 @@ import math
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.scan import RIGHT, wrap_angle
 from wall_follower.control.walls import closest_match, extract_walls, path_is_clear, refine
+from wall_follower.params import checked
+from wall_follower.params.wall_finder import FINDER
 
 CHOOSE_WALL = 'CHOOSE_WALL'
 ROTATE_TO_WALL = 'ROTATE_TO_WALL'
@@ -29,73 +31,29 @@ DONE = 'DONE'
 FAILED = 'FAILED'
 IDLE = 'IDLE'
 
-DEFAULTS = {
-    'wall_distance': 0.30,
-    'laser_x': 0.0,
-    'min_wall_length': 0.5,
-    'corridor_half_width': 0.15,
-    'end_margin': 0.2,
-    'max_linear': 0.19,
-    'max_angular': 0.49,
-    'min_linear': 0.02,
-    'min_angular': 0.03,
-    'linear_gain': 2.0,
-    'angular_gain': 2.0,
-    'distance_tolerance': 0.01,
-    'heading_tolerance': 0.0175,
-    'approach_heading': 0.35,
-    'settle_updates': 2,
-    'track_angle': 0.44,
-    'track_distance': 0.2,
-    'lost_updates': 5,
-    'max_reacquire': 3,
-}
-"""Parameters of WallFinder, with their defaults.
-
-wall_distance: final distance from the laser to the wall on the right (m).
-laser_x: position of the laser ahead of the robot's rotation centre (m;
-    the TurtleBot3 Burger's LDS sits 0.032 m behind it, i.e. -0.032). The
-    robot stops wall_distance - laser_x from the wall, so that the quarter
-    turn that follows leaves the laser at wall_distance.
-min_wall_length: a straight run of hits this long (m) counts as a wall;
-    shorter ones (boxes, legs, spurious beams) are never chosen.
-corridor_half_width: a wall is chosen only if nothing lies within this
-    distance (m) of the straight path to it.
-end_margin: walls seen to extend at least this far (m) on both sides of
-    the point straight across from the robot are preferred.
-max_linear, max_angular: the behaviour's own speed limits (m/s, rad/s).
-min_linear, min_angular: slowest useful speeds; below these a real robot
-    stalls, so the last millimetres are covered at these speeds.
-linear_gain, angular_gain: speed per unit of error still to go (1/s):
-    the robot slows down as it nears its target. Commands act a scan or two
-    late, so a higher gain overshoots and hunts around the target.
-distance_tolerance, heading_tolerance: how close (m, rad: 1 deg) counts as
-    there. Turns and the approach aim for half the tolerance (what the robot
-    still moves after a stop command then keeps it within the tolerance);
-    the approach accepts the whole band once it has crossed the target, as
-    Stage's 2 cm grid moves the measured distance in steps of up to 2 cm.
-approach_heading: the approach starts once the wall is this close (rad:
-    20 deg) to straight ahead; the heading is corrected while driving.
-settle_updates: scans in a row that must show the robot stopped and
-    aligned before it reports success.
-track_angle, track_distance: how far (rad: 25 deg, m) the chosen wall may
-    appear to move between two scans and still be taken for the same wall.
-lost_updates: scans in a row without the chosen wall before choosing again.
-max_reacquire: how many times a lost wall may be chosen again before the
-    behaviour gives up.
-"""
-
 
 class WallFinder(object):
-    """Find-wall state machine: call start(), then update(scan) until done."""
+    """Find-wall state machine: call start(), then update(scan) until done.
+
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the FINDER table) are the defaults overridden by those given.
+    Turns and the approach aim for half of distance_tolerance and
+    heading_tolerance, so that what the robot still moves after a stop
+    command keeps it within them; the approach accepts the whole band once
+    it has crossed the target, as Stage's grid moves the measured distance
+    in steps of up to a cell.
+    """
 
     def __init__(self, **params):
-        unknown = set(params) - set(DEFAULTS)
-        if unknown:
-            raise ValueError('unknown WallFinder parameters: %s' % ', '.join(sorted(unknown)))
-        self.params = dict(DEFAULTS)
-        self.params.update(params)
+        self.reconfigure(**params)
         self._reset(IDLE)
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next update on.
+
+        A search in progress goes on where it is.
+        """
+        self.params = checked(FINDER, params)
 
     @property
     def done(self):

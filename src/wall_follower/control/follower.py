@@ -19,17 +19,17 @@ what it has to remember and says when it is done (see manoeuvre.py):
 - SEARCH (search.py): no wall near, straight ahead until one comes up.
 
 Corners get their own states because a wall fit cannot see them coming.
-The turn rate, not the speed, is what limits a lap: a 90 degree corner
-takes 3.2 s at 0.49 rad/s whatever the speed, so corners are driven at the
-largest radius that keeps the wall in the band.
+The turn rate, not the speed, is what limits a lap: a quarter turn takes
+the same time at max_turn_rate whatever the speed, so corners are driven
+at the largest radius that keeps the wall in the band.
 
 Everything is in the laser frame (x ahead, y left, angles counter-clockwise,
 0 = ahead, -pi/2 = right) and read by angle through ScanView, so the
 laser's beam order and its way of writing "no return" do not matter.
 Motion is modelled about the robot's rotation centre; the laser sits
-laser_x ahead of it (on a Burger, 32 mm behind it).
+laser_x ahead of it (on a TurtleBot3, behind it).
 """
-import math
+import copy
 
 from wall_follower.control.follow_wall import FollowWall
 from wall_follower.control.inner_corner import InnerCorner
@@ -39,87 +39,25 @@ from wall_follower.control.observation import Observation
 from wall_follower.control.outer_corner import OuterCorner
 from wall_follower.control.scan import RIGHT, wrap_angle
 from wall_follower.control.search import Search
+from wall_follower.params import checked
+from wall_follower.params.wall_following import FOLLOWER
 
-#: Every tunable number of the controller: name -> (default, meaning).
-#: Distances from the laser in metres, speeds in m/s and rad/s, angles in degrees.
-PARAMETERS = {
-    # The robot
-    'laser_x': (-0.032, 'laser position ahead of the rotation centre (Burger: 32 mm behind)'),
-    # Following a straight wall
-    'target_distance': (0.25, 'wanted distance to the wall on the right'),
-    'range_bias': (0.008, 'how much longer than true the laser reads (Stage ~0.008, LDS-01 0)'),
-    'cruise_speed': (0.19, 'forward speed on a straight wall'),
-    'max_turn_rate': (0.49, 'largest turn rate the controller asks for'),
-    'k_distance': (11.0, 'turn rate per metre of distance error (rad/s/m)'),
-    'k_angle': (3.0, 'turn rate per radian of heading into the wall (rad/s/rad)'),
-    'latency': (0.1, 'scan-to-motion delay (s): each scan is judged where the robot will be'),
-    'turn_slowdown': (0.0, 'share of cruise speed given up at the largest turn rate'),
-    'closest_distance': (0.215, 'heading into the wall, slow so as to turn parallel no nearer'),
-    'min_arc_radius': (0.2, '... but never onto an arc tighter than this (no pivot on the spot)'),
-    # Finding the wall on the right
-    'wall_sector_deg': (60.0, 'half width of the sector around the right searched for the wall'),
-    'wall_seed_deg': (20.0, 'half width of the sector around the right that seeds the fit'),
-    'wall_fit_range': (0.8, 'hits farther than this are not taken for the wall on the right'),
-    'wall_inlier_distance': (0.025, 'hits this near the seed line belong to the wall'),
-    'wall_min_points': (6, 'fewest hits that make a wall'),
-    'wall_max_residual': (0.025, 'RMS misfit above which the hits are no straight wall'),
-    'wall_seed_support': (0.6, 'share of the seed hits the wall line must still pass through'),
-    'wall_lost_distance': (0.45, 'a wall farther than this is not followed'),
-    # Inner corners: a wall ahead
-    'corridor_half_width': (0.14, 'half width of the lane ahead searched for a wall ahead'),
-    'ahead_range': (1.0, 'walls ahead are looked for up to this far'),
-    'ahead_min_angle_deg': (30.0, 'a wall ahead must cross the heading at least this steeply'),
-    'inner_corner_radius': (0.09, 'radius of the left turn onto a wall ahead, between its wide arcs'),
-    'wide_start_deg': (30.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'wide_end_deg': (30.0, 'last part of that turn, flown the same way'),
-    'wide_allowance': (0.015, 'the wide start may carry the robot this far past target_distance'),
-    'short_turn_cut_deg': (5.0, 'a wide start cut by more than this: fly the short-wall turn below'),
-    'short_turn_radius': (0.16, 'radius of that turn (after a short wall), between its wide arcs'),
-    'short_wide_start_deg': (20.0, 'first part of the short-wall turn, on its widest arc'),
-    'short_wide_end_deg': (25.0, 'last part of the short-wall turn, the same way'),
-    'approach_range': (0.8, 'a wall ahead this near: ride nearer by the wide start\'s drift'),
-    'inner_corner_distance': (0.22, 'distance from the wall ahead at which that turn ends'),
-    'turn_lead': (0.015, 'start the turn this much early, for the scan and command delay'),
-    'settle_time': (3.0, 'after that turn, the distance gain is raised for this long (s) ...'),
-    'settle_gain': (1.5, '... by this factor, to bring the robot back out to target_distance'),
-    'front_turn_distance': (0.38, 'anything nearer in the lane ahead starts the left turn'),
-    'front_clear_distance': (0.6, 'the turn goes on while anything in the lane is nearer'),
-    'front_stop_distance': (0.2, 'anything nearer in the lane ahead: turn on the spot'),
-    # Outer corners: the right wall ends
-    'outer_corner_radius': (0.27, 'radius of the arc round a corner\'s tip, between wide arcs'),
-    'outer_wide_start_deg': (25.0, 'first part of that turn, flown at cruise speed on its widest arc'),
-    'outer_wide_end_deg': (40.0, 'last part of that turn as planned, flown the same way'),
-    'outer_turn_lead': (-0.005, 'start the turn round a wall\'s end this much early (negative: late)'),
-    'outer_wide_tolerance': (0.03, 'the wide start is flown even this far inside the tip\'s arc'),
-    'circling_speed_share': (0.9, 'circling a hit: share of the speed at max_turn_rate (turn headroom)'),
-    'corner_gate': (0.1, 'the corner tip is looked for this near where it is expected'),
-    'corner_bearing_deg': (30.0, 'after a left turn, circle a wall end only this near the right'),
-    'rejoin_ahead': (0.15, 'after a corner, follow a wall seen at least this far ahead ...'),
-    'rejoin_angle_deg': (40.0, '... and within this angle of the heading'),
-    'arc_exit_angle_deg': (5.0, 'an outer corner arc ends this near parallel to the next wall'),
-    # No wall near
-    'search_speed': (0.15, 'forward speed while no wall is near'),
-}
+#: The controller's parameters: defaults, ranges, units and meanings.
+PARAMETERS = FOLLOWER
 
 
 class FollowerParams(object):
     """The controller's parameters, defaults from PARAMETERS, overridable by name.
 
-    An unknown name is an error rather than silently ignored, so that a typo
-    in a YAML file shows up instead of leaving a default in force.
+    An unknown name, a value of the wrong type or one out of range is an
+    error (ParameterError, a ValueError) rather than silently ignored, so
+    that a typo in a configuration shows up instead of leaving a default
+    in force.
     """
 
     def __init__(self, **overrides):
-        unknown = set(overrides) - set(PARAMETERS)
-        if unknown:
-            raise ValueError('unknown follower parameter(s): %s' % ', '.join(sorted(unknown)))
-        for name, (default, _) in PARAMETERS.items():
-            setattr(self, name, type(default)(overrides.get(name, default)))
-
-    @staticmethod
-    def defaults():
-        """name -> default, e.g. for reading them as ROS private parameters."""
-        return dict((name, default) for name, (default, _) in PARAMETERS.items())
+        for name, value in checked(PARAMETERS, overrides).items():
+            setattr(self, name, value)
 
 
 class WallFollower(object):
@@ -136,7 +74,8 @@ class WallFollower(object):
     """
 
     def __init__(self, params=None):
-        self.params = params or FollowerParams()
+        # A copy: reconfigure() changes it in place, for every manoeuvre to read.
+        self.params = copy.copy(params or FollowerParams())
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
         self.inner_corner = InnerCorner(self.params)
@@ -155,6 +94,17 @@ class WallFollower(object):
             SEARCH: self._from_search,
         }
         self._stamp = None
+
+    def reconfigure(self, params):
+        """Go on under new FollowerParams from the next update on.
+
+        Every manoeuvre reads the one params object, so it takes the new
+        values in place; the corner turns are planned again from them (a
+        turn being flown keeps its plan). The state is kept.
+        """
+        vars(self.params).update(vars(params))
+        self.inner_corner.configure()
+        self.outer_corner.configure()
 
     def update(self, view, stamp=None):
         """Advance the state machine on a ScanView; returns the next Command.
@@ -240,6 +190,6 @@ class WallFollower(object):
         return obs.nearest is not None and obs.nearest[0] < self.params.wall_lost_distance
 
     def _beside(self, hit):
-        """True when a (distance, bearing) hit is within corner_bearing_deg of the right."""
+        """True when a (distance, bearing) hit is within corner_bearing of the right."""
         off_right = abs(float(wrap_angle(hit[1] - RIGHT)))
-        return off_right <= math.radians(self.params.corner_bearing_deg)
+        return off_right <= self.params.corner_bearing

@@ -29,14 +29,19 @@ class InnerCorner(Manoeuvre):
 
     def __init__(self, params):
         super().__init__(params)
-        p = params
-        wide_radius = p.cruise_speed / p.max_turn_rate
-        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius,
-                                  math.radians(p.wide_start_deg), math.radians(p.wide_end_deg))
-        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius,
-                                   math.radians(p.short_wide_start_deg),
-                                   math.radians(p.short_wide_end_deg))
+        self.configure()
         self.turn = self.left_turn
+
+    def configure(self):
+        """Plan the turns from the parameters, again after they have changed.
+
+        A turn being flown keeps its plan; the next one is planned anew.
+        """
+        p = self.params
+        wide_radius = p.cruise_speed / p.max_turn_rate
+        self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, p.wide_start, p.wide_end)
+        self.short_turn = LeftTurn(p.short_turn_radius, wide_radius, p.short_wide_start,
+                                   p.short_wide_end)
 
     def plan(self, obs):
         """Choose the turn to fly from here: its wide start ends at most wide_allowance past target.
@@ -52,7 +57,7 @@ class InnerCorner(Manoeuvre):
         p = self.params
         allowed = p.target_distance + p.wide_allowance - from_centre(obs.wall, p.laser_x).distance
         turn = self.left_turn.drifting_at_most(allowed)
-        if turn.wide_start < self.left_turn.wide_start - math.radians(p.short_turn_cut_deg):
+        if turn.wide_start < self.left_turn.wide_start - p.short_turn_cut:
             turn = self.short_turn.drifting_at_most(allowed)
         self.turn = turn
 
@@ -70,7 +75,7 @@ class InnerCorner(Manoeuvre):
     def done(self, obs):
         """True once a straight wall is along the right again and none lies across the way."""
         p = self.params
-        return obs.rejoined(p.rejoin_angle_deg, p.rejoin_ahead) and not self.blocking(obs)
+        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.blocking(obs)
 
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
@@ -105,7 +110,7 @@ class InnerCorner(Manoeuvre):
 
     def blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""
-        steep = math.radians(self.params.ahead_min_angle_deg)
+        steep = self.params.ahead_min_angle
         if obs.ahead is None or not steep <= obs.ahead.angle <= math.pi - steep:
             return False  # none, or one nearly along the way (beside the lane)
         return obs.wall is None or not same_line(obs.ahead, obs.wall)
@@ -120,5 +125,5 @@ class InnerCorner(Manoeuvre):
         A right wall fitted farther off parallel is mid-corner, not the
         wall the one ahead meets.
         """
-        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle_deg) else None
+        wall = obs.wall if along_the_way(obs.wall, self.params.rejoin_angle) else None
         return as_planned(obs.ahead, wall)

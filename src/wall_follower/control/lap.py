@@ -26,6 +26,11 @@ start line keeps its coordinates, which now mark another place.
 import math
 
 from wall_follower.control.scan import wrap_angle
+from wall_follower.params import defaults
+from wall_follower.params.odom_recorder import TABLE
+
+# The defaults of the keyword arguments below: the odom_recorder node's.
+_DEFAULT = defaults(TABLE)
 
 # How far a quaternion's norm may be from 1 (float32 rounding, say) for its yaw to be trusted.
 QUATERNION_TOLERANCE = 0.01
@@ -73,7 +78,7 @@ class JumpDetector(object):
         poses, for jitter in the odometry's stamps.
     """
 
-    def __init__(self, max_speed=0.5, allowance=0.1):
+    def __init__(self, max_speed=_DEFAULT['max_speed'], allowance=_DEFAULT['jump_allowance']):
         if not max_speed > 0.0 or not allowance >= 0.0:
             raise ValueError('max_speed must be positive and allowance not negative, '
                              'got %r and %r' % (max_speed, allowance))
@@ -99,7 +104,7 @@ class PeriodicSampler(object):
     the input, the next sample is simply the next one due.
     """
 
-    def __init__(self, period=1.0):
+    def __init__(self, period=_DEFAULT['sample_period']):
         if period <= 0.0:
             raise ValueError('sample period must be positive, got %r' % period)
         self.period = float(period)
@@ -130,8 +135,10 @@ class LapDetector(object):
         obliquely (the middle of a figure of eight) does not end the lap.
     """
 
-    def __init__(self, start, min_travel=2.0, leave_radius=0.5, close_tolerance=0.3,
-                 max_heading_error=math.radians(60.0)):
+    def __init__(self, start, min_travel=_DEFAULT['min_travel'],
+                 leave_radius=_DEFAULT['leave_radius'],
+                 close_tolerance=_DEFAULT['close_tolerance'],
+                 max_heading_error=_DEFAULT['max_heading_error']):
         self.x0, self.y0, self.yaw0 = start
         self.min_travel = min_travel
         self.leave_radius = leave_radius
@@ -195,7 +202,8 @@ class LapRecorder(object):
     (stamp, distance) and not counted (see the module's docstring).
     """
 
-    def __init__(self, sample_period=1.0, start=None, max_speed=0.5, jump_allowance=0.1,
+    def __init__(self, sample_period=_DEFAULT['sample_period'], start=None,
+                 max_speed=_DEFAULT['max_speed'], jump_allowance=_DEFAULT['jump_allowance'],
                  **lap_params):
         self.start = start
         self.sampler = PeriodicSampler(sample_period)

@@ -31,7 +31,7 @@ class Observation(object):
                                params.laser_x)
         off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
-        sector = hits[(off_right <= math.radians(params.wall_sector_deg)) & near]
+        sector = hits[(off_right <= params.wall_sector) & near]
         self.wall, self.wall_end = right_wall(sector, params)
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]
@@ -41,12 +41,12 @@ class Observation(object):
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
 
-    def rejoined(self, max_angle_deg, min_ahead):
+    def rejoined(self, max_angle, min_ahead):
         """True when a corner is over: a straight wall on the right, nearly parallel.
 
-        Nearly: within max_angle_deg; and seen at least min_ahead ahead of the laser.
+        Nearly: within max_angle (rad); and seen at least min_ahead ahead of the laser.
         """
-        return along_the_way(self.wall, max_angle_deg) and self.wall_ahead > min_ahead
+        return along_the_way(self.wall, max_angle) and self.wall_ahead > min_ahead
 
 
 def unbiased(points, bias):

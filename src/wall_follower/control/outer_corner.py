@@ -32,15 +32,18 @@ class OuterCorner(Manoeuvre):
 
     def __init__(self, params, inner_corner):
         super().__init__(params)
-        p = params
-        self.turn = OuterTurn(p.outer_corner_radius, p.cruise_speed / p.max_turn_rate,
-                              math.radians(p.outer_wide_start_deg),
-                              math.radians(p.outer_wide_end_deg), p.target_distance,
-                              p.outer_wide_tolerance)
+        self.configure()
         self.inner_corner = inner_corner
         self.arc = None
         self.starting_wide = False
         self.ending_wide = False
+
+    def configure(self):
+        """Plan the turn from the parameters, again after they have changed."""
+        p = self.params
+        self.turn = OuterTurn(p.outer_corner_radius, p.cruise_speed / p.max_turn_rate,
+                              p.outer_wide_start, p.outer_wide_end, p.target_distance,
+                              p.outer_wide_tolerance)
 
     def due(self, obs):
         """True unless the wall on the right goes on past where the arc round its end starts."""
@@ -66,8 +69,8 @@ class OuterCorner(Manoeuvre):
         """True on a wall along the right: an arc ends nearly parallel to it, where it was planned
         to; circling a hit has no such end, and takes any wall."""
         p = self.params
-        exit_deg = p.arc_exit_angle_deg if self.arc is not None else p.rejoin_angle_deg
-        return obs.rejoined(exit_deg, p.rejoin_ahead)
+        exit_angle = p.arc_exit_angle if self.arc is not None else p.rejoin_angle
+        return obs.rejoined(exit_angle, p.rejoin_ahead)
 
     def command(self, obs):
         p = self.params
@@ -104,12 +107,12 @@ class OuterCorner(Manoeuvre):
         Without it (the corner comes up in the middle of a left turn, at
         the end of a short wall or a box's side) which way the corner points
         is unknown, and the robot circles the nearest hit instead. A wall
-        fitted far off parallel (beyond rejoin_angle_deg) is not the one
+        fitted far off parallel (beyond rejoin_angle) is not the one
         that ended either: mid-turn onto a box's short side, it is the wall
         the turn left behind, and an arc pinned to its end would circle a
         point nowhere near the corner.
         """
-        if not along_the_way(obs.wall, self.params.rejoin_angle_deg):
+        if not along_the_way(obs.wall, self.params.rejoin_angle):
             return None
         angle = obs.wall.angle
         return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.turn.center,

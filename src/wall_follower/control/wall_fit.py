@@ -26,7 +26,7 @@ def right_wall(points, params):
     a corner, or an obstacle, in the wider sector is not averaged into it.
     """
     bearings = np.arctan2(points[:, 1], points[:, 0])
-    seed = points[np.abs(bearings - RIGHT) <= math.radians(params.wall_seed_deg)]
+    seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
     wall = wall_through(seed, points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
         return None, None
@@ -62,9 +62,9 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
             and abs(first.distance - second.distance) < max_distance)
 
 
-def along_the_way(wall, max_angle_deg):
-    """True for a wall within max_angle_deg of parallel; False for None."""
-    return wall is not None and abs(wall.angle) < math.radians(max_angle_deg)
+def along_the_way(wall, max_angle):
+    """True for a wall within max_angle (rad) of parallel; False for None."""
+    return wall is not None and abs(wall.angle) < max_angle
 
 
 def from_centre(wall, laser_x):

@@ -16,6 +16,9 @@ from wall_follower.control.scan_check import check_scan
 def private_params(defaults):
     """Read each ~name from the parameter server, falling back to defaults[name].
 
+    For the nodes not yet on wall_follower.nodes.parameters (the exercises,
+    the mapper), whose defaults are still their own.
+
     A value of the wrong type is a configuration error: it is reported once,
     by name, and the default is used instead of crashing the node.
     """
@@ -42,16 +45,20 @@ def to_twist(command):
 class VelocityCommander(object):
     """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
 
-    The limits are the private parameters ~max_linear and ~max_angular,
-    defaulting to the real robot's 0.19 m/s and 0.49 rad/s. Once shutdown
-    has begun, every command is a stop: a controller thread still answering
-    a scan must not follow the shutdown's zero Twist with a last move.
+    The limits (m/s, rad/s) are those given, from the node's parameters, or
+    else read from ~max_linear and ~max_angular, defaulting to the real
+    robot's (motion.MAX_LINEAR, MAX_ANGULAR); they may be changed between
+    two commands. Once shutdown has begun, every
+    command is a stop: a controller thread still answering a scan must not
+    follow the shutdown's zero Twist with a last move.
     """
 
-    def __init__(self, topic='cmd_vel'):
-        limits = private_params({'max_linear': MAX_LINEAR, 'max_angular': MAX_ANGULAR})
-        self.max_linear = abs(limits['max_linear'])
-        self.max_angular = abs(limits['max_angular'])
+    def __init__(self, topic='cmd_vel', max_linear=None, max_angular=None):
+        if max_linear is None or max_angular is None:
+            limits = private_params({'max_linear': MAX_LINEAR, 'max_angular': MAX_ANGULAR})
+            max_linear, max_angular = limits['max_linear'], limits['max_angular']
+        self.max_linear = abs(max_linear)
+        self.max_angular = abs(max_angular)
         self._pub = rospy.Publisher(topic, Twist, queue_size=1)
         self._lock = threading.Lock()
         self._halted = False

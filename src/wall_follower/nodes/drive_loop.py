@@ -44,12 +44,16 @@ class DriveLoop(object):
         self.name = name
         self.scan = scan
         self.commander = commander
+        self.tune(rate, keepalive, scan_timeout, ahead_half_width)
+        self.tick = tick
+        self._warned = (None, None)   # (text, ROS time) of the last warning
+
+    def tune(self, rate, keepalive, scan_timeout, ahead_half_width):
+        """Take new settings (as in the constructor); call it between two scans, from answer()."""
         self.period = 1.0 / rate
         self.keepalive = keepalive
         self.scan_timeout = scan_timeout
         self.ahead_half_width = ahead_half_width
-        self.tick = tick
-        self._warned = (None, None)   # (text, ROS time) of the last warning
 
     def run(self, answer, finished=lambda: None, patience=None, on_clock_reset=None):
         """Drive until shutdown or finished() returns something other than None.

@@ -25,7 +25,8 @@ def split_params(params, names):
 
 
 def drive_loop(name, loop_params, tick=None):
-    """A DriveLoop on scan and cmd_vel (clamped to ~max_linear, ~max_angular), from LOOP_DEFAULTS' names."""
+    """A DriveLoop on scan and cmd_vel (clamped to ~max_linear, ~max_angular), from
+    LOOP_DEFAULTS' names."""
     return DriveLoop(name, LatestScan('scan'), VelocityCommander('cmd_vel'),
                      loop_params['rate'], loop_params['keepalive'], loop_params['scan_timeout'],
                      loop_params['ahead_half_width'], tick=tick)

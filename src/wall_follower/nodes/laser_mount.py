@@ -21,11 +21,14 @@ import tf2_ros
 from sensor_msgs.msg import LaserScan
 
 from wall_follower.nodes.common import yaw_of
+from wall_follower.params import defaults
+from wall_follower.params.wall_following import FOLLOWER
 
 __all__ = ['laser_x', 'mount_of', 'choose_laser_x', 'wait_for_transform']
 
 BASE_FRAME = 'base_link'
-BURGER_LASER_X = -0.032
+# The parameter's default: a TurtleBot3 Burger's.
+BURGER_LASER_X = defaults(FOLLOWER)['laser_x']
 # Wall seconds to wait for the first scan (a simulator may start paused) and
 # then for the transform (tf's publishers still connecting).
 SCAN_WAIT = 30.0

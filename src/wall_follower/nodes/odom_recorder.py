@@ -22,7 +22,6 @@ goal status keeps coming, and the next goal starts from fresh odometry.
 Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
-import math
 import threading
 from collections import deque
 
@@ -32,40 +31,13 @@ from actionlib.server_goal_handle import ServerGoalHandle
 from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
+from wall_follower.cfg import OdomRecorderConfig
 from wall_follower.control.lap import LapRecorder, odometry_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
-from wall_follower.nodes.common import init_node, pose_message, pose_of, private_params
-
-DEFAULTS = {
-    'sample_period': 1.0,
-    'min_travel': 2.0,
-    'leave_radius': 0.5,
-    'close_tolerance': 0.3,
-    'max_heading_error': math.radians(60.0),
-    'max_speed': 0.5,
-    'jump_allowance': 0.1,
-    'timeout': 5.0,
-    'rate': 10.0,
-}
-"""Parameters (private, ~name).
-
-sample_period: a point is recorded every this many seconds (ROS time).
-min_travel, leave_radius, close_tolerance, max_heading_error: when a lap
-    counts as closed (m, m, m, rad); see wall_follower.control.lap.LapDetector.
-max_speed, jump_allowance: odometry that moves further than max_speed (m/s)
-    times the time between two poses, plus jump_allowance (m), jumped (a
-    reset) and is not counted; see wall_follower.control.lap.JumpDetector.
-    The default is the fastest TurtleBot3's 0.26 m/s with a wide margin.
-timeout: a goal is aborted when no odometry stamped since the goal has
-    arrived for this long (ROS s), whether at its start or later; a client
-    whose clock is far ahead of this node's (say, wall time against
-    simulated time) is told so this way rather than left waiting.
-rate: how often (Hz, ROS time) the goal loop checks for new points, the
-    lap's end, cancellation and the odometry time-out.
-"""
-
-RECORDING_PARAMS = ('min_travel', 'leave_radius', 'close_tolerance', 'max_heading_error',
-                    'max_speed', 'jump_allowance')
+from wall_follower.nodes.common import init_node, pose_message, pose_of
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params import pick
+from wall_follower.params.odom_recorder import RECORDING, TABLE
 
 # Odometry messages held while the node is busy: a minute and a half at 10 Hz.
 ODOM_QUEUE = 1000
@@ -112,13 +84,8 @@ class OdomRecorderNode(object):
     """Serves record_odom: one recording per goal, fed from the odom topic."""
 
     def __init__(self):
-        self.params = private_params(DEFAULTS)
-        try:
-            self._new_recording(start=None)
-        except ValueError as error:
-            rospy.logerr('record_odom: %s; using the defaults', error)
-            for name in ('sample_period',) + RECORDING_PARAMS:
-                self.params[name] = DEFAULTS[name]
+        self.settings = NodeParameters(TABLE, OdomRecorderConfig)
+        self.params = self.settings.snapshot()   # those in force for the current goal
         self._lock = threading.Lock()
         self._recording = None
         self._frame_id = ''
@@ -260,9 +227,10 @@ class OdomRecorderNode(object):
 
     def _new_recording(self, start):
         return LapRecorder(self.params['sample_period'], start=start,
-                           **{name: self.params[name] for name in RECORDING_PARAMS})
+                           **pick(self.params, RECORDING))
 
     def _execute(self, _goal):
+        self.params = self.settings.snapshot()
         with self._lock:
             self._now()
             recording = self._new_recording(self._recording_start())
@@ -336,7 +304,7 @@ def _path(points, frame_id):
     path.header.stamp = rospy.Time.now()
     path.header.frame_id = frame_id
     path.poses = [PoseStamped(header=path.header, pose=pose_message(x, y, yaw))
-                   for x, y, yaw in points]
+                  for x, y, yaw in points]
     return path
 
 

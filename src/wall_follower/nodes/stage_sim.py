@@ -18,26 +18,8 @@ wall_follower.sim.simulator_choice: real stageros only with its window (no
 -g), since headless it cannot be paced; auto falls back to this simulator,
 stage refuses with a clear error.
 
-Private parameters:
-  ~base_watchdog_timeout (0.2) simulated seconds without cmd_vel before a robot stops
-  ~speedup (1.0)          simulated seconds per wall second, held; <= 0 runs as fast
-                          as the CPU allows. The world file's `speedup` is ignored,
-                          as stageros -g ignores it.
-  ~late_command_share (0.5) at a held speedup, a step waits at most this share of
-                          its period for a moving robot's next cmd_vel; the steady
-                          schedule makes up the delay on the next steps
-  ~laser_profile (stage)  scan convention: stage, lds01, lds02, gazebo or course720
-  ~seed (0)               seed of the laser noise
-  ~pose ('')              'x y yaw_deg' start pose of the first robot instead of the
-                          world file's; reset_positions returns there
-  ~lockstep (false)       before each step, wait for a new cmd_vel from every robot
-                          that is moving, so a busy machine cannot change a run
-  ~lockstep_grace (0.05)  lockstep: wall seconds to wait when no robot is moving
-  ~lockstep_timeout (1.0) lockstep: longest wall wait for a moving robot's command
-  ~quit_time (the world's quit_time) exit after this many simulated seconds (and log the
-                          multiple of real time it ran at); 0 = never
-  ~paused (the world's paused) start without stepping until unpause_physics is
-                          called, e.g. so that a monitor can connect first
+Private parameters: the table in wall_follower.params.stage_sim, read once
+at start. The world file's `speedup` is ignored, as stageros -g ignores it.
 Services beyond stageros, named as Gazebo's: pause_physics and unpause_physics
 (std_srvs/Empty) stop and resume the world steps; nothing is published while paused.
 
@@ -64,7 +46,9 @@ from sensor_msgs.msg import LaserScan
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, EmptyResponse
 
-from wall_follower.nodes.common import private_params, quaternion_z, yaw_of
+from wall_follower.nodes.common import quaternion_z, yaw_of
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params.stage_sim import TABLE
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
@@ -72,18 +56,6 @@ from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choos
 from wall_follower.sim.worldfile import WorldFileError, load_world
 from wall_follower.sim.stage_interface import parse_pose, quit_report, robot_prefix
 from wall_follower.sim.step_pacer import StepPacer
-
-DEFAULTS = {
-    'base_watchdog_timeout': 0.2,
-    'speedup': 1.0,
-    'late_command_share': 0.5,
-    'laser_profile': 'stage',
-    'seed': 0,
-    'pose': '',
-    'lockstep': False,
-    'lockstep_grace': 0.05,
-    'lockstep_timeout': 1.0,
-}
 
 # Outgoing queue of the topics whose every message counts (a recorder sums odometry, a
 # monitor scores ground truth): rospy sends from a thread per connection, which the
@@ -358,15 +330,15 @@ def run_node(world, argv):
     # disable_rostime: the node is the source of /clock and has no use for
     # reading it back; that self-subscription cost 90% of a free-running step.
     rospy.init_node('stage_sim', argv=argv, disable_signals=True, disable_rostime=True)
-    params = private_params(DEFAULTS)
+    params = NodeParameters(TABLE).snapshot()
     if params['laser_profile'] not in PROFILES:
         rospy.logerr('~laser_profile %r is not one of %s', params['laser_profile'],
                      ', '.join(PROFILES))
         return 1
     try:
         node = StageSimNode(world, params,
-                            float(rospy.get_param('~quit_time', world.quit_time)),
-                            bool(rospy.get_param('~paused', bool(world.paused))))
+                            params['quit_time'] if params['quit_time'] >= 0.0 else world.quit_time,
+                            params['paused'] or bool(world.paused))
     except ValueError as error:
         rospy.logerr('~%s', error)
         return 1

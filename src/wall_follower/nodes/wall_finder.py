@@ -11,59 +11,30 @@ import threading
 
 import rospy
 
-from wall_follower.control.finder import DEFAULTS as FINDER_DEFAULTS
+from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import LatestScan, VelocityCommander, init_node, private_params
-from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.nodes.common import init_node
 from wall_follower.nodes.laser_mount import laser_x
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
-
-NODE_DEFAULTS = {
-    'rate': 20.0,
-    'keepalive': 0.15,
-    'timeout': 60.0,
-    'scan_timeout': 1.0,
-    'ahead_half_width': 0.5236,
-}
-"""Parameters of the node itself (the finder's own are finder.DEFAULTS).
-
-rate: how often (Hz) the loop looks at the clock while it waits for scans.
-    Each new scan is answered at once with a new command.
-keepalive: when no new scan has come for this long (ROS s), the last
-    command is sent again, so that a velocity watchdog (stageros stops the
-    robot after 0.2 s without one) does not stop the robot mid-turn. Longer
-    than a scan period, so that a repeat never stands in for an answer.
-timeout: a call that has not succeeded after this long (ROS s) answers false.
-scan_timeout: a call answers false when no usable scan younger than this
-    (ROS s) is available this long after it started, or at any point later on.
-ahead_half_width: never drive forward while no beam within this angle (rad)
-    either side of straight ahead reads a hit or a proven no-return.
-"""
 
 
 class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
-        defaults = dict(FINDER_DEFAULTS)
-        defaults.update(NODE_DEFAULTS)
-        params = private_params(defaults)
-        self.rate = params.pop('rate')
-        self.keepalive = params.pop('keepalive')
-        self.timeout = params.pop('timeout')
-        self.scan_timeout = params.pop('scan_timeout')
-        self.ahead_half_width = params.pop('ahead_half_width')
-        self.finder_params = params
-        self.finder_params['laser_x'] = laser_x()
-        self.commander = VelocityCommander('cmd_vel')
-        # The behaviour never asks for more than the node will send.
-        self.finder_params['max_linear'] = min(params['max_linear'], self.commander.max_linear)
-        self.finder_params['max_angular'] = min(params['max_angular'], self.commander.max_angular)
-        self.loop = DriveLoop('find_wall', LatestScan('scan'), self.commander, self.rate,
-                              self.keepalive, self.scan_timeout, self.ahead_half_width)
+        # ~laser_x if set, else read from tf: before the parameters are copied.
+        self.params = NodeParameters(TABLE, WallFinderConfig, found={'laser_x': laser_x()})
+        values = self.params.snapshot()
+        # max_linear and max_angular are the behaviour's limits and the clamp
+        # alike, so the behaviour never asks for more than the node will send.
+        self.loop = drive_loop('find_wall', values)
+        self.commander = self.loop.commander
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
-        rospy.loginfo('find_wall: ready (timeout %.0f s)', self.timeout)
+        rospy.loginfo('find_wall: ready (timeout %.0f s)', values['timeout'])
 
     def handle(self, _request):
         """One call, one search. rospy serves each caller in its own thread,
@@ -81,10 +52,22 @@ class WallFinderNode(object):
 
     def _search(self):
         """Run one search to its end; True when the wall is on the right."""
-        search = Search(WallFinder(**self.finder_params), self.timeout)
+        values = self.params.snapshot()
+        search = Search(WallFinder(**pick(values, FINDER)), values['timeout'])
+        tune_drive_loop(self.loop, values)
         rospy.loginfo('find_wall: searching for the nearest wall')
-        return self.loop.run(search.answer, search.outcome, patience=self.scan_timeout,
+        return self.loop.run(lambda view, taken: self._answer(search, view, taken),
+                             search.outcome, patience=values['scan_timeout'],
                              on_clock_reset=search.restart) is True
+
+    def _answer(self, search, view, taken):
+        """The search's answer to a scan, under any parameters changed since the last."""
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            search.timeout = values['timeout']
+            search.finder.reconfigure(**pick(values, FINDER))
+        return search.answer(view, taken)
 
 
 class Search(object):

@@ -15,39 +15,15 @@ from actionlib.action_client import CommState
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
+from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import (LatestScan, VelocityCommander, init_node, private_params,
-                                        wait_in_wall_time)
-from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.nodes.common import init_node, wait_in_wall_time
 from wall_follower.nodes.laser_mount import laser_x
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
-
-NODE_DEFAULTS = {
-    'rate': 20.0,
-    'keepalive': 0.15,
-    'scan_timeout': 0.5,
-    'ahead_half_width': 0.5236,
-    'find_wall': True,
-    'record_odom': True,
-    'stop_after_lap': True,
-    'service_wait': 30.0,
-    'feedback_period': 5.0,
-}
-"""Parameters of the node itself (the controller's are follower.PARAMETERS).
-
-rate: how often (Hz) the loop looks at the clock while it waits for scans.
-keepalive: with no new scan for this long (ROS s), send the last command
-    again; longer than a scan period, so a repeat never stands in for an answer.
-scan_timeout: stop the robot when the newest scan is older than this (ROS s).
-ahead_half_width: never drive forward while no beam within this angle (rad)
-    either side of straight ahead reads a hit or a proven no-return.
-find_wall: call the find_wall service before following; do not follow if it fails.
-record_odom: send a goal to the record_odom action before following.
-stop_after_lap: when record_odom reports the lap, stop and end the node.
-service_wait: how long to wait for find_wall and record_odom to appear (wall s).
-feedback_period: log record_odom's distance so far at most this often (ROS s).
-"""
 
 
 LAP_RECORDED = 'lap recorded'
@@ -58,14 +34,13 @@ class WallFollowingNode(object):
     """The follower's ROS wiring: scan in, clamped cmd_vel out, plus the two clients."""
 
     def __init__(self):
-        params = private_params(dict(NODE_DEFAULTS, **FollowerParams.defaults()))
-        self.node = dict((name, params.pop(name)) for name in NODE_DEFAULTS)
-        params['laser_x'] = laser_x()
-        self.controller = WallFollower(FollowerParams(**params))
+        # ~laser_x if set, else read from tf: before the parameters are copied.
+        self.params = NodeParameters(TABLE, WallFollowingConfig, found={'laser_x': laser_x()})
+        values = self.params.snapshot()
+        self.node = pick(values, NODE)
+        self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))
         self._state = None
-        self.loop = DriveLoop('wall_following', LatestScan('scan'), VelocityCommander('cmd_vel'),
-                              self.node['rate'], self.node['keepalive'], self.node['scan_timeout'],
-                              self.node['ahead_half_width'])
+        self.loop = drive_loop('wall_following', values)
         self.ended = None   # LAP_RECORDED or RECORDING_FAILED, set by the action's thread
         self._recorder = None
         self._recording = None
@@ -164,6 +139,11 @@ class WallFollowingNode(object):
         self.loop.run(self._answer, lambda: self.ended, on_clock_reset=self._restart_controller)
 
     def _answer(self, view, taken):
+        values = self.params.take_update()
+        if values is not None:
+            self.node = pick(values, NODE)
+            self.controller.reconfigure(FollowerParams(**pick(values, FOLLOWER)))
+            tune_drive_loop(self.loop, values)
         command = self.controller.update(view, taken)
         if self.controller.state != self._state:
             rospy.loginfo('wall_following: %s -> %s', self._state, self.controller.state)

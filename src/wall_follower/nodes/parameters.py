@@ -1,0 +1,123 @@
+"""Every node's ~parameters, one way: checked at start, tunable live through dynamic_reconfigure.
+
+A node names its table (wall_follower.params.<node>.TABLE) and, to be tuned
+live, the config type generated from it (wall_follower.cfg.<Node>Config):
+
+    params = NodeParameters(TABLE, WallFollowingConfig)
+    ...
+    update = params.take_update()     # in the node's loop, at each scan
+    if update is not None:
+        apply(update)
+
+At start the node's private namespace is read once: a key the table does
+not declare (a misspelling, say) is named in a warning, and a value of
+the wrong type or out of range stops the node with an error naming it,
+instead of a traceback or a default silently left in force. Then the
+dynamic_reconfigure server starts (`rosrun dynamic_reconfigure dynparam
+set /wall_following target_distance 0.22`, or rqt_reconfigure); it calls
+back in its own thread, so a change is only stored here, under a lock, and
+the node picks it up in its own thread at its next scan.
+"""
+import threading
+
+import rospy
+from dynamic_reconfigure.server import Server
+
+from wall_follower.nodes.common import LatestScan, VelocityCommander
+from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.params import ParameterError, checked, names
+
+
+class NodeParameters(object):
+    """The current values of one node's parameters, and the changes made to them since."""
+
+    def __init__(self, table, config_type=None, found=None):
+        """found: name -> value of parameters the node has found out for itself
+        (laser_x from tf, say), in force as if given on the parameter server."""
+        self._table = table
+        self._lock = threading.Lock()
+        self._values = _load(table, found or {})
+        self._version = 0
+        self._taken = 0
+        self.server = None
+        if config_type is not None:
+            self.server = Server(config_type, self._on_reconfigure)
+
+    def snapshot(self):
+        """name -> current value of every parameter (a copy, safe from any thread)."""
+        with self._lock:
+            return dict(self._values)
+
+    def take_update(self):
+        """Every current value if any changed since the last call, else None.
+
+        For one consumer: the node's loop, which applies the values at its
+        next scan.
+        """
+        with self._lock:
+            if self._taken == self._version:
+                return None
+            self._taken = self._version
+            return dict(self._values)
+
+    def _on_reconfigure(self, config, _level):
+        """dynamic_reconfigure's callback (its thread): keep the new values for the node."""
+        try:
+            values = checked(self._table, dict((name, config[name]) for name in names(self._table)))
+        except ParameterError as error:
+            rospy.logerr('%s: reconfiguration refused: %s', rospy.get_name(), error)
+            config.update(self.snapshot())   # the values still in force
+            return config
+        with self._lock:
+            changed = sorted(name for name in values if values[name] != self._values[name])
+            if changed:
+                rospy.loginfo('%s: %s (applied at the next scan)', rospy.get_name(), ', '.join(
+                    '%s %r -> %r' % (name, self._values[name], values[name]) for name in changed))
+                self._values = values
+                self._version += 1
+        return config
+
+
+def _load(table, found):
+    """The node's ~parameters, and those found, checked against its table; exits with an
+    error on bad values.
+
+    Unknown keys only warn: the node may run on a parameter server that
+    also holds settings for another version of it. The values read are
+    written back converted (an int parameter given as 6.0 becomes 6), as
+    dynamic_reconfigure's server reads them from the server again.
+    """
+    given = rospy.get_param('~', {})
+    unknown = sorted(set(given) - set(names(table)))
+    if unknown:
+        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? `rosrun '
+                      'dynamic_reconfigure dynparam get %s` lists the known ones)',
+                      rospy.get_name(), ', '.join('~' + name for name in unknown),
+                      rospy.get_name())
+    known = dict((name, value) for name, value in given.items() if name not in unknown)
+    known.update(found)
+    try:
+        values = checked(table, known)
+    except ParameterError as error:
+        rospy.logfatal('%s: cannot start: %s (check the launch file and config/*.yaml)',
+                       rospy.get_name(), '; '.join('~' + problem for problem in error.problems))
+        raise SystemExit(1)
+    for name in known:
+        rospy.set_param('~' + name, values[name])
+    return values
+
+
+def drive_loop(name, values):
+    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value)."""
+    commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
+    return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
+                     values['scan_timeout'], values['ahead_half_width'])
+
+
+def tune_drive_loop(loop, values):
+    """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout,
+    ahead_half_width, max_linear, max_angular) in force; in the loop's own thread."""
+    loop.tune(values['rate'], values['keepalive'], values['scan_timeout'],
+              values['ahead_half_width'])
+    loop.commander.max_linear = values['max_linear']
+    loop.commander.max_angular = values['max_angular']

@@ -1,0 +1,152 @@
+"""Every node's parameters, declared once: name, default, meaning and range.
+
+Each node has one table here (wall_following.py, wall_finder.py, ...), a
+tuple of Sections of Parameters. That table is the single source of the
+node's defaults, their units and their meanings; everything else derives
+from it:
+
+- cfg/<Node>.cfg, dynamic_reconfigure's generator script, imports the
+  table and declares each parameter from it (declare() below); catkin then
+  generates wall_follower.cfg.<Node>Config, which the node's
+  dynamic_reconfigure server, `dynparam` and rqt_reconfigure read;
+- the pure-logic classes (FollowerParams, WallFinder, LapRecorder) take
+  their defaults from the same table through defaults() and checked(), so
+  that unit tests and the simulator's closed loops build them with no ROS
+  master, no catkin build and no dynamic_reconfigure installed;
+- config/*.yaml and the launch files hold only the values that differ
+  from these defaults, and test/unit/test_parameter_sources.py holds them,
+  the README's tables and the generated modules to this table.
+
+Why a table that the .cfg imports, rather than defaults read back from the
+generated module: the generated module exists only after a catkin build
+and imports dynamic_reconfigure, which the pure logic must not need; a
+plain table serves the build and the logic alike.
+
+Units are SI as REP 103 has them: metres, seconds, radians (and m/s,
+rad/s). Angles are declared in radians even where a round number of
+degrees was meant (math.radians(30.0)), so that the value is exact.
+"""
+import collections
+import numbers
+
+
+class Parameter(collections.namedtuple('Parameter', 'name default description minimum maximum')):
+    """One tunable value. The default fixes its type: bool, int, float or str.
+
+    description: what it means, with its unit in brackets; it is what
+    rqt_reconfigure shows. minimum, maximum: the range a number must lie
+    in (None: unbounded on that side).
+    """
+
+    __slots__ = ()
+
+    def __new__(cls, name, default, description, minimum=None, maximum=None):
+        return super(Parameter, cls).__new__(cls, name, default, description, minimum, maximum)
+
+    @property
+    def kind(self):
+        """Its dynamic_reconfigure type: 'bool', 'int', 'double' or 'str'."""
+        return _kind(self.default)
+
+    def check(self, value):
+        """value converted to this parameter's type; ValueError saying why it cannot be."""
+        kind = self.kind
+        if kind == 'bool':
+            ok = isinstance(value, bool)
+        elif kind == 'int':
+            ok = (isinstance(value, numbers.Integral) and not isinstance(value, bool)) or (
+                isinstance(value, float) and value.is_integer())
+        elif kind == 'double':
+            ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
+        else:
+            ok = isinstance(value, str)
+        if not ok:
+            raise ValueError('%s must be %s, not %r (%s)' % (
+                self.name, _KIND_NAMES[kind], value, type(value).__name__))
+        value = type(self.default)(value)
+        if self.minimum is not None and value < self.minimum:
+            raise ValueError('%s must be at least %r, not %r' % (self.name, self.minimum, value))
+        if self.maximum is not None and value > self.maximum:
+            raise ValueError('%s must be at most %r, not %r' % (self.name, self.maximum, value))
+        return value
+
+
+_KIND_NAMES = {'bool': 'true or false', 'int': 'a whole number', 'double': 'a number',
+               'str': 'a string'}
+
+
+def _kind(default):
+    if isinstance(default, bool):
+        return 'bool'
+    if isinstance(default, int):
+        return 'int'
+    if isinstance(default, float):
+        return 'double'
+    if isinstance(default, str):
+        return 'str'
+    raise TypeError('a parameter default must be bool, int, float or str, not %r' % (default,))
+
+
+Section = collections.namedtuple('Section', 'name parameters')
+"""A group of parameters (a box in rqt_reconfigure); name is an identifier."""
+
+
+class ParameterError(ValueError):
+    """Parameters that cannot be used; problems holds one sentence for each."""
+
+    def __init__(self, problems):
+        ValueError.__init__(self, '; '.join(problems))
+        self.problems = list(problems)
+
+
+def parameters(table):
+    """Every Parameter of a table, in order."""
+    return [parameter for section in table for parameter in section.parameters]
+
+
+def names(table):
+    return [parameter.name for parameter in parameters(table)]
+
+
+def defaults(table):
+    """name -> default of every parameter of a table."""
+    return dict((parameter.name, parameter.default) for parameter in parameters(table))
+
+
+def pick(values, table):
+    """The entries of values (name -> value) that are parameters of table."""
+    return dict((name, values[name]) for name in names(table) if name in values)
+
+
+def checked(table, values):
+    """The defaults of table, overridden by values (name -> value), each checked.
+
+    Raises ParameterError naming every unknown name, every value of the
+    wrong type and every one out of range, so that a misspelling or a
+    slip in a configuration file is reported instead of leaving a default
+    in force.
+    """
+    declared = dict((parameter.name, parameter) for parameter in parameters(table))
+    result = defaults(table)
+    problems = ['unknown parameter %s' % name for name in sorted(set(values) - set(declared))]
+    for name, value in values.items():
+        if name in declared:
+            try:
+                result[name] = declared[name].check(value)
+            except ValueError as error:
+                problems.append(str(error))
+    if problems:
+        raise ParameterError(problems)
+    return result
+
+
+def declare(generator, table):
+    """Add every parameter of a table to a dynamic_reconfigure ParameterGenerator.
+
+    Called by the cfg/*.cfg scripts; one group per section, all at level 0
+    (a node applies every change at its next scan).
+    """
+    for section in table:
+        group = generator.add_group(section.name)
+        for p in section.parameters:
+            group.add(p.name, p.kind, 0, p.description, p.default, p.minimum, p.maximum)

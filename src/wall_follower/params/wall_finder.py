@@ -1,0 +1,66 @@
+"""Parameters of the wall_finder node (the find_wall service): the node's own, then the finder's."""
+import math
+
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.params import Parameter as P, Section
+
+NODE = (
+    Section('node', (
+        P('rate', 20.0, 'how often the loop looks at the clock between scans [Hz]; each new scan '
+          'is answered at once', 1.0, 100.0),
+        P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
+          'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
+        P('timeout', 60.0, 'a call that has not succeeded after this long answers false [s]',
+          0.0, 3600.0),
+        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
+          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
+        P('scan_timeout', 1.0, 'a call answers false when no scan younger than this is '
+          'available this long after it started, or at any point later on [s]', 0.05, 10.0),
+    )),
+)
+"""The node's own parameters (wall_follower.nodes.wall_finder)."""
+
+FINDER = (
+    Section('robot', (
+        P('laser_x', -0.032, 'laser position ahead of the rotation centre [m]; the robot stops '
+          'wall_distance - laser_x from the wall, so that the quarter turn that follows leaves '
+          'the laser at wall_distance', -0.3, 0.3),
+        P('max_linear', MAX_LINEAR, 'speed limit of the behaviour, and the clamp on every command '
+          'sent [m/s]', 0.0, MAX_LINEAR),
+        P('max_angular', MAX_ANGULAR, 'turn rate limit of the behaviour, and the clamp [rad/s]',
+          0.0, MAX_ANGULAR),
+    )),
+    Section('behaviour', (
+        P('wall_distance', 0.30, 'final distance from the laser to the wall on the right [m]',
+          0.12, 1.0),
+        P('min_wall_length', 0.5, 'a straight run of hits this long counts as a wall; shorter '
+          'ones are never chosen [m]', 0.05, 10.0),
+        P('corridor_half_width', 0.15, 'a wall is chosen only if nothing lies within this of '
+          'the straight path to it [m]', 0.0, 1.0),
+        P('end_margin', 0.2, 'walls seen to go on at least this far both sides of the point '
+          'straight across from the robot are preferred [m]', 0.0, 5.0),
+        P('min_linear', 0.02, 'slowest useful speed: the last millimetres are covered at it '
+          '[m/s]', 0.0, 0.19),
+        P('min_angular', 0.03, 'slowest useful turn rate [rad/s]', 0.0, 0.49),
+        P('linear_gain', 2.0, 'speed per metre still to go [1/s]; commands act a scan or two '
+          'late, so a higher gain overshoots', 0.0, 20.0),
+        P('angular_gain', 2.0, 'turn rate per radian still to turn [1/s]', 0.0, 20.0),
+        P('distance_tolerance', 0.01, 'how close to wall_distance counts as there [m]',
+          0.001, 0.2),
+        P('heading_tolerance', 0.0175, 'how near parallel counts as aligned [rad]',
+          0.001, 0.5),
+        P('approach_heading', 0.35, 'start driving once the wall is this near '
+          'straight ahead [rad]', 0.0, math.pi / 2),
+        P('settle_updates', 2, 'scans in a row showing the robot still and aligned before '
+          'success', 1, 100),
+        P('track_angle', 0.44, 'the chosen wall may seem to turn this much '
+          'between scans and still be the same wall [rad] ...', 0.0, math.pi),
+        P('track_distance', 0.2, '... and move this much [m]', 0.0, 5.0),
+        P('lost_updates', 5, 'scans in a row without the chosen wall before choosing again',
+          1, 1000),
+        P('max_reacquire', 3, 'choices again before giving up', 0, 100),
+    )),
+)
+"""The finder's parameters (wall_follower.control.finder.WallFinder)."""
+
+TABLE = NODE + FINDER

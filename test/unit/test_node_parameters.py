@@ -1,0 +1,97 @@
+"""NodeParameters at start and under reconfiguration, on a stand-in parameter server."""
+import pytest
+
+from wall_follower.nodes import parameters
+from wall_follower.params import Parameter, Section
+
+TABLE = (Section('node', (Parameter('target_distance', 0.25, 'wanted distance [m]', 0.1, 1.0),
+                          Parameter('wall_min_points', 6, 'fewest hits', 2, 100),
+                          Parameter('find_wall', True, 'call find_wall first'))),)
+
+
+def _logger(level):
+    def log(self, text, *args):
+        self.logs.append((level, text % args))
+    return log
+
+
+class FakeRospy(object):
+    """The few rospy calls NodeParameters makes, against a dict of private parameters."""
+
+    def __init__(self, private):
+        self.private = dict(private)
+        self.logs = []
+
+    def get_param(self, name, default=None):
+        assert name == '~'
+        return dict(self.private)
+
+    def set_param(self, name, value):
+        self.private[name.lstrip('~')] = value
+
+    @staticmethod
+    def get_name():
+        return '/node'
+
+    loginfo, logwarn = _logger('info'), _logger('warn')
+    logerr, logfatal = _logger('error'), _logger('fatal')
+
+
+@pytest.fixture
+def server(monkeypatch):
+    def start(private):
+        fake = FakeRospy(private)
+        monkeypatch.setattr(parameters, 'rospy', fake)
+        return fake
+    return start
+
+
+def test_values_given_are_used_and_written_back_in_their_type(server):
+    fake = server({'target_distance': 0.3, 'wall_min_points': 7.0})
+    params = parameters.NodeParameters(TABLE)
+    assert params.snapshot() == {'target_distance': 0.3, 'wall_min_points': 7, 'find_wall': True}
+    assert type(fake.private['wall_min_points']) is int
+    assert not fake.logs
+
+
+def test_an_unknown_key_is_named_in_a_warning(server):
+    fake = server({'target_distanse': 0.3})
+    params = parameters.NodeParameters(TABLE)
+    assert params.snapshot()['target_distance'] == 0.25
+    assert [level for level, _ in fake.logs] == ['warn']
+    assert '~target_distanse' in fake.logs[0][1]
+
+
+@pytest.mark.parametrize('name, value, says', [
+    ('target_distance', 'far', '~target_distance must be a number'),
+    ('find_wall', 'yes', '~find_wall must be true or false'),
+    ('target_distance', 5.0, '~target_distance must be at most 1.0'),
+])
+def test_a_bad_value_stops_the_node_with_an_error_naming_it(server, name, value, says):
+    fake = server({name: value})
+    with pytest.raises(SystemExit) as stop:
+        parameters.NodeParameters(TABLE)
+    assert stop.value.code == 1
+    assert fake.logs[-1][0] == 'fatal' and says in fake.logs[-1][1]
+
+
+def test_a_change_is_handed_over_once(server):
+    server({})
+    params = parameters.NodeParameters(TABLE)
+    assert params.take_update() is None
+    config = {'target_distance': 0.22, 'wall_min_points': 6, 'find_wall': True, 'groups': {}}
+    assert params._on_reconfigure(config, 0) is config
+    assert params.take_update()['target_distance'] == 0.22
+    assert params.take_update() is None
+    params._on_reconfigure(dict(config), 0)   # the same values again: nothing new
+    assert params.take_update() is None
+
+
+def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server):
+    fake = server({})
+    params = parameters.NodeParameters(TABLE)
+    config = {'target_distance': 'far', 'wall_min_points': 6, 'find_wall': True, 'groups': {}}
+    answer = params._on_reconfigure(config, 0)
+    assert answer['target_distance'] == 0.25 and 'groups' in answer
+    assert params.take_update() is None
+    assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]

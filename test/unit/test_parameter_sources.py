@@ -1,0 +1,163 @@
+"""Every place a parameter's value is written agrees with its one declaration.
+
+Each node's table in wall_follower.params is the single source of its
+parameters' defaults. These tests hold to it everything else that names a
+value: the modules dynamic_reconfigure generates from cfg/*.cfg, the
+files in config/ (which may hold only what differs from the defaults),
+the <param>s the launch files set (with their <arg> defaults) and the
+README's tables of defaults. Changing any of them alone makes a test fail.
+"""
+import glob
+import importlib
+import logging
+import os
+import re
+
+import pytest
+import rosgraph.names
+import roslaunch.config
+import yaml
+
+from wall_follower.params import ParameterError, checked, defaults, parameters
+from wall_follower.params import odom_recorder, stage_sim, wall_finder, wall_following
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+
+#: node -> (its table, the name of its generated dynamic_reconfigure config, or None)
+NODES = {
+    'wall_following': (wall_following.TABLE, 'WallFollowing'),
+    'wall_finder': (wall_finder.TABLE, 'WallFinder'),
+    'odom_recorder': (odom_recorder.TABLE, 'OdomRecorder'),
+    'stage_sim': (stage_sim.TABLE, None),
+}
+#: the executable of each node in launch files -> its node
+EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
+               'odom_recorder.py': 'odom_recorder', 'stage_sim': 'stage_sim'}
+TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
+
+
+def config_file_values(node):
+    """What config/<node>.yaml sets (nothing, when it holds only comments or is absent)."""
+    path = os.path.join(ROOT, 'config', node + '.yaml')
+    if not os.path.exists(path):
+        return {}
+    with open(path) as stream:
+        return yaml.safe_load(stream) or {}
+
+
+@pytest.mark.parametrize('node', TUNED_LIVE)
+def test_the_generated_config_is_the_table(node):
+    table, config_name = NODES[node]
+    config = importlib.import_module('wall_follower.cfg.%sConfig' % config_name)
+    assert config.defaults == defaults(table)
+    for p in parameters(table):
+        assert config.type[p.name] == p.kind, p.name
+        if p.minimum is not None:
+            assert (config.min[p.name], config.max[p.name]) == (p.minimum, p.maximum), p.name
+
+
+@pytest.mark.parametrize('node', sorted(NODES))
+def test_a_config_file_holds_only_known_values_that_differ_from_the_defaults(node):
+    table = NODES[node][0]
+    values = config_file_values(node)
+    checked(table, values)   # no unknown name, no wrong type, nothing out of range
+    repeated = sorted(name for name, value in values.items() if value == defaults(table)[name])
+    assert not repeated, 'config/%s.yaml repeats the default of %s' % (node, ', '.join(repeated))
+
+
+def launch_parameters(path):
+    """(node, parameter, value) of every parameter a launch file gives the package's nodes.
+
+    roslaunch's own loader reads the file, with every <arg> at its default,
+    its includes and the config files its rosparam elements load.
+    """
+    logging.getLogger('roslaunch').setLevel(logging.WARNING)
+    config = roslaunch.config.load_config_default([path], None, verbose=False)
+    found = []
+    for node in config.nodes:
+        if node.package != 'wall_follower' or node.type not in EXECUTABLES:
+            continue
+        prefix = rosgraph.names.ns_join(node.namespace, node.name) + '/'
+        for key, param in config.params.items():
+            if key.startswith(prefix):
+                found.append((EXECUTABLES[node.type], key[len(prefix):], param.value))
+    return found
+
+
+LAUNCH_FILES = sorted(glob.glob(os.path.join(ROOT, 'launch', '*.launch')))
+
+
+@pytest.mark.parametrize('path', LAUNCH_FILES, ids=[os.path.basename(p) for p in LAUNCH_FILES])
+def test_a_launch_file_gives_the_defaults_or_the_config_files(path):
+    for node, name, value in launch_parameters(path):
+        table = NODES[node][0]
+        expected = dict(defaults(table), **config_file_values(node))
+        assert name in expected, '%s: unknown parameter ~%s of %s' % (path, name, node)
+        assert checked(table, {name: value})[name] == expected[name], (node, name)
+
+
+def test_the_launch_files_set_the_nodes_parameters():
+    """The test above looks at something: the launch files do set parameters."""
+    found = set((node, name) for path in LAUNCH_FILES for node, name, _ in launch_parameters(path))
+    assert {('wall_following', 'laser_x'), ('wall_finder', 'laser_x'),
+            ('stage_sim', 'speedup')} <= found
+
+
+def readme_rows():
+    """(nodes, parameter names, default texts, line) of every README table row with defaults.
+
+    A row names its nodes in its first column and its parameters (`~name`)
+    in its second; its third holds their defaults, comma-separated, in the
+    same order.
+    """
+    rows = []
+    with open(os.path.join(ROOT, 'README.md')) as stream:
+        for line in stream:
+            cells = [cell.strip() for cell in line.strip().strip('|').split('|')]
+            if not line.startswith('|') or len(cells) < 4:
+                continue
+            nodes = re.findall(r'`(\w+)`', cells[0])
+            names = re.findall(r'`~(\w+)`', cells[1])
+            if nodes and names and all(node in NODES for node in nodes):
+                rows.append((nodes, names, [text.strip() for text in cells[2].split(',')], line))
+    return rows
+
+
+SHOWN_DECIMALS = 4
+"""A default that needs more decimals than this (an angle in radians) is shown to this many."""
+
+
+def readme_value_matches(text, default):
+    """True when a README default is the declared one, shown to every decimal it has."""
+    if isinstance(default, bool):
+        return text == str(default).lower()
+    if isinstance(default, str):
+        return text == '"%s"' % default
+    shown = len(text.split('.')[1]) if '.' in text else 0
+    needed = next((d for d in range(SHOWN_DECIMALS) if round(default, d) == default),
+                  SHOWN_DECIMALS)
+    return shown >= needed and round(float(text), shown) == round(default, shown)
+
+
+def test_the_readme_tables_show_the_defaults():
+    rows = readme_rows()
+    assert set(NODES) == set(node for nodes, _, _, _ in rows for node in nodes)
+    for nodes, names, texts, line in rows:
+        assert len(names) == len(texts), line
+        for node in nodes:
+            declared = defaults(NODES[node][0])
+            for name, text in zip(names, texts):
+                assert name in declared, '%s has no ~%s: %s' % (node, name, line)
+                assert readme_value_matches(text, declared[name]), line
+
+
+def test_a_wrong_type_or_a_misspelling_is_refused_by_name():
+    with pytest.raises(ParameterError, match='target_distance must be a number'):
+        checked(wall_following.TABLE, {'target_distance': 'far'})
+    with pytest.raises(ParameterError, match='unknown parameter target_distanse'):
+        checked(wall_following.TABLE, {'target_distanse': 0.3})
+    with pytest.raises(ParameterError, match='find_wall must be true or false'):
+        checked(wall_following.TABLE, {'find_wall': 1})
+    with pytest.raises(ParameterError, match='max_linear must be at most'):
+        checked(wall_following.TABLE, {'max_linear': 0.3})
+    assert checked(wall_following.TABLE, {'wall_min_points': 7.0})['wall_min_points'] == 7
