@@ -17,7 +17,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from rosgraph_msgs.msg import Log
+from rosout_log import RosoutLog
 from sensor_msgs.msg import LaserScan
 from synthetic_scans import unusable_scans, wall_on_the_right
 
@@ -76,18 +76,13 @@ class BadScans(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.logs = []
-        rospy.Subscriber('/rosout', Log, lambda msg: cls.logs.append((msg.name, msg.msg)),
-                         queue_size=1000)
+        cls.log = RosoutLog()
 
     def wait_for(self, predicate, what):
         deadline = time.monotonic() + WAIT_LIMIT
         while not predicate():
             self.assertLess(time.monotonic(), deadline, 'timed out waiting for ' + what)
             time.sleep(0.01)
-
-    def warned(self, node, fragment):
-        return any(name == node and fragment in text for name, text in list(self.logs))
 
     def test_the_follower_stops_on_each_unusable_scan_and_resumes_after(self):
         feed = Feed()
@@ -107,7 +102,7 @@ class BadScans(unittest.TestCase):
                               'more commands on "%s"' % kind)
                 self.assertEqual([v for v, _ in feed.since(first_stop)[:BAD_COMMANDS]],
                                  [0.0] * BAD_COMMANDS, 'drove forward on "%s"' % kind)
-                self.wait_for(lambda: self.warned('/wall_following', NAMED[kind]),
+                self.wait_for(lambda: self.log.said('/wall_following', NAMED[kind]),
                               'a warning naming "%s"' % NAMED[kind])
         feed.scan = wall_on_the_right()
         start = feed.count()
@@ -125,7 +120,7 @@ class BadScans(unittest.TestCase):
         self.assertFalse(found)
         self.assertLess(time.monotonic() - started, WAIT_LIMIT)
         self.assertTrue(all(v == 0.0 and w == 0.0 for v, w in feed.since(0)))
-        self.wait_for(lambda: self.warned('/finder/wall_finder', '360 0.0'),
+        self.wait_for(lambda: self.log.said('/finder/wall_finder', '360 0.0'),
                       'find_wall to say why')
 
 

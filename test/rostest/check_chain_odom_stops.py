@@ -16,9 +16,10 @@ import unittest
 import rospy
 import rostest
 from drive_guard import DriveGuard
+from rosout_log import RosoutLog
 from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Log
 from sim_probe import SimProbe, pose_of
+from waiting import wait_until
 
 from wall_follower.nodes.course_monitor import node_alive
 from wall_follower.msg import OdomRecordActionFeedback
@@ -32,13 +33,12 @@ class ChainOdometryStops(unittest.TestCase):
     def test_the_follower_stops_when_the_recording_is_aborted(self):
         passing = threading.Event()
         passing.set()
-        logs, feedback = [], []
+        feedback = []
+        log = RosoutLog()
         relay = rospy.Publisher('odom_relayed', Odometry, queue_size=100)
         rospy.Subscriber('odom', Odometry,
                          lambda msg: relay.publish(msg) if passing.is_set() else None,
                          queue_size=100)
-        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
-                         queue_size=1000)
         rospy.Subscriber('record_odom/feedback', OdomRecordActionFeedback,
                          lambda msg: feedback.append(msg.feedback.current_total), queue_size=100)
         guard = DriveGuard()
@@ -52,8 +52,9 @@ class ChainOdometryStops(unittest.TestCase):
         while node_alive('/wall_following'):
             self.assertLess(time.monotonic(), deadline, 'wall_following still runs')
             time.sleep(0.1)
-        self.assertTrue(any(name == '/wall_following' and 'record_odom aborted the lap' in text
-                            for name, text in list(logs)), 'wall_following did not say why')
+        self.assertTrue(wait_until(lambda: log.said('/wall_following',
+                                                    'record_odom aborted the lap'), WAIT_LIMIT),
+                        'wall_following did not say why')
         ended = rospy.get_time()
         probe.wait_for(lambda: probe.truths_since(ended + 1.0), '1 s of simulation')
         poses = [pose_of(msg) for msg in probe.truths_since(ended)]

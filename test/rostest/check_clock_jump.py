@@ -15,7 +15,8 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from rosgraph_msgs.msg import Clock, Log
+from rosgraph_msgs.msg import Clock
+from rosout_log import RosoutLog
 from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
 
@@ -65,16 +66,14 @@ class ClockJump(unittest.TestCase):
             time.sleep(0.01)
 
     def test_both_nodes_carry_on_after_time_moves_back(self):
-        logs, commands = [], []
-        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
-                         queue_size=1000)
+        log, commands = RosoutLog(), []
         rospy.Subscriber('cmd_vel', Twist, lambda msg: commands.append(msg.linear.x),
                          queue_size=1000)
         clock = TestClock()
         self.wait_for(lambda: any(v > 0.1 for v in commands), 'the follower to drive')
         clock.jump_to(START - JUMP_BACK)
-        self.wait_for(lambda: any(name == '/wall_following' and 'ROS time moved back' in text
-                                  for name, text in list(logs)), 'the follower to warn')
+        self.wait_for(lambda: log.said('/wall_following', 'ROS time moved back'),
+                      'the follower to warn')
         after = len(commands)
         self.wait_for(lambda: sum(v > 0.1 for v in commands[after:]) >= 10,
                       'the follower to drive on the new clock')
@@ -82,8 +81,7 @@ class ClockJump(unittest.TestCase):
         self.assertTrue(rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound)
         clock.jump_to(START - 2.0 * JUMP_BACK)
         self.assertTrue(rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound)
-        warnings = [text for name, text in list(logs)
-                    if name == '/wall_following' and 'ROS time moved back' in text]
+        warnings = log.lines('/wall_following', 'ROS time moved back')
         self.assertLessEqual(len(warnings), 2, 'one warning per jump')
 
 

@@ -13,8 +13,9 @@ import unittest
 import rospy
 import rostest
 from drive_guard import DriveGuard
-from rosgraph_msgs.msg import Log
+from rosout_log import RosoutLog
 from sim_probe import SimProbe, pose_of
+from waiting import wait_until
 
 from wall_follower.nodes.course_monitor import node_alive
 
@@ -24,9 +25,7 @@ EXIT_LIMIT = 60.0   # wall s
 class NoWall(unittest.TestCase):
 
     def test_find_wall_fails_and_the_follower_exits_without_moving(self):
-        logs = []
-        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
-                         queue_size=1000)
+        log = RosoutLog()
         guard = DriveGuard()
         probe = SimProbe()
         probe.wait_ready()
@@ -35,10 +34,11 @@ class NoWall(unittest.TestCase):
         while node_alive('/wall_following') and time.monotonic() < deadline:
             time.sleep(0.1)
         self.assertFalse(node_alive('/wall_following'), 'wall_following still runs')
-        self.assertTrue(any(name == '/wall_finder' and 'no wall in range' in text
-                            for name, text in logs), 'find_wall did not say why')
-        self.assertTrue(any(name == '/wall_following' and 'found no wall' in text
-                            for name, text in logs), 'wall_following did not say why')
+        # Log lines come on /rosout, a connection of their own: they may come later.
+        self.assertTrue(wait_until(lambda: log.said('/wall_finder', 'no wall in range'),
+                                   EXIT_LIMIT), 'find_wall did not say why')
+        self.assertTrue(wait_until(lambda: log.said('/wall_following', 'found no wall'),
+                                   EXIT_LIMIT), 'wall_following did not say why')
         end = pose_of(probe.latest_truth())
         self.assertLess(math.hypot(end[0] - start[0], end[1] - start[1]), 1e-3)
         guard.assert_safe(self)

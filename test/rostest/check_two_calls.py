@@ -14,7 +14,7 @@ import unittest
 import rospy
 import rostest
 from drive_guard import DriveGuard
-from rosgraph_msgs.msg import Log
+from rosout_log import RosoutLog
 from std_srvs.srv import Empty
 
 from wall_follower.srv import FindWall
@@ -27,9 +27,7 @@ WAIT_LIMIT = 30.0   # wall s
 class TwoCalls(unittest.TestCase):
 
     def test_the_second_call_is_refused_while_the_first_searches(self):
-        logs = []
-        rospy.Subscriber('/rosout', Log, lambda msg: logs.append((msg.name, msg.msg)),
-                         queue_size=1000)
+        log = RosoutLog()
         guard = DriveGuard()
         rospy.wait_for_service('find_wall', WAIT_LIMIT)
         find_wall = rospy.ServiceProxy('find_wall', FindWall)
@@ -37,15 +35,15 @@ class TwoCalls(unittest.TestCase):
         first = threading.Thread(target=lambda: answers.append(find_wall().wallfound))
         first.start()
         deadline = time.monotonic() + WAIT_LIMIT
-        while not any('ROTATE_TO_WALL' in text for _, text in logs):
+        while not log.said('/wall_finder', 'ROTATE_TO_WALL'):
             self.assertLess(time.monotonic(), deadline, 'the first call never searched')
             time.sleep(0.01)
         rospy.ServiceProxy('pause_physics', Empty)()
         self.assertFalse(rospy.ServiceProxy('find_wall', FindWall)().wallfound)
         # The warning goes out on /rosout, a connection of its own: it may come later.
-        self.assertTrue(wait_until(lambda: any(
-            name == '/wall_finder' and 'refused: a search is already running' in text
-            for name, text in list(logs)), WAIT_LIMIT), 'no warning')
+        self.assertTrue(wait_until(
+            lambda: log.said('/wall_finder', 'refused: a search is already running'),
+            WAIT_LIMIT), 'no warning')
         rospy.ServiceProxy('unpause_physics', Empty)()
         first.join(WAIT_LIMIT)
         self.assertEqual(answers, [True])
