@@ -30,7 +30,8 @@ from .kinematics import clamp_velocity, diff_drive_step, normalize_angle
 from .laser_profiles import PROFILES, angle_noise, beam_layout, reach, report
 from .raytrace import stage_beam_angles, stage_ranges
 
-__all__ = ['Simulation', 'Frame', 'RobotFrame', 'Scan', 'Odometry', 'LaserMount', 'RobotState']
+__all__ = ['Simulation', 'Frame', 'RobotFrame', 'Scan', 'Odometry', 'LaserMount', 'RobotState',
+           'DEFAULT_ODOM_ERROR_LIMITS']
 
 Scan = namedtuple('Scan', ['angle_min', 'angle_max', 'angle_increment', 'range_min',
                            'range_max', 'ranges', 'intensities', 'profile'])
@@ -45,6 +46,9 @@ Frame = namedtuple('Frame', ['stamp', 'robots'])
 
 # A body drawn in the grid is hit by other robots' lasers with Stage's default return.
 _ROBOT_RANGER_RETURN = 1.0
+# Stage 4.3's default odometry scale errors (x, y, yaw) lie within +- these:
+# half its INTEGRATION_ERROR_MAX_X, _Y and _A (0.03, 0.03, 0.05).
+DEFAULT_ODOM_ERROR_LIMITS = (0.015, 0.015, 0.025)
 
 
 class RobotState(object):
@@ -245,8 +249,14 @@ def laser_mount(spec):
 
 
 def _random_odom_error(rng):
-    """Stage's default odometry scale errors: uniform in +-1.5 % (x, y) and +-2.5 % (yaw)."""
-    return (rng.uniform(-0.015, 0.015), rng.uniform(-0.015, 0.015), rng.uniform(-0.025, 0.025))
+    """Stage's default odometry scale errors: each uniform within +-DEFAULT_ODOM_ERROR_LIMITS.
+
+    Drawn once per robot, as Stage does for each position model without odom_error.
+    Real Stage seeds its draw from the clock, so every run differs
+    (test/data/stage_reference/stage_odometry.json); here it comes from the
+    simulation's seed, so that a run can be repeated.
+    """
+    return tuple(rng.uniform(-limit, limit) for limit in DEFAULT_ODOM_ERROR_LIMITS)
 
 
 def _dead_reckoning(pose, v, w, dt, error):

@@ -1,0 +1,185 @@
+"""The built-in simulator's localization "odom" against real Stage 4.3's, recorded.
+
+test/data/stage_reference/stage_odometry.json (tools/record_stage_odometry.py)
+holds real stageros driving robots with given odom_error values (in degrees
+and in a unit_angle "radians" world) and without any (a world recorded in two
+runs) through straight, turn-in-place, sideways-commanded and reverse arcs,
+with a /reset_positions between: /odom and ground truth of every update.
+Each run is replayed through `Simulation` on the same world file, read by
+worldfile.py: the recorded velocity of each update in, the odometry and
+ground truth out.
+"""
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+
+from wall_follower.evaluation.stage_odometry import step_scale_errors
+from wall_follower.sim.engine import DEFAULT_ODOM_ERROR_LIMITS, Simulation, _dead_reckoning
+from wall_follower.sim.kinematics import diff_drive_step
+from wall_follower.sim.worldfile import load_world
+
+DATA = os.path.join(os.path.dirname(__file__), '..', 'data', 'stage_reference')
+GIVEN = ('degrees', 'radians')
+DEFAULT = ('default-1', 'default-2')
+# The recording rounds poses to 12 decimals; the replay's float arithmetic is
+# Stage's, so nothing larger than that rounding may remain.
+TOLERANCE = 2e-12
+# Errors fitted from 12-decimal poses: one update's step is 0.01-0.05, so its
+# ratio to the commanded step is known to about 1e-10.
+FIT_TOLERANCE = 1e-9
+
+
+@pytest.fixture(scope='module')
+def reference():
+    with open(os.path.join(DATA, 'stage_odometry.json')) as stream:
+        return json.load(stream)
+
+
+def _run(reference, name):
+    return next(run for run in reference['runs'] if run['name'] == name)
+
+
+def _world(run):
+    return load_world(os.path.join(DATA, run['world']))
+
+
+def _replay(run, odom_errors=None):
+    """Run the recorded updates through the built-in simulator: per robot, the
+    (odom rows, ground-truth rows) at the recorded stamps.
+
+    odom_errors, if given, replace the errors the simulator took for its robots.
+    """
+    sim = Simulation(_world(run))
+    if odom_errors is not None:
+        for robot, error in zip(sim.robots, odom_errors):
+            robot.odom_error = error
+    dt = sim.dt
+    while sim.time < run['stamps'][0] - 1.5 * dt:
+        sim.step(with_scans=False)
+    replayed = [([], []) for _ in sim.robots]
+    for index, stamp in enumerate(run['stamps']):
+        if stamp == run['reset']['first_stamp_at_start']:
+            sim.reset()
+        for number, robot in enumerate(run['robots']):
+            vx, _, wz = robot['odom'][index][3:]
+            sim.set_command(number, vx, wz)
+        frame = sim.step(with_scans=False)
+        assert frame.stamp == pytest.approx(stamp)
+        for (odom, gt), robot in zip(replayed, frame.robots):
+            odom.append(list(robot.odom))
+            gt.append(list(robot.ground_truth[:3]))
+    return replayed
+
+
+def _largest_difference(rows, recorded):
+    """The largest |difference| of x, y and (wrapped) yaw over all rows."""
+    mine, theirs = np.asarray(rows)[:, :3], np.asarray(recorded)[:, :3]
+    position = np.max(np.abs(mine[:, :2] - theirs[:, :2]))
+    heading = np.max(np.abs(np.remainder(mine[:, 2] - theirs[:, 2] + math.pi, 2 * math.pi)
+                            - math.pi))
+    return max(position, heading)
+
+
+@pytest.mark.parametrize('name', GIVEN)
+def test_given_odom_error_is_reproduced_at_every_update(reference, name):
+    run = _run(reference, name)
+    for (odom, gt), robot in zip(_replay(run), run['robots']):
+        assert _largest_difference(odom, robot['odom']) <= TOLERANCE, robot['name']
+        assert np.array_equal(np.asarray(odom)[:, 3:], np.asarray(robot['odom'])[:, 3:])
+        assert _largest_difference(gt, robot['gt']) <= TOLERANCE, robot['name']
+
+
+@pytest.mark.parametrize('name', GIVEN)
+def test_stage_scales_by_the_given_errors_every_update(reference, name):
+    # Used as given, not as the bound of a draw: each update's step is scaled by
+    # exactly the value in the world file, with the angle in the world's unit.
+    run = _run(reference, name)
+    for spec, robot in zip(_world(run).robots, run['robots']):
+        ex, ea = step_scale_errors(robot['odom'], reference['interval_sim'])
+        assert len(ex) > 50 and len(ea) > 50
+        assert np.abs(ex - spec.odom_error[0]).max() < FIT_TOLERANCE, robot['name']
+        assert np.abs(ea - spec.odom_error[2]).max() < FIT_TOLERANCE, robot['name']
+
+
+def test_odom_errors_angle_is_in_the_worlds_angle_unit(reference):
+    # odom_degrees' "big" gives 10: a turn scaled by 1 + 10 degrees, not 1 + 10;
+    # odom_radians' "plus" gives 0.2: scaled by 1.2, not 1 + 0.2 degrees.
+    for name, robot, scale in (('degrees', 0, math.radians(10.0)), ('radians', 0, 0.2)):
+        odom = _run(reference, name)['robots'][robot]['odom']
+        _, ea = step_scale_errors(odom, reference['interval_sim'])
+        assert np.median(ea) == pytest.approx(scale, abs=FIT_TOLERANCE)
+
+
+def test_a_diff_drive_robot_never_uses_the_y_error(reference):
+    # "negative" has odom_error y 0.2 and was commanded sideways (vy 0.1) in the
+    # arc: Stage's diff drive drops vy, so neither its pose nor its odometry moves
+    # sideways and the y error never shows.
+    run = _run(reference, 'degrees')
+    assert any(row[2] != 0.0 for row in run['cmd_log'])
+    robot = next(robot for robot in run['robots'] if robot['name'] == 'negative')
+    assert _world(run).robots[1].odom_error[1] == 0.2
+    odom = np.asarray(robot['odom'])
+    assert np.all(odom[:, 4] == 0.0)
+    step = np.diff(odom[:, :2], axis=0)
+    sideways = -step[:, 0] * np.sin(odom[1:, 2]) + step[:, 1] * np.cos(odom[1:, 2])
+    assert np.abs(sideways).max() < 1e-11
+
+
+def _integrate(odom, dt, step):
+    pose, poses = (0.0, 0.0, 0.0), []
+    for row in odom:
+        pose = step(pose, row[3], row[5], dt)
+        poses.append(pose)
+    return poses
+
+
+def test_stage_turns_before_it_advances_the_odometry(reference):
+    # "zero" has no error at all: its odometry is the velocities integrated
+    # turn first, not advance first as the true pose moves.
+    run = _run(reference, 'degrees')
+    odom = next(robot for robot in run['robots'] if robot['name'] == 'zero')['odom']
+    dt = reference['interval_sim']
+    turn_first = _integrate(odom, dt, lambda p, v, w, t: _dead_reckoning(p, v, w, t, (0, 0, 0)))
+    advance_first = _integrate(odom, dt, diff_drive_step)
+    assert _largest_difference(turn_first, odom) <= TOLERANCE
+    assert _largest_difference(advance_first, odom) > 1e-3
+
+
+def _default_errors(reference):
+    """{(run, robot): (ex, ea)} fitted from the runs without odom_error."""
+    fitted = {}
+    for name in DEFAULT:
+        for robot in _run(reference, name)['robots']:
+            ex, ea = step_scale_errors(robot['odom'], reference['interval_sim'])
+            assert ex.max() - ex.min() < FIT_TOLERANCE and ea.max() - ea.min() < FIT_TOLERANCE
+            fitted[name, robot['name']] = (float(np.median(ex)), float(np.median(ea)))
+    return fitted
+
+
+def test_without_odom_error_stage_draws_within_the_builtin_limits(reference):
+    fitted = _default_errors(reference)
+    limit_x, _, limit_a = DEFAULT_ODOM_ERROR_LIMITS
+    for key, (ex, ea) in fitted.items():
+        assert abs(ex) <= limit_x and abs(ea) <= limit_a, key
+    # One draw per robot, another for each run: no two alike.
+    assert len(set(fitted.values())) == len(fitted)
+
+
+def test_builtin_draws_one_error_per_robot(reference):
+    sim = Simulation(_world(_run(reference, 'default-1')))
+    first, second = (robot.odom_error for robot in sim.robots)
+    assert first != second
+
+
+@pytest.mark.parametrize('name', DEFAULT)
+def test_runs_without_odom_error_are_reproduced_with_their_drawn_errors(reference, name):
+    # Each robot keeps its one draw for the whole run, across the reset too.
+    run = _run(reference, name)
+    fitted = _default_errors(reference)
+    errors = [(fitted[name, robot['name']][0], 0.0, fitted[name, robot['name']][1])
+              for robot in run['robots']]
+    for (odom, _), robot in zip(_replay(run, errors), run['robots']):
+        assert _largest_difference(odom, robot['odom']) <= 1e-9, robot['name']
