@@ -15,7 +15,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from wall_follower.sim.engine import Simulation
+from wall_follower.sim.engine import DEFAULT_ODOM_ERROR_LIMITS, Simulation
 from wall_follower.sim.worldfile import load_world
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
@@ -110,7 +110,9 @@ def test_reset_and_teleport_move_the_robot_but_not_its_dead_reckoning(tmp_path):
 def test_without_odom_error_stage_draws_one_within_half_its_maxima(tmp_path):
     world = _world(tmp_path, 'localization "odom"')
     errors = np.array([Simulation(world, seed=seed).robots[0].odom_error for seed in range(50)])
-    assert np.all(np.abs(errors) <= [0.015, 0.015, 0.025])
+    assert DEFAULT_ODOM_ERROR_LIMITS == (0.015, 0.015, 0.025)
+    assert np.all(np.abs(errors) <= DEFAULT_ODOM_ERROR_LIMITS)
+    assert np.all(np.abs(errors).max(axis=0) > 0.8 * np.array(DEFAULT_ODOM_ERROR_LIMITS))
     assert np.all(errors.std(axis=0) > 0.003)
 
 
