@@ -205,8 +205,8 @@ def document(runs):
         'schema': 'stage_odometry/1',
         'description': 'Real Stage localization "odom": every robot of each world driven '
                        'through the same plan; /odom and /base_pose_ground_truth per update.',
-        'versions': 'Stage 4.3.0 and stage_ros 1.8.0 as in README.md (release build), '
-                    'GUI under xvfb-run, speedup 1',
+        'versions': 'Stage 4.3.0 (rtv/Stage 281ed731) and stage_ros 1.8.0, built by '
+                    'tools/build-real-stage; stageros with its window under xvfb-run, speedup 1',
         'capture': 'cmd_vel published to every robot on each /clock tick (cmd_log rows: '
                    'the clock seen, vx, vy, wz); a command takes effect in the next update. '
                    'reset: /reset_positions called while all stood still; '
