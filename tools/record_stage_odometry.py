@@ -4,8 +4,9 @@
 Runs real stageros (its window under `xvfb-run -a`, so that the world's
 `speedup 1` paces it and a command streamed on each /clock tick drives each
 update) on the odometry worlds of test/data/stage_reference, drives every
-robot of a world through the same plan (straight, turn in place, an arc
-commanded with a sideways velocity too, /reset_positions, a reverse arc),
+robot of a world through the same plan (straight, turn in place, a command
+past the default velocity bounds, an arc commanded with a sideways velocity
+too, /reset_positions, a reverse arc),
 and writes /odom and /base_pose_ground_truth of every update to
 test/data/stage_reference/stage_odometry.json. test/unit/
 test_stage_odometry_reference.py replays it through the built-in simulator.
@@ -56,6 +57,8 @@ PLAN = (('still', 0.0, 0.0, 0.0, 0.3),
         ('straight', 0.15, 0.0, 0.0, 2.0),
         ('still', 0.0, 0.0, 0.0, 0.5),
         ('turn in place', 0.0, 0.0, 0.4, 2.0),
+        ('still', 0.0, 0.0, 0.0, 0.5),
+        ('past the velocity bounds', 1.5, 0.0, 2.0, 0.5),
         ('still', 0.0, 0.0, 0.0, 0.5),
         ('arc, commanded sideways too', 0.12, 0.1, -0.3, 3.0),
         ('still', 0.0, 0.0, 0.0, 0.5),

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from wall_follower.sim.grid import footprint_collides, footprint_corners
+from wall_follower.sim.grid import footprint_corners, footprints_overlap
 
 # Corners of a cell's square, in cells from its lower-left corner, in order round it.
 _SQUARE = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
@@ -19,16 +19,20 @@ def footprint_clearance(grid, spec, pose):
 
     0 on contact or overlap; inf on a grid without occupied cells. Between two convex
     polygons apart, the smallest distance is from a corner of one to an edge of the other.
+    Plain geometry, unlike the simulator's collisions, which are Stage's cell for cell.
     """
-    if footprint_collides(grid, spec, pose):
-        return 0.0
     rows, cols = np.nonzero(grid.occupied)
     if not len(rows):
         return float('inf')
-    corners = footprint_corners(spec, pose)[None]
+    corners = footprint_corners(spec, pose)
     squares = (np.stack([cols + grid.ix0, rows + grid.iy0], axis=1)[:, None, :] + _SQUARE) * \
         grid.resolution
-    return float(min(_corner_to_edge(corners, squares), _corner_to_edge(squares, corners)))
+    near = np.all((squares.max(axis=1) >= corners.min(axis=0)) &
+                  (squares.min(axis=1) <= corners.max(axis=0)), axis=1)
+    if any(footprints_overlap(corners, square) for square in squares[near]):
+        return 0.0
+    return float(min(_corner_to_edge(corners[None], squares),
+                     _corner_to_edge(squares, corners[None])))
 
 
 def _corner_to_edge(points, polygons):

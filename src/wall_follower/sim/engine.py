@@ -7,9 +7,10 @@ stage_ros 1.8, see the stage-reference README):
 2. the command in force becomes the velocity (clamped to velocity_bounds), and
    odometry reports the pose before the move with that velocity as its twist
    (with localization "odom": Stage's dead reckoning of that velocity instead);
-3. each robot takes one Euler step; a step whose footprint would overlap an
-   obstacle (or another robot) is rejected: the robot keeps its last free pose
-   and is stalled;
+3. each robot takes one Euler step; a step whose body outline, drawn into
+   Stage's cells, would share a cell with an obstacle (or whose footprint would
+   overlap another robot's) is rejected: the robot keeps its last free pose and
+   is stalled;
 4. ground truth is the new pose, its twist the world-frame finite difference
    from the last published ground truth;
 5. the clock advances by interval_sim, then the watchdog zeroes the command of

@@ -141,22 +141,6 @@ def footprint_cells(spec, pose, ppm):
     return line_cells(px, py, np.roll(px, -1), np.roll(py, -1))
 
 
-def _nearby_cells(grid, corners, reach):
-    """Lower-left corners of occupied cells within `reach` of the corners' bounding box."""
-    lo = corners.min(axis=0) - reach
-    hi = corners.max(axis=0) + reach
-    rows0, cols0 = grid.world_to_cell(lo[0], lo[1])
-    rows1, cols1 = grid.world_to_cell(hi[0], hi[1])
-    nrows, ncols = grid.occupied.shape
-    r0, r1 = max(int(rows0), 0), min(int(rows1) + 1, nrows)
-    c0, c1 = max(int(cols0), 0), min(int(cols1) + 1, ncols)
-    if r0 >= r1 or c0 >= c1:
-        return np.zeros((0, 2))
-    rows, cols = np.nonzero(grid.occupied[r0:r1, c0:c1])
-    return np.stack([(cols + c0 + grid.ix0) * grid.resolution,
-                     (rows + r0 + grid.iy0) * grid.resolution], axis=1)
-
-
 def _rect_frame(corners):
     """Centre, unit axes and half extents of a rectangle given by its 4 corners in order."""
     centre = corners.mean(axis=0)
@@ -167,30 +151,14 @@ def _rect_frame(corners):
     return centre, axes, half
 
 
-def _squares_overlap(corners, cells, size):
-    """Per cell square (lower-left `cells`, side `size`): does it overlap the rectangle?
-
-    Separating-axis test on the world axes and the rectangle's axes; touching is no overlap.
-    """
-    centre, axes, half = _rect_frame(corners)
-    lo = corners.min(axis=0)
-    hi = corners.max(axis=0)
-    sep_world = ((cells[:, 0] >= hi[0]) | (cells[:, 0] + size <= lo[0]) |
-                 (cells[:, 1] >= hi[1]) | (cells[:, 1] + size <= lo[1]))
-    square_centres = cells + size / 2.0
-    rel = square_centres - centre
-    # projection radius of an axis-aligned square of side `size` on a unit axis
-    radius = (size / 2.0) * (np.abs(axes[:, 0]) + np.abs(axes[:, 1]))
-    dist = np.abs(rel.dot(axes.T))
-    sep_rect = np.any(dist >= half + radius, axis=1)
-    return ~(sep_world | sep_rect)
-
-
 def footprint_collides(grid, spec, pose):
-    """True when the body box at `pose` overlaps any occupied cell's square."""
-    corners = footprint_corners(spec, pose)
-    cells = _nearby_cells(grid, corners, grid.resolution)
-    return bool(len(cells)) and bool(np.any(_squares_overlap(corners, cells, grid.resolution)))
+    """True when the body outline at `pose`, drawn into Stage's cells, shares a cell
+    with an obstacle: Stage's Block::TestCollision, cell for cell."""
+    xs, ys = footprint_cells(spec, pose, grid.ppm)
+    rows, cols = ys - grid.iy0, xs - grid.ix0
+    nrows, ncols = grid.occupied.shape
+    inside = (rows >= 0) & (rows < nrows) & (cols >= 0) & (cols < ncols)
+    return bool(np.any(grid.occupied[rows[inside], cols[inside]]))
 
 
 def footprints_overlap(corners_a, corners_b):
