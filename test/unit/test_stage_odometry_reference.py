@@ -3,11 +3,11 @@
 test/data/stage_reference/stage_odometry.json (tools/record_stage_odometry.py)
 holds real stageros driving robots with given odom_error values (in degrees
 and in a unit_angle "radians" world) and without any (a world recorded in two
-runs) through straight, turn-in-place, sideways-commanded and reverse arcs,
-with a /reset_positions between: /odom and ground truth of every update.
-Each run is replayed through `Simulation` on the same world file, read by
-worldfile.py: the recorded velocity of each update in, the odometry and
-ground truth out.
+runs) through straight, turn-in-place, past-the-bounds, sideways-commanded and
+reverse arcs, with a /reset_positions between, one of them into a post: /odom
+and ground truth of every update. Each run is replayed through `Simulation` on
+the same world file, read by worldfile.py: the recorded commands in, the
+odometry and ground truth out.
 """
 import json
 import math
@@ -148,6 +148,19 @@ def test_a_diff_drive_robot_never_uses_the_y_error(reference):
     step = np.diff(odom[:, :2], axis=0)
     sideways = -step[:, 0] * np.sin(odom[1:, 2]) + step[:, 1] * np.cos(odom[1:, 2])
     assert np.abs(sideways).max() < 1e-11
+
+
+@pytest.mark.parametrize('name', GIVEN)
+def test_odometry_integrates_the_velocity_clamped_to_the_default_bounds(reference, name):
+    # Commanded 1.5 m/s and 2 rad/s; Stage's default velocity_bounds are 1 m/s and
+    # pi/2 rad/s, whatever the world's angle unit.
+    run = _run(reference, name)
+    commanded = np.asarray(run['cmd_log'])
+    assert commanded[:, 1].max() == 1.5 and commanded[:, 3].max() == 2.0
+    for robot in run['robots']:
+        odom = np.asarray(robot['odom'])
+        assert odom[:, 3].max() == pytest.approx(1.0, abs=TOLERANCE)
+        assert odom[:, 5].max() == pytest.approx(math.pi / 2, abs=TOLERANCE)
 
 
 def _integrate(odom, dt, step):
