@@ -7,9 +7,10 @@ far, and the robot only drifts off the old wall by wide_radius * (1 - cos
 wide_start), a few centimetres at the defaults. At the end the old wall
 is behind, and the last degrees only come nearer the new one (by as
 little, over wide_end). Only the middle, where the robot passes the
-corner itself, needs the tight arc that keeps both walls within the band; as time is lost in
-proportion to how much tighter than the wide arc it is, a short near
-pivot there costs less than a longer arc of middling radius.
+corner itself, needs the tight arc that keeps both walls within the
+band; as time is lost in proportion to how much tighter than the wide arc
+it is, a short near pivot there costs less than a longer arc of middling
+radius.
 
 A turn is planned by the angle still to turn, which is the angle of the
 wall ahead: that is what each scan measures again. gap(angle) is how much
