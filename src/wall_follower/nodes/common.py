@@ -136,6 +136,15 @@ class LatestScan(object):
         with self._arrived:
             self._arrived.notify_all()
 
+    @property
+    def topic(self):
+        """The scan topic's resolved name."""
+        return self._sub.resolved_name
+
+    def taken(self):
+        """When the newest scan was taken (rospy.Time), usable or not; None before any."""
+        return self._latest[2]
+
     def forget(self):
         """Drop the scan held, e.g. one that arrived on a clock that has since moved back."""
         self._latest = (None, None, None)
@@ -156,10 +165,10 @@ class LatestScan(object):
         else None for both and the problem, in words."""
         check, arrival, taken = self._latest
         if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
-            problem = 'no scan on %s for %.1f s' % (self._sub.resolved_name, timeout)
+            problem = 'no scan on %s for %.1f s' % (self.topic, timeout)
             return Reading(check, None, None, problem)
         if check.view is None:
-            problem = 'the scan on %s is unusable: %s' % (self._sub.resolved_name, check.problem)
+            problem = 'the scan on %s is unusable: %s' % (self.topic, check.problem)
             return Reading(check, None, None, problem)
         return Reading(check, check.view, taken.to_sec(), None)
 
