@@ -29,6 +29,7 @@ from rosgraph_msgs.msg import Clock, Log
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import wait_in_wall_time
 
+from rosout_log import RosoutLog
 from waiting import wait_until
 
 OLD_CLOCK = 1000.0      # simulated seconds before the jump
@@ -40,6 +41,7 @@ STEP = 0.1              # simulated seconds per world step: a /clock and an odom
 WALL_STEP = 0.02        # wall seconds per step: 5 times real time
 SPEED = 0.2             # m/s along x
 WAIT_LIMIT = 20.0       # wall seconds for anything to happen
+RECORDER = '/odom_recorder'
 # Goal status messages to see from the recorder on the new clock, with no goal
 # changing state meanwhile: only its periodic timer sends them then.
 STATUS_COUNT = 10
@@ -107,18 +109,16 @@ class TimeMovesBack(unittest.TestCase):
 
     def setUp(self):
         self.statuses = []
-        self.warnings = []
+        self.log = RosoutLog()
         rospy.Subscriber('record_odom/status', GoalStatusArray, self.statuses.append)
-        rospy.Subscriber('/rosout', Log, self._on_log)
         self.world = World()
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
 
     def tearDown(self):
         self.world.stop()
 
-    def _on_log(self, msg):
-        if msg.level >= Log.WARN and 'odom_recorder' in msg.name:
-            self.warnings.append(msg.msg)
+    def warnings(self):
+        return self.log.lines(RECORDER, '', Log.WARN)
 
     def points(self, feedback, count):
         return wait_until(lambda: len(feedback) >= count, WAIT_LIMIT)
@@ -173,8 +173,8 @@ class TimeMovesBack(unittest.TestCase):
         self.assert_records_afresh(OLD_CLOCK, NEW_Y)
         # One throttled warning for both kinds: whichever comes first.
         self.assertTrue(wait_until(lambda: any('not finite' in w or 'not a unit quaternion' in w
-                                               for w in self.warnings), WAIT_LIMIT),
-                        'no warning about malformed odometry: %s' % self.warnings)
+                                               for w in self.warnings()), WAIT_LIMIT),
+                        'no warning about malformed odometry: %s' % self.warnings())
 
         before = rospy.get_time()
         self.world.restart(LAST_CLOCK, LAST_Y)
