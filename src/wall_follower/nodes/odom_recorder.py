@@ -23,6 +23,7 @@ Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
 import threading
+import time
 from collections import deque
 
 import actionlib
@@ -89,7 +90,9 @@ class OdomRecorderNode(object):
         self._lock = threading.Lock()
         self._recording = None
         self._frame_id = ''
+        # ROS time and wall time (monotonic) at which the recording last took a pose.
         self._last_odom_time = None
+        self._last_odom_wall = None
         # The latest ROS time read, to see it move backwards.
         self._latest_time = None
         # How far (s) ROS time moved back under the current recording, if it did.
@@ -172,7 +175,7 @@ class OdomRecorderNode(object):
                           'bag looped?); forgetting the odometry heard before%s', back,
                           '; the goal in progress ends' if self._recording is not None else '')
             self._recent.clear()
-            self._last_odom_time = None
+            self._last_odom_time = self._last_odom_wall = None
             self._goal_on_old_clock = True
             if self._recording is not None:
                 self._time_moved_back = back
@@ -192,6 +195,7 @@ class OdomRecorderNode(object):
         if not recording.takes(stamp):
             return
         self._last_odom_time = self._latest_time
+        self._last_odom_wall = time.monotonic()
         jumps = len(recording.jumps)
         recording.add(stamp, *pose)
         if len(recording.jumps) > jumps:
@@ -252,7 +256,7 @@ class OdomRecorderNode(object):
 
     def _serve(self, recording):
         """Publish progress until the goal ends, and end it the way it ended."""
-        started = rospy.get_time()
+        started, started_wall = rospy.get_time(), time.monotonic()
         published = 0
         # reset: ROS time moving back is seen and answered below, not raised here.
         rate = rospy.Rate(self.params['rate'], reset=True)
@@ -263,7 +267,7 @@ class OdomRecorderNode(object):
                 points = list(recording.points)
                 total = recording.total_distance
                 closed = recording.closed
-                last_odom = self._last_odom_time
+                last_odom, last_odom_wall = self._last_odom_time, self._last_odom_wall
                 frame_id = self._frame_id
             if len(points) > published:
                 published = len(points)
@@ -284,14 +288,22 @@ class OdomRecorderNode(object):
                               len(points), total)
                 self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
                 return
-            silent_since = started if last_odom is None or last_odom < started else last_odom
-            if now - silent_since > self.params['timeout']:
+            # Silent in wall time too: a simulation running faster than real time can
+            # outrun this node's odometry queue for a few simulated seconds.
+            silent = min(_silence(now, started, last_odom),
+                         _silence(time.monotonic(), started_wall, last_odom_wall))
+            if silent > self.params['timeout']:
                 text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
                     rospy.resolve_name('odom'), recording.start, self.params['timeout'])
                 rospy.logerr('record_odom: aborted: %s', text)
                 self.server.set_aborted(_result(points), text)
                 return
             rate.sleep()
+
+
+def _silence(now, started, last):
+    """Seconds since the pose last taken at `last`, or since the goal `started` without one."""
+    return now - (started if last is None or last < started else last)
 
 
 def _result(points):
