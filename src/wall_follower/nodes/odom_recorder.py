@@ -24,7 +24,7 @@ frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
 import threading
 import time
-from collections import deque
+from collections import deque, namedtuple
 
 import actionlib
 import rospy
@@ -263,42 +263,48 @@ class OdomRecorderNode(object):
         while True:
             with self._lock:
                 now = self._now()
-                time_moved_back = self._time_moved_back
-                points = list(recording.points)
-                total = recording.total_distance
-                closed = recording.closed
-                last_odom, last_odom_wall = self._last_odom_time, self._last_odom_wall
-                frame_id = self._frame_id
-            if len(points) > published:
-                published = len(points)
-                self.server.publish_feedback(OdomRecordFeedback(current_total=total))
-                self.path_pub.publish(_path(points, frame_id))
-            if closed:
-                rospy.loginfo('record_odom: lap complete: %d points, %.2f m', len(points), total)
-                self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
-                return
-            if time_moved_back is not None:
-                text = ('ROS time moved back %.2f s: the recording is on the old clock; '
-                        'send a new goal' % time_moved_back)
-                rospy.loginfo('record_odom: aborted: %s', text)  # warned of already
-                self.server.set_aborted(_result(points), text)
-                return
-            if self.server.is_preempt_requested():
-                rospy.loginfo('record_odom: cancelled after %d points, %.2f m',
-                              len(points), total)
-                self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
-                return
-            # Silent in wall time too: a simulation running faster than real time can
-            # outrun this node's odometry queue for a few simulated seconds.
-            silent = min(_silence(now, started, last_odom),
-                         _silence(time.monotonic(), started_wall, last_odom_wall))
-            if silent > self.params['timeout']:
-                text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
-                    rospy.resolve_name('odom'), recording.start, self.params['timeout'])
-                rospy.logerr('record_odom: aborted: %s', text)
-                self.server.set_aborted(_result(points), text)
+                # Silent in wall time too: a simulation running faster than real time
+                # can outrun this node's odometry queue for a few simulated seconds.
+                progress = _Progress(
+                    list(recording.points), recording.total_distance, recording.closed,
+                    self._time_moved_back, self._frame_id,
+                    min(_silence(now, started, self._last_odom_time),
+                        _silence(time.monotonic(), started_wall, self._last_odom_wall)))
+            if len(progress.points) > published:
+                published = len(progress.points)
+                self.server.publish_feedback(OdomRecordFeedback(current_total=progress.total))
+                self.path_pub.publish(_path(progress.points, progress.frame_id))
+            if self._ended(progress, recording.start):
                 return
             rate.sleep()
+
+    def _ended(self, progress, start):
+        """End the goal if its lap closed, its clock moved back, it was cancelled or its
+        odometry fell silent for ~timeout; True if it did."""
+        points, total = progress.points, progress.total
+        if progress.closed:
+            rospy.loginfo('record_odom: lap complete: %d points, %.2f m', len(points), total)
+            self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
+        elif progress.time_moved_back is not None:
+            text = ('ROS time moved back %.2f s: the recording is on the old clock; '
+                    'send a new goal' % progress.time_moved_back)
+            rospy.loginfo('record_odom: aborted: %s', text)  # warned of already
+            self.server.set_aborted(_result(points), text)
+        elif self.server.is_preempt_requested():
+            rospy.loginfo('record_odom: cancelled after %d points, %.2f m', len(points), total)
+            self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
+        elif progress.silent > self.params['timeout']:
+            text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
+                rospy.resolve_name('odom'), start, self.params['timeout'])
+            rospy.logerr('record_odom: aborted: %s', text)
+            self.server.set_aborted(_result(points), text)
+        else:
+            return False
+        return True
+
+
+_Progress = namedtuple('_Progress', 'points total closed time_moved_back frame_id silent')
+"""A goal's recording as its loop sees it at one pass; silent: seconds since the last pose."""
 
 
 def _silence(now, started, last):
