@@ -78,7 +78,11 @@ class WallFollowingNode(object):
             rospy.logerr('wall_following: no %s action server after %.0f s; '
                          'is odom_recorder running?', name, self.node['service_wait'])
             return False
-        if not wait_in_wall_time(self._clock_at_newest_scan, self.node['service_wait']):
+        # On wall time the laser may stamp by the robot's clock, not this machine's:
+        # record_odom allows for that offset, and there is no clock to wait for.
+        on_sim_time = rospy.get_param('/use_sim_time', False)
+        if on_sim_time and not wait_in_wall_time(self._clock_at_newest_scan,
+                                                 self.node['service_wait']):
             rospy.logerr('wall_following: no scan on %s, or ROS time short of its stamp, after '
                          '%.0f s; not recording', self.loop.scan.topic,
                          self.node['service_wait'])
@@ -106,9 +110,9 @@ class WallFollowingNode(object):
     def _clock_at_newest_scan(self):
         """Block until a scan has come and this node's ROS time has reached its stamp.
 
-        The goal is stamped with this node's ROS time, and the lap is counted
-        from that stamp. On simulated time this node's clock can lag the
-        world's, when its /clock connection is slow to come up or the node
+        On simulated time only. The goal is stamped with this node's ROS
+        time, and the lap is counted from that stamp. This node's clock can
+        lag the world's, when its /clock connection is slow to come up or the node
         is starved of CPU: a goal stamped then would date the lap's start
         back to before find_wall moved the robot. The scan's stamp is the
         world's time when it was taken, so a clock that has reached it is
