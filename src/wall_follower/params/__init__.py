@@ -11,10 +11,10 @@ everything else derives from it:
   generates wall_follower.cfg.<Node>Config, which the node's
   dynamic_reconfigure server, `dynparam` and rqt_reconfigure read;
 - the pure-logic classes (FollowerParams, WallFinder, LapRecorder, the
-  exercises' behaviours) take
-  their defaults from the same table through defaults() and checked(), so
-  that unit tests and the simulator's closed loops build them with no ROS
-  master, no catkin build and no dynamic_reconfigure installed;
+  exercises' behaviours) take their defaults from the same table through
+  defaults() and checked(), so that unit tests and the simulator's closed
+  loops build them with no ROS master, no catkin build and no
+  dynamic_reconfigure installed;
 - config/*.yaml and the launch files hold only the values that differ
   from these defaults, and test/unit/test_parameter_sources.py holds them,
   the README's tables and the generated modules to this table.
