@@ -95,3 +95,23 @@ def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server)
     assert answer['target_distance'] == 0.25 and 'groups' in answer
     assert params.take_update() is None
     assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]
+
+
+def _near_unless_found(values):
+    if not values['find_wall'] and values['target_distance'] > 0.5:
+        return 'target_distance must be at most 0.5 without find_wall'
+    return None
+
+
+def test_values_that_break_a_rule_stop_the_node_or_are_refused_live(server):
+    fake = server({'target_distance': 0.7})
+    params = parameters.NodeParameters(TABLE, rules=(_near_unless_found,))
+    config = {'target_distance': 0.7, 'wall_min_points': 6, 'find_wall': False, 'groups': {}}
+    assert params._on_reconfigure(config, 0)['find_wall'] is True
+    assert params.take_update() is None
+    assert fake.logs[-1][0] == 'error' and 'at most 0.5 without find_wall' in fake.logs[-1][1]
+    fake = server({'target_distance': 0.7, 'find_wall': False})
+    with pytest.raises(SystemExit):
+        parameters.NodeParameters(TABLE, rules=(_near_unless_found,))
+    assert fake.logs[-1] == ('fatal', '/node: cannot start: ~target_distance must be at most 0.5 '
+                             'without find_wall (check the launch file and config/*.yaml)')

@@ -20,6 +20,8 @@ import yaml
 
 from wall_follower.params import ParameterError, checked, defaults, parameters
 from wall_follower.params import odom_recorder, stage_sim, wall_finder, wall_following
+from wall_follower.params import (driving, forward_stop, range_ahead, simple_move_square,
+                                  teleop_key, wander)
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -33,6 +35,19 @@ NODES = {
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
                'odom_recorder.py': 'odom_recorder', 'stage_sim': 'stage_sim'}
+#: the lab exercises' nodes, likewise
+NODES.update({
+    'teleop_key': (teleop_key.TABLE, 'TeleopKey'),
+    'simple_move_square': (simple_move_square.TABLE, 'SimpleMoveSquare'),
+    'forward_stop': (forward_stop.TABLE, 'ForwardStop'),
+    'range_ahead': (range_ahead.TABLE, 'RangeAhead'),
+    'wander': (wander.TABLE, 'Wander'),
+})
+EXECUTABLES.update((node, node) for node in ('teleop_key', 'simple_move_square', 'forward_stop',
+                                             'range_ahead', 'wander'))
+#: the nodes that drive, whose tables take params.driving's sections
+DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 'forward_stop',
+           'wander')
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 
@@ -101,6 +116,7 @@ def test_the_launch_files_set_the_nodes_parameters():
     found = set((node, name) for path in LAUNCH_FILES for node, name, _ in launch_parameters(path))
     assert {('wall_following', 'laser_x'), ('wall_finder', 'laser_x'),
             ('stage_sim', 'speedup')} <= found
+    assert {('forward_stop', 'forward_period'), ('simple_move_square', 'side')} <= found
 
 
 def readme_rows():
@@ -161,3 +177,18 @@ def test_a_wrong_type_or_a_misspelling_is_refused_by_name():
     with pytest.raises(ParameterError, match='max_linear must be at most'):
         checked(wall_following.TABLE, {'max_linear': 0.3})
     assert checked(wall_following.TABLE, {'wall_min_points': 7.0})['wall_min_points'] == 7
+
+
+@pytest.mark.parametrize('node', DRIVING)
+def test_a_driving_node_declares_the_loop_and_the_clamp_through_params_driving(node):
+    """One declaration of the loop's and the clamp's parameters: only scan_timeout's default
+    and meaning may differ from node to node."""
+    table = NODES[node][0]
+    sections = dict((section.name, section) for section in table)
+    assert sections['limits'] is driving.LIMITS
+    scan_timeout = next(p for p in sections['drive_loop'].parameters if p.name == 'scan_timeout')
+    assert sections['drive_loop'] == driving.loop(scan_timeout.default, scan_timeout.description)
+    shared = set(p.name for p in parameters((driving.loop(1.0), driving.LIMITS)))
+    elsewhere = [p.name for section in table for p in section.parameters
+                 if section.name not in ('drive_loop', 'limits')]
+    assert not shared & set(elsewhere)

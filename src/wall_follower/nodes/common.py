@@ -9,7 +9,7 @@ import rospy
 from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
+from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
 
 
@@ -43,20 +43,16 @@ def to_twist(command):
 
 
 class VelocityCommander(object):
-    """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
+    """Publishes clamped commands on a topic and stops the robot on shutdown.
 
-    The limits (m/s, rad/s) are those given, from the node's parameters, or
-    else read from ~max_linear and ~max_angular, defaulting to the real
-    robot's (motion.MAX_LINEAR, MAX_ANGULAR); they may be changed between
-    two commands. Once shutdown has begun, every
-    command is a stop: a controller thread still answering a scan must not
-    follow the shutdown's zero Twist with a last move.
+    The limits (m/s, rad/s) are the node's parameters (params.driving's
+    max_linear and max_angular); they may be changed between two commands.
+    Once shutdown has begun, every command is a stop: a controller thread
+    still answering a scan must not follow the shutdown's zero Twist with a
+    last move.
     """
 
-    def __init__(self, topic='cmd_vel', max_linear=None, max_angular=None):
-        if max_linear is None or max_angular is None:
-            limits = private_params({'max_linear': MAX_LINEAR, 'max_angular': MAX_ANGULAR})
-            max_linear, max_angular = limits['max_linear'], limits['max_angular']
+    def __init__(self, topic, max_linear, max_angular):
         self.max_linear = abs(max_linear)
         self.max_angular = abs(max_angular)
         self._pub = rospy.Publisher(topic, Twist, queue_size=1)

@@ -31,12 +31,15 @@ from wall_follower.params import ParameterError, checked, names
 class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
-    def __init__(self, table, config_type=None, found=None):
+    def __init__(self, table, config_type=None, found=None, rules=()):
         """found: name -> value of parameters the node has found out for itself
-        (laser_x from tf, say), in force as if given on the parameter server."""
+        (laser_x from tf, say), in force as if given on the parameter server.
+        rules: what the values must satisfy together (see params.checked),
+        at start and at each reconfiguration."""
         self._table = table
+        self._rules = rules
         self._lock = threading.Lock()
-        self._values = _load(table, found or {})
+        self._values = _load(table, found or {}, rules)
         self._version = 0
         self._taken = 0
         self.server = None
@@ -63,7 +66,8 @@ class NodeParameters(object):
     def _on_reconfigure(self, config, _level):
         """dynamic_reconfigure's callback (its thread): keep the new values for the node."""
         try:
-            values = checked(self._table, dict((name, config[name]) for name in names(self._table)))
+            given = dict((name, config[name]) for name in names(self._table))
+            values = checked(self._table, given, self._rules)
         except ParameterError as error:
             rospy.logerr('%s: reconfiguration refused: %s', rospy.get_name(), error)
             config.update(self.snapshot())   # the values still in force
@@ -78,7 +82,7 @@ class NodeParameters(object):
         return config
 
 
-def _load(table, found):
+def _load(table, found, rules):
     """The node's ~parameters, and those found, checked against its table; exits with an
     error on bad values.
 
@@ -97,7 +101,7 @@ def _load(table, found):
     known = dict((name, value) for name, value in given.items() if name not in unknown)
     known.update(found)
     try:
-        values = checked(table, known)
+        values = checked(table, known, rules)
     except ParameterError as error:
         rospy.logfatal('%s: cannot start: %s (check the launch file and config/*.yaml)',
                        rospy.get_name(), '; '.join('~' + problem for problem in error.problems))
@@ -107,11 +111,12 @@ def _load(table, found):
     return values
 
 
-def drive_loop(name, values):
-    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value)."""
+def drive_loop(name, values, tick=None):
+    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value:
+    those of params.driving's sections); tick as DriveLoop's."""
     commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
     return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
-                     values['scan_timeout'], values['ahead_half_width'])
+                     values['scan_timeout'], values['ahead_half_width'], tick=tick)
 
 
 def tune_drive_loop(loop, values):

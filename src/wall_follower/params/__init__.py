@@ -2,17 +2,19 @@
 
 Each node has one table here (wall_following.py, wall_finder.py, ...), a
 tuple of Sections of Parameters. That table is the single source of the
-node's defaults, their units and their meanings; everything else derives
-from it:
+node's defaults, their units and their meanings (the sections every
+driving node shares, its loop's and its clamp's, come from driving.py);
+everything else derives from it:
 
 - cfg/<Node>.cfg, dynamic_reconfigure's generator script, imports the
   table and declares each parameter from it (declare() below); catkin then
   generates wall_follower.cfg.<Node>Config, which the node's
   dynamic_reconfigure server, `dynparam` and rqt_reconfigure read;
-- the pure-logic classes (FollowerParams, WallFinder, LapRecorder) take
-  their defaults from the same table through defaults() and checked(), so
-  that unit tests and the simulator's closed loops build them with no ROS
-  master, no catkin build and no dynamic_reconfigure installed;
+- the pure-logic classes (FollowerParams, WallFinder, LapRecorder, the
+  exercises' behaviours) take their defaults from the same table through
+  defaults() and checked(), so that unit tests and the simulator's closed
+  loops build them with no ROS master, no catkin build and no
+  dynamic_reconfigure installed;
 - config/*.yaml and the launch files hold only the values that differ
   from these defaults, and test/unit/test_parameter_sources.py holds them,
   the README's tables and the generated modules to this table.
@@ -118,13 +120,15 @@ def pick(values, table):
     return dict((name, values[name]) for name in names(table) if name in values)
 
 
-def checked(table, values):
+def checked(table, values, rules=()):
     """The defaults of table, overridden by values (name -> value), each checked.
 
     Raises ParameterError naming every unknown name, every value of the
     wrong type and every one out of range, so that a misspelling or a
     slip in a configuration file is reported instead of leaving a default
-    in force.
+    in force. rules: what values must satisfy together, which no range
+    can say (functions of name -> value answering a sentence saying what
+    is wrong, or None); checked once each value is good.
     """
     declared = dict((parameter.name, parameter) for parameter in parameters(table))
     result = defaults(table)
@@ -135,6 +139,8 @@ def checked(table, values):
                 result[name] = declared[name].check(value)
             except ValueError as error:
                 problems.append(str(error))
+    if not problems:
+        problems = [problem for problem in (rule(result) for rule in rules) if problem]
     if problems:
         raise ParameterError(problems)
     return result
