@@ -95,3 +95,15 @@ def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server)
     assert answer['target_distance'] == 0.25 and 'groups' in answer
     assert params.take_update() is None
     assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]
+
+
+def test_a_change_to_a_value_read_at_start_is_refused_and_the_rest_applied(server):
+    fake = server({})
+    params = parameters.NodeParameters(TABLE, read_at_start=('wall_min_points',))
+    config = {'target_distance': 0.22, 'wall_min_points': 9, 'find_wall': True, 'groups': {}}
+    answer = params._on_reconfigure(config, 0)
+    assert answer['wall_min_points'] == 6 and answer['target_distance'] == 0.22
+    assert params.take_update() == {'target_distance': 0.22, 'wall_min_points': 6,
+                                    'find_wall': True}
+    assert [level for level, _ in fake.logs] == ['warn', 'info']
+    assert '~wall_min_points read at start only; kept as 6' in fake.logs[0][1]

@@ -31,10 +31,14 @@ from wall_follower.params import ParameterError, checked, names
 class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
-    def __init__(self, table, config_type=None, found=None):
+    def __init__(self, table, config_type=None, found=None, read_at_start=()):
         """found: name -> value of parameters the node has found out for itself
-        (laser_x from tf, say), in force as if given on the parameter server."""
+        (laser_x from tf, say), in force as if given on the parameter server.
+        read_at_start: names of parameters the node uses only at start (the
+        size of a map being built, say): a live change to one is refused with
+        a warning, and the value it started with stays in force."""
         self._table = table
+        self._read_at_start = tuple(read_at_start)
         self._lock = threading.Lock()
         self._values = _load(table, found or {})
         self._version = 0
@@ -69,6 +73,13 @@ class NodeParameters(object):
             config.update(self.snapshot())   # the values still in force
             return config
         with self._lock:
+            kept = [name for name in self._read_at_start if values[name] != self._values[name]]
+            if kept:
+                rospy.logwarn('%s: %s read at start only; kept as %s', rospy.get_name(),
+                              ', '.join('~' + name for name in kept),
+                              ', '.join(repr(self._values[name]) for name in kept))
+                values.update((name, self._values[name]) for name in kept)
+                config.update(values)
             changed = sorted(name for name in values if values[name] != self._values[name])
             if changed:
                 rospy.loginfo('%s: %s (applied at the next scan)', rospy.get_name(), ', '.join(
