@@ -54,12 +54,14 @@ def test_values_given_are_used_and_written_back_in_their_type(server):
     assert not fake.logs
 
 
-def test_an_unknown_key_is_named_in_a_warning(server):
+def test_an_unknown_key_is_named_in_a_warning_with_the_known_ones(server):
     fake = server({'target_distanse': 0.3})
     params = parameters.NodeParameters(TABLE)
     assert params.snapshot()['target_distance'] == 0.25
     assert [level for level, _ in fake.logs] == ['warn']
     assert '~target_distanse' in fake.logs[0][1]
+    # No dynamic_reconfigure server to ask: the warning names them.
+    assert '~target_distance, ~wall_min_points, ~find_wall are the known ones' in fake.logs[0][1]
 
 
 @pytest.mark.parametrize('name, value, says', [

@@ -40,7 +40,7 @@ class NodeParameters(object):
         self._table = table
         self._read_at_start = tuple(read_at_start)
         self._lock = threading.Lock()
-        self._values = _load(table, found or {})
+        self._values = _load(table, found or {}, config_type is not None)
         self._version = 0
         self._taken = 0
         self.server = None
@@ -89,9 +89,9 @@ class NodeParameters(object):
         return config
 
 
-def _load(table, found):
+def _load(table, found, tunable):
     """The node's ~parameters, and those found, checked against its table; exits with an
-    error on bad values.
+    error on bad values. tunable: the node will serve dynamic_reconfigure.
 
     Unknown keys only warn: the node may run on a parameter server that
     also holds settings for another version of it. The values read are
@@ -101,10 +101,12 @@ def _load(table, found):
     given = rospy.get_param('~', {})
     unknown = sorted(set(given) - set(names(table)))
     if unknown:
-        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? `rosrun '
-                      'dynamic_reconfigure dynparam get %s` lists the known ones)',
-                      rospy.get_name(), ', '.join('~' + name for name in unknown),
-                      rospy.get_name())
+        if tunable:
+            hint = '`rosrun dynamic_reconfigure dynparam get %s` lists' % rospy.get_name()
+        else:
+            hint = '%s are' % ', '.join('~' + name for name in names(table))
+        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? %s the known ones)',
+                      rospy.get_name(), ', '.join('~' + name for name in unknown), hint)
     known = dict((name, value) for name, value in given.items() if name not in unknown)
     known.update(found)
     try:
