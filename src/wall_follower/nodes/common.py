@@ -13,28 +13,6 @@ from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
 
 
-def private_params(defaults):
-    """Read each ~name from the parameter server, falling back to defaults[name].
-
-    For the nodes not yet on wall_follower.nodes.parameters (the exercises,
-    the mapper), whose defaults are still their own.
-
-    A value of the wrong type is a configuration error: it is reported once,
-    by name, and the default is used instead of crashing the node.
-    """
-    values = {}
-    for name, default in defaults.items():
-        value = rospy.get_param('~' + name, default)
-        if isinstance(default, (int, float)) and not isinstance(default, bool):
-            try:
-                value = type(default)(value)
-            except (TypeError, ValueError):
-                rospy.logerr('parameter ~%s=%r is not a number; using %r', name, value, default)
-                value = default
-        values[name] = value
-    return values
-
-
 def to_twist(command):
     twist = Twist()
     twist.linear.x = command.linear

@@ -31,15 +31,19 @@ from wall_follower.params import ParameterError, checked, names
 class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
-    def __init__(self, table, config_type=None, found=None, rules=()):
+    def __init__(self, table, config_type=None, found=None, rules=(), read_at_start=()):
         """found: name -> value of parameters the node has found out for itself
         (laser_x from tf, say), in force as if given on the parameter server.
         rules: what the values must satisfy together (see params.checked),
-        at start and at each reconfiguration."""
+        at start and at each reconfiguration.
+        read_at_start: names of parameters the node uses only at start (the
+        size of a map being built, say): a live change to one is refused with
+        a warning, and the value it started with stays in force."""
         self._table = table
         self._rules = rules
+        self._read_at_start = tuple(read_at_start)
         self._lock = threading.Lock()
-        self._values = _load(table, found or {}, rules)
+        self._values = _load(table, found or {}, rules, config_type is not None)
         self._version = 0
         self._taken = 0
         self.server = None
@@ -73,6 +77,13 @@ class NodeParameters(object):
             config.update(self.snapshot())   # the values still in force
             return config
         with self._lock:
+            kept = [name for name in self._read_at_start if values[name] != self._values[name]]
+            if kept:
+                rospy.logwarn('%s: %s read at start only; kept as %s', rospy.get_name(),
+                              ', '.join('~' + name for name in kept),
+                              ', '.join(repr(self._values[name]) for name in kept))
+                values.update((name, self._values[name]) for name in kept)
+                config.update(values)
             changed = sorted(name for name in values if values[name] != self._values[name])
             if changed:
                 rospy.loginfo('%s: %s (applied at the next scan)', rospy.get_name(), ', '.join(
@@ -82,9 +93,10 @@ class NodeParameters(object):
         return config
 
 
-def _load(table, found, rules):
+def _load(table, found, rules, tunable):
     """The node's ~parameters, and those found, checked against its table; exits with an
-    error on bad values.
+    error on bad values. rules: as NodeParameters'; tunable: the node will serve
+    dynamic_reconfigure.
 
     Unknown keys only warn: the node may run on a parameter server that
     also holds settings for another version of it. The values read are
@@ -94,10 +106,12 @@ def _load(table, found, rules):
     given = rospy.get_param('~', {})
     unknown = sorted(set(given) - set(names(table)))
     if unknown:
-        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? `rosrun '
-                      'dynamic_reconfigure dynparam get %s` lists the known ones)',
-                      rospy.get_name(), ', '.join('~' + name for name in unknown),
-                      rospy.get_name())
+        if tunable:
+            hint = '`rosrun dynamic_reconfigure dynparam get %s` lists' % rospy.get_name()
+        else:
+            hint = '%s are' % ', '.join('~' + name for name in names(table))
+        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? %s the known ones)',
+                      rospy.get_name(), ', '.join('~' + name for name in unknown), hint)
     known = dict((name, value) for name, value in given.items() if name not in unknown)
     known.update(found)
     try:

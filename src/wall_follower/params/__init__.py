@@ -33,7 +33,9 @@ import numbers
 
 
 class Parameter(collections.namedtuple('Parameter', 'name default description minimum maximum')):
-    """One tunable value. The default fixes its type: bool, int, float or str.
+    """One tunable value. The default fixes its type: bool, int, float or str, or
+    dict for a structure read from YAML (dynamic_reconfigure has no type for
+    one: only a node without live tuning can declare it).
 
     description: what it means, with its unit in brackets; it is what
     rqt_reconfigure shows. minimum, maximum: the range a number must lie
@@ -47,7 +49,7 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
 
     @property
     def kind(self):
-        """Its dynamic_reconfigure type: 'bool', 'int', 'double' or 'str'."""
+        """Its dynamic_reconfigure type: 'bool', 'int', 'double' or 'str' (or 'dict')."""
         return _kind(self.default)
 
     def check(self, value):
@@ -60,8 +62,10 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
                 isinstance(value, float) and value.is_integer())
         elif kind == 'double':
             ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
-        else:
+        elif kind == 'str':
             ok = isinstance(value, str)
+        else:
+            ok = isinstance(value, dict)
         if not ok:
             raise ValueError('%s must be %s, not %r (%s)' % (
                 self.name, _KIND_NAMES[kind], value, type(value).__name__))
@@ -74,7 +78,7 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
 
 
 _KIND_NAMES = {'bool': 'true or false', 'int': 'a whole number', 'double': 'a number',
-               'str': 'a string'}
+               'str': 'a string', 'dict': 'a mapping'}
 
 
 def _kind(default):
@@ -86,7 +90,10 @@ def _kind(default):
         return 'double'
     if isinstance(default, str):
         return 'str'
-    raise TypeError('a parameter default must be bool, int, float or str, not %r' % (default,))
+    if isinstance(default, dict):
+        return 'dict'
+    raise TypeError('a parameter default must be bool, int, float, str or dict, not %r'
+                    % (default,))
 
 
 Section = collections.namedtuple('Section', 'name parameters')
