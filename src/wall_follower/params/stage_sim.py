@@ -27,7 +27,8 @@ TABLE = (
     Section('robot', (
         P('laser_profile', 'stage', 'the scan convention to emulate: stage, lds01, lds02, gazebo '
           'or course720'),
-        P('seed', 0, 'seed of the laser profile noise', 0, 2 ** 31 - 1),
+        P('seed', 0, 'seed of the laser profile noise and of the odometry errors drawn for a robot '
+          'with localization "odom" and no odom_error', 0, 2 ** 31 - 1),
         P('pose', '', 'x y yaw_deg: start pose of the first robot instead of the world file '
           'one; reset_positions returns there; empty: the world file pose'),
         P('base_watchdog_timeout', 0.2, 'simulated seconds without cmd_vel before a robot '

@@ -73,9 +73,10 @@ class Simulation(object):
     """A Stage world advanced one `interval_sim` per `step()`.
 
     world: a worldfile.World. laser_profile: one of laser_profiles.PROFILES.
-    seed: for laser noise. poses: optional {robot index: (x, y, yaw)} start poses that
-    replace the world file's. watchdog_timeout: seconds of sim time (stageros'
-    ~base_watchdog_timeout); 0 disables it.
+    seed: for laser noise and drawn odometry errors. poses: optional {robot
+    index: (x, y, yaw)} start poses that replace the world file's.
+    watchdog_timeout: seconds of sim time (stageros' ~base_watchdog_timeout);
+    0 disables it.
     """
 
     def __init__(self, world, laser_profile='stage', seed=0, poses=None, watchdog_timeout=0.2):
