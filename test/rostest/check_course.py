@@ -18,7 +18,7 @@ import rospy
 import rostest
 from drive_guard import DriveGuard
 
-from wall_follower.nodes.common import world_path
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.evaluation.scoring import CourseMap, taken_every, true_lap_length
 

@@ -26,7 +26,8 @@ from wall_follower.evaluation.map_scoring import map_quality
 from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.mapping.mapfile import load_map
 from wall_follower.mapping.poses import between, wrap
-from wall_follower.nodes.common import pose_of, world_path, yaw_of
+from wall_follower.nodes.common import pose_of, yaw_of
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.params import defaults
 from wall_follower.params.slam import TABLE
 

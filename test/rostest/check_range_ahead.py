@@ -22,7 +22,8 @@ from rosgraph_msgs.msg import Log
 from waiting import wait_until
 from wall_follower.evaluation.geometry import cast_rays
 from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import pose_message, pose_of, world_path
+from wall_follower.nodes.common import pose_message, pose_of
+from wall_follower.sim.stage_interface import world_path
 
 QUEUE = 10000
 WAIT = 60.0           # wall s for each pose

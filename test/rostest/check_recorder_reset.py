@@ -5,9 +5,10 @@ The robot drives off its spawn pose, then the goal is sent; once the
 feedback passes RESET_AFTER the simulator puts the robot back at its spawn
 pose, behind the lap's start line. The teleport must not count as travel
 (the feedback never leaps by it), nor end the lap as the robot drives off
-over the start line: the lap ends a full lap later, at the start, with a distance that is the path truly driven and a
-lap time the speed limit allows. The recorded list holds one jump, to the
-spawn pose. Scored from ground truth.
+over the start line: the lap ends a full lap later, at the start, with a
+distance that is the path truly driven and a lap time the speed limit
+allows. The recorded list holds one jump, to the spawn pose. Scored from
+ground truth.
 """
 import math
 import sys

@@ -13,7 +13,7 @@ import rostest
 from drive_guard import DriveGuard
 from rosout_log import RosoutLog
 
-from wall_follower.nodes.common import world_path
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.evaluation.scoring import CourseMap
 

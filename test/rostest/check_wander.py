@@ -20,7 +20,7 @@ from waiting import wait_until
 from wall_follower.evaluation.coverage import visited_share
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import world_path
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.grid import footprint_corners
 
 STEP = 0.1          # simulated s per step

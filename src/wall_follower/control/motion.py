@@ -1,15 +1,14 @@
 """Velocity commands as plain values, and the safety clamp every node applies.
 
-The course's real TurtleBot3 kills a node that exceeds 0.19 m/s or
-0.49 rad/s, so no command leaves a node without passing through clamp().
+The course's real TurtleBot3 kills a node that exceeds MAX_LINEAR or
+MAX_ANGULAR, so no command leaves a node without passing through clamp().
 """
 import math
 from collections import namedtuple
 
 import numpy as np
 
-MAX_LINEAR = 0.19
-MAX_ANGULAR = 0.49
+from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 
 Command = namedtuple('Command', ['linear', 'angular'])
 STOP = Command(0.0, 0.0)

@@ -4,7 +4,6 @@ import signal
 import threading
 from collections import namedtuple
 
-import rospkg
 import rospy
 from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
@@ -145,18 +144,6 @@ class LatestScan(object):
             problem = 'the scan on %s is unusable: %s' % (self.topic, check.problem)
             return Reading(check, None, None, problem)
         return Reading(check, check.view, taken.to_sec(), None)
-
-
-def world_path(world):
-    """The .world file meant by a launch file's `world` argument.
-
-    A bare name (`arena`) is a world shipped in this package's worlds/; an
-    absolute path is taken as it is, as simulation.launch does.
-    """
-    if world.startswith('/'):
-        return world
-    name = world if world.endswith('.world') else world + '.world'
-    return '%s/worlds/%s' % (rospkg.RosPack().get_path('wall_follower'), name)
 
 
 def yaw_of(orientation):

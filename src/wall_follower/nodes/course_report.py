@@ -20,7 +20,7 @@ import time
 
 import rospy
 
-from wall_follower.nodes.common import world_path
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.plot import plot_course

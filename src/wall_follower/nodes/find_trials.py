@@ -15,7 +15,8 @@ import numbers
 import rospy
 from geometry_msgs.msg import Pose
 
-from wall_follower.nodes.common import pose_message, world_path
+from wall_follower.nodes.common import pose_message
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.scoring import CourseMap

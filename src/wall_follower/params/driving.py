@@ -6,8 +6,13 @@ nodes/parameters.py builds and retunes the loop and the clamp from them.
 """
 import math
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.params import Parameter as P, Section
+
+# The course's real TurtleBot3 kills a node that commands more than these
+# (m/s, rad/s): the defaults and the ceilings of the limits below, and of
+# control.motion.clamp.
+MAX_LINEAR = 0.19
+MAX_ANGULAR = 0.49
 
 STALE_SCAN_STOPS = 'stop the robot while the newest scan is older than this [s]'
 """What scan_timeout means to a node that drives for as long as it runs."""

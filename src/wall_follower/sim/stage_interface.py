@@ -1,9 +1,12 @@
-"""stage_sim's interface rules that need no ROS: how several robots are named
-(as stageros names them), how a start pose is written as a parameter, and
-the line it logs at quit_time (which the sim benchmark reads back).
+"""stage_sim's interface rules that need no ROS master: which file a `world`
+argument names, how several robots are named (as stageros names them), how
+a start pose is written as a parameter, and the line it logs at quit_time
+(which the sim benchmark reads back).
 """
 import math
 import re
+
+import rospkg
 
 _QUIT_REPORT = re.compile(r'quit_time [0-9.]+ s of simulated time reached after [0-9.]+ wall s '
                           r'\(([0-9.]+)x real time\)')
@@ -52,3 +55,15 @@ def rate_in_quit_report(text):
     """The real-time multiple of the first quit_report line in `text`, or None."""
     found = _QUIT_REPORT.search(text)
     return float(found.group(1)) if found else None
+
+
+def world_path(world):
+    """The .world file meant by a launch file's `world` argument.
+
+    A bare name (`arena`) is a world shipped in this package's worlds/; an
+    absolute path is taken as it is, as simulation.launch does.
+    """
+    if world.startswith('/'):
+        return world
+    name = world if world.endswith('.world') else world + '.world'
+    return '%s/worlds/%s' % (rospkg.RosPack().get_path('wall_follower'), name)

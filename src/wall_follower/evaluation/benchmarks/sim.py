@@ -24,7 +24,7 @@ from sensor_msgs.msg import LaserScan
 
 import wall_follower
 from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, free_port, print_table
-from wall_follower.nodes.common import world_path
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
