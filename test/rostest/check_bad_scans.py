@@ -22,6 +22,7 @@ from sensor_msgs.msg import LaserScan
 from synthetic_scans import unusable_scans, wall_on_the_right
 
 from wall_follower.srv import FindWall
+from waiting import assert_soon
 
 SCAN_PERIOD = 0.1
 WAIT_LIMIT = 10.0
@@ -78,50 +79,45 @@ class BadScans(unittest.TestCase):
     def setUpClass(cls):
         cls.log = RosoutLog()
 
-    def wait_for(self, predicate, what):
-        deadline = time.monotonic() + WAIT_LIMIT
-        while not predicate():
-            self.assertLess(time.monotonic(), deadline, 'timed out waiting for ' + what)
-            time.sleep(0.01)
-
     def test_the_follower_stops_on_each_unusable_scan_and_resumes_after(self):
         feed = Feed()
         for kind, scan in sorted(unusable_scans().items()):
             with self.subTest(kind=kind):
                 feed.scan = wall_on_the_right()
                 start = feed.count()
-                self.wait_for(lambda: any(v > 0.1 for v, _ in feed.since(start)),
-                              'driving on good scans before "%s"' % kind)
+                assert_soon(self, WAIT_LIMIT, lambda: any(v > 0.1 for v, _ in feed.since(start)),
+                            'driving on good scans before "%s"' % kind)
                 start = feed.count()
                 feed.scan = scan
-                self.wait_for(lambda: any(v == 0.0 for v, _ in feed.since(start)),
-                              'a stop on "%s"' % kind)
+                assert_soon(self, WAIT_LIMIT, lambda: any(v == 0.0 for v, _ in feed.since(start)),
+                            'a stop on "%s"' % kind)
                 first_stop = start + next(i for i, (v, _) in enumerate(feed.since(start))
                                           if v == 0.0)
-                self.wait_for(lambda: feed.count() >= first_stop + BAD_COMMANDS,
-                              'more commands on "%s"' % kind)
+                assert_soon(self, WAIT_LIMIT, lambda: feed.count() >= first_stop + BAD_COMMANDS,
+                            'more commands on "%s"' % kind)
                 self.assertEqual([v for v, _ in feed.since(first_stop)[:BAD_COMMANDS]],
                                  [0.0] * BAD_COMMANDS, 'drove forward on "%s"' % kind)
-                self.wait_for(lambda: self.log.said('/wall_following', NAMED[kind]),
-                              'a warning naming "%s"' % NAMED[kind])
+                assert_soon(self, WAIT_LIMIT, lambda: self.log.said('/wall_following', NAMED[kind]),
+                            'a warning naming "%s"' % NAMED[kind])
         feed.scan = wall_on_the_right()
         start = feed.count()
-        self.wait_for(lambda: any(v > 0.1 for v, _ in feed.since(start)),
-                      'driving again on good scans')
+        assert_soon(self, WAIT_LIMIT, lambda: any(v > 0.1 for v, _ in feed.since(start)),
+                    'driving again on good scans')
 
     def test_find_wall_answers_false_on_a_dead_laser_without_moving(self):
         feed = Feed('finder/')
         feed.scan = unusable_scans()['all 0.0']
         # Connected first: a call that heard no scan at all would fail for that reason.
-        self.wait_for(lambda: feed.publisher.get_num_connections() > 0, 'find_wall to subscribe')
+        assert_soon(self, WAIT_LIMIT, lambda: feed.publisher.get_num_connections() > 0,
+                    'find_wall to subscribe')
         rospy.wait_for_service('finder/find_wall', timeout=WAIT_LIMIT)
         started = time.monotonic()
         found = rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound
         self.assertFalse(found)
         self.assertLess(time.monotonic() - started, WAIT_LIMIT)
         self.assertTrue(all(v == 0.0 and w == 0.0 for v, w in feed.since(0)))
-        self.wait_for(lambda: self.log.said('/finder/wall_finder', '360 0.0'),
-                      'find_wall to say why')
+        assert_soon(self, WAIT_LIMIT, lambda: self.log.said('/finder/wall_finder', '360 0.0'),
+                    'find_wall to say why')
 
 
 if __name__ == '__main__':

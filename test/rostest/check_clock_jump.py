@@ -21,6 +21,7 @@ from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
 
 from wall_follower.srv import FindWall
+from waiting import assert_soon
 
 STEP = 0.1         # simulated s per tick
 TICK = 0.02        # wall s per tick
@@ -59,24 +60,19 @@ class TestClock(object):
 
 class ClockJump(unittest.TestCase):
 
-    def wait_for(self, predicate, what):
-        deadline = time.monotonic() + WAIT_LIMIT
-        while not predicate():
-            self.assertLess(time.monotonic(), deadline, 'timed out waiting for ' + what)
-            time.sleep(0.01)
-
     def test_both_nodes_carry_on_after_time_moves_back(self):
         log, commands = RosoutLog(), []
         rospy.Subscriber('cmd_vel', Twist, lambda msg: commands.append(msg.linear.x),
                          queue_size=1000)
         clock = TestClock()
-        self.wait_for(lambda: any(v > 0.1 for v in commands), 'the follower to drive')
+        assert_soon(self, WAIT_LIMIT, lambda: any(v > 0.1 for v in commands),
+                    'the follower to drive')
         clock.jump_to(START - JUMP_BACK)
-        self.wait_for(lambda: log.said('/wall_following', 'ROS time moved back'),
-                      'the follower to warn')
+        assert_soon(self, WAIT_LIMIT, lambda: log.said('/wall_following', 'ROS time moved back'),
+                    'the follower to warn')
         after = len(commands)
-        self.wait_for(lambda: sum(v > 0.1 for v in commands[after:]) >= 10,
-                      'the follower to drive on the new clock')
+        assert_soon(self, WAIT_LIMIT, lambda: sum(v > 0.1 for v in commands[after:]) >= 10,
+                    'the follower to drive on the new clock')
         rospy.wait_for_service('finder/find_wall', WAIT_LIMIT)
         self.assertTrue(rospy.ServiceProxy('finder/find_wall', FindWall)().wallfound)
         clock.jump_to(START - 2.0 * JUMP_BACK)

@@ -33,6 +33,8 @@ from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.mapping.mapfile import load_map
 from wall_follower.mapping.poses import between, wrap
 from wall_follower.nodes.common import pose_of, world_path, yaw_of
+from wall_follower.params import defaults
+from wall_follower.params.slam import TABLE
 
 # Wall seconds for the lap, the saved map and the robot to settle.
 RUN_LIMIT = 280.0
@@ -49,7 +51,8 @@ class Mapping(unittest.TestCase):
         course = CourseMap(cls.world)
         cls.start = course.robot.pose
         # The range up to which beams draw walls: ~max_range (builtin), ~maxUrange (gmapping).
-        cls.max_range = rospy.get_param('/slam/max_range', rospy.get_param('/slam/maxUrange', 3.5))
+        cls.max_range = rospy.get_param('/slam/max_range', rospy.get_param(
+            '/slam/maxUrange', defaults(TABLE)['max_range']))
         cls.guard = DriveGuard()
         cls.truth = []   # (stamp, pose)
         cls.odom = None

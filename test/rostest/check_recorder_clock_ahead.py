@@ -8,6 +8,7 @@ published raw, as only then can its stamp be chosen. actionlib then takes
 no goal stamped before this one, hence a launch of its own.
 """
 import sys
+import time
 import unittest
 
 import rospy
@@ -18,7 +19,7 @@ from wall_follower.msg import OdomRecordActionGoal, OdomRecordActionResult
 
 from waiting import wait_until
 
-POLL = 0.1
+POLL = 0.1   # wall s
 # Wall seconds to wait for the recorder to subscribe.
 CONNECT_LIMIT = 30.0
 # Seconds the goal's stamp is ahead of this clock.
@@ -38,13 +39,15 @@ class GoalStampedAhead(unittest.TestCase):
         goal.goal_id.id = GOAL_ID
         goal.goal_id.stamp = rospy.Time.now() + rospy.Duration(CLOCK_AHEAD)
         goals.publish(goal)
-        # The verdict is due after the recorder's ~timeout; allow it four.
-        end = rospy.get_time() + 4.0 * rospy.get_param('/odom_recorder/timeout')
+        # The verdict is due after the recorder's ~timeout of ROS time and of wall
+        # time both; allow it four of each.
+        allowed = 4.0 * rospy.get_param('/odom_recorder/timeout')
+        end, end_wall = rospy.get_time() + allowed, time.monotonic() + allowed
 
         def ours():
             return [r for r in results if r.status.goal_id.id == GOAL_ID]
-        while not ours() and rospy.get_time() < end:
-            rospy.sleep(POLL)
+        while not ours() and (rospy.get_time() < end or time.monotonic() < end_wall):
+            time.sleep(POLL)
         self.assertTrue(ours(), 'the goal stamped ahead was left waiting')
         result = ours()[0]
         self.assertEqual(result.status.status, GoalStatus.ABORTED)

@@ -15,20 +15,19 @@ is the one that jumps.
 """
 import math
 import sys
-import threading
-import time
 import unittest
 
 import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
-from nav_msgs.msg import Odometry
-from rosgraph_msgs.msg import Clock, Log
+from rosgraph_msgs.msg import Log
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import wait_in_wall_time
 
+from odometry_world import SPEED, STEP, OdometryWorld
+from rosout_log import RosoutLog
 from waiting import wait_until
 
 OLD_CLOCK = 1000.0      # simulated seconds before the jump
@@ -36,89 +35,29 @@ NEW_CLOCK = 10.0        # and after it
 NEW_Y = 5.0             # metres: where the robot drives after the jump
 LAST_CLOCK = 5.0        # and after the second jump
 LAST_Y = 9.0
-STEP = 0.1              # simulated seconds per world step: a /clock and an odometry each
-WALL_STEP = 0.02        # wall seconds per step: 5 times real time
-SPEED = 0.2             # m/s along x
+WALL_STEP = 0.02        # wall seconds per world step (odometry_world.STEP): 5 times real time
 WAIT_LIMIT = 20.0       # wall seconds for anything to happen
+RECORDER = '/odom_recorder'
 # Goal status messages to see from the recorder on the new clock, with no goal
 # changing state meanwhile: only its periodic timer sends them then.
 STATUS_COUNT = 10
 POINTS_BEFORE_CANCEL = 3
-# Wall seconds the simulator is away while it restarts: it publishes nothing.
-RESTART_PAUSE = 0.5
-
-
-class World(object):
-    """A clock and the odometry of a robot driving along x, one step at a time."""
-
-    def __init__(self):
-        self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
-        self.odom = rospy.Publisher('odom', Odometry, queue_size=100)
-        self.lock = threading.Lock()
-        self.now = OLD_CLOCK
-        self.y = 0.0
-        self.x = 0.0
-        self.malformed = False
-        self.published = []     # (stamp, x, y) of every well-formed pose
-        self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._run)
-        self._thread.start()
-
-    def restart(self, clock, y):
-        """The simulator restarts: silent a moment, then the clock is back, the robot elsewhere."""
-        with self.lock:
-            time.sleep(RESTART_PAUSE)
-            self.now = clock
-            self.x, self.y = 0.0, y
-
-    def stop(self):
-        self._stop.set()
-        self._thread.join()
-
-    def _run(self):
-        while not self._stop.is_set() and not rospy.is_shutdown():
-            with self.lock:
-                self.now += STEP
-                self.x += SPEED * STEP
-                stamp = rospy.Time.from_sec(self.now)
-                self.clock.publish(Clock(clock=stamp))
-                self.odom.publish(self._odometry(stamp, self.x, self.y))
-                self.published.append((self.now, self.x, self.y))
-                if self.malformed:
-                    nan_position = self._odometry(stamp, float('nan'), self.y)
-                    no_rotation = self._odometry(stamp, self.x, self.y)
-                    no_rotation.pose.pose.orientation.w = 0.0
-                    self.odom.publish(nan_position)
-                    self.odom.publish(no_rotation)
-            time.sleep(WALL_STEP)
-
-    @staticmethod
-    def _odometry(stamp, x, y):
-        msg = Odometry()
-        msg.header.stamp = stamp
-        msg.header.frame_id = 'odom'
-        msg.pose.pose.position.x = x
-        msg.pose.pose.position.y = y
-        msg.pose.pose.orientation.w = 1.0
-        return msg
 
 
 class TimeMovesBack(unittest.TestCase):
 
     def setUp(self):
         self.statuses = []
-        self.warnings = []
+        self.log = RosoutLog()
         rospy.Subscriber('record_odom/status', GoalStatusArray, self.statuses.append)
-        rospy.Subscriber('/rosout', Log, self._on_log)
-        self.world = World()
+        self.world = OdometryWorld(OLD_CLOCK, WALL_STEP)
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
 
     def tearDown(self):
         self.world.stop()
 
-    def _on_log(self, msg):
-        if msg.level >= Log.WARN and 'odom_recorder' in msg.name:
-            self.warnings.append(msg.msg)
+    def warnings(self):
+        return self.log.lines(RECORDER, '', Log.WARN)
 
     def points(self, feedback, count):
         return wait_until(lambda: len(feedback) >= count, WAIT_LIMIT)
@@ -173,8 +112,8 @@ class TimeMovesBack(unittest.TestCase):
         self.assert_records_afresh(OLD_CLOCK, NEW_Y)
         # One throttled warning for both kinds: whichever comes first.
         self.assertTrue(wait_until(lambda: any('not finite' in w or 'not a unit quaternion' in w
-                                               for w in self.warnings), WAIT_LIMIT),
-                        'no warning about malformed odometry: %s' % self.warnings)
+                                               for w in self.warnings()), WAIT_LIMIT),
+                        'no warning about malformed odometry: %s' % self.warnings())
 
         before = rospy.get_time()
         self.world.restart(LAST_CLOCK, LAST_Y)

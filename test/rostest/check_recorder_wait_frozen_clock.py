@@ -16,6 +16,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Log
 
+from rosout_log import RosoutLog
 from waiting import wait_until
 
 NODE = '/wall_following'
@@ -32,15 +33,13 @@ class WaitOnFrozenClock(unittest.TestCase):
 
     def test_gives_up_in_wall_time_with_an_error(self):
         started = time.time()
-        errors = []
-        rospy.Subscriber('/rosout', Log, lambda msg: errors.append(msg.msg)
-                         if msg.name == NODE and msg.level >= Log.ERROR else None)
+        log = RosoutLog()
         service_wait = rospy.get_param(NODE + '/service_wait')
         self.assertTrue(wait_until(alive, MARGIN), 'wall_following is not running')
         self.assertTrue(wait_until(lambda: not alive(), service_wait + MARGIN),
                         'wall_following still waits after %.0f wall s' % (time.time() - started))
-        self.assertTrue(wait_until(lambda: any('record_odom' in e for e in errors), 1.0),
-                        'no error naming record_odom: %s' % errors)
+        self.assertTrue(wait_until(lambda: log.said(NODE, 'record_odom', Log.ERROR), 1.0),
+                        'no error naming record_odom: %s' % log.lines(NODE, '', Log.ERROR))
         self.assertEqual(rospy.get_time(), 0.0, 'the clock moved: the test proves nothing')
 
 

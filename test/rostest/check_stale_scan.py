@@ -14,6 +14,7 @@ import rostest
 from geometry_msgs.msg import Twist
 from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
+from waiting import assert_soon
 
 SCAN_PERIOD = 0.1
 FEED_TIME = 1.5
@@ -32,14 +33,9 @@ class StaleScan(unittest.TestCase):
         with self.lock:
             self.commands.append((time.monotonic(), msg.linear.x, msg.angular.z))
 
-    def wait_for(self, predicate, what):
-        deadline = time.monotonic() + WAIT_LIMIT
-        while not predicate():
-            self.assertLess(time.monotonic(), deadline, 'timed out waiting for ' + what)
-            time.sleep(0.01)
-
     def test_drives_on_fresh_scans_and_stops_after_the_timeout(self):
-        self.wait_for(lambda: self.scans.get_num_connections() > 0, 'the follower to subscribe')
+        assert_soon(self, WAIT_LIMIT, lambda: self.scans.get_num_connections() > 0,
+                    'the follower to subscribe')
         scan = wall_on_the_right()
         end = time.monotonic() + FEED_TIME
         while True:
@@ -55,14 +51,16 @@ class StaleScan(unittest.TestCase):
         def stopped():
             with self.lock:
                 return any(t > last_scan and v == 0.0 and w == 0.0 for t, v, w in self.commands)
-        self.wait_for(stopped, 'a zero command')
+        assert_soon(self, WAIT_LIMIT, stopped,
+                    'a zero command')
         timeout = rospy.get_param('/wall_following/scan_timeout')
         with self.lock:
             first_zero = next(t for t, v, w in self.commands
                               if t > last_scan and v == 0.0 and w == 0.0)
         self.assertGreaterEqual(first_zero - last_scan, timeout - SCAN_PERIOD)
         count = len(self.commands)
-        self.wait_for(lambda: len(self.commands) >= count + 5, 'more commands')
+        assert_soon(self, WAIT_LIMIT, lambda: len(self.commands) >= count + 5,
+                    'more commands')
         with self.lock:
             self.assertTrue(all(v == 0.0 and w == 0.0 for t, v, w in self.commands
                                 if t > first_zero), 'moved again without scans')

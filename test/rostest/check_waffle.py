@@ -6,13 +6,12 @@ this check lets it go, and the nodes cannot read the mount before the first
 scan, so every node's log line saying which laser_x it took is heard.
 """
 import sys
-import threading
 import unittest
 
 import rospy
 import rostest
 from drive_guard import DriveGuard
-from rosgraph_msgs.msg import Log
+from rosout_log import RosoutLog
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
@@ -29,27 +28,19 @@ class WaffleMount(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.lock = threading.Lock()
-        cls.logs = []
-        cls.rosout = rospy.Subscriber('/rosout', Log, cls._on_log, queue_size=100)
+        cls.log = RosoutLog()
         cls.guard = DriveGuard()
         cls.monitor = CourseMonitor(CourseMap(world_path(rospy.get_param('~world'))),
                                     start_on_goal=True)
         assert cls.monitor.start_world(CONNECT_LIMIT), 'the monitor could not connect'
         assert cls.monitor.wait(), 'shut down before the lap was recorded'
 
-    @classmethod
-    def _on_log(cls, msg):
-        with cls.lock:
-            cls.logs.append((msg.name, msg.level, msg.msg))
-
     def test_each_node_took_the_waffles_laser_x_from_tf(self):
-        with self.lock:
-            for node in NODES:
-                said = [text for name, _, text in self.logs if name == node]
-                self.assertTrue(any(TAKEN in text for text in said),
-                                '%s did not log "%s": %s' % (node, TAKEN, said))
-                self.assertFalse(any('Burger' in text for text in said), said)
+        for node in NODES:
+            said = self.log.lines(node)
+            self.assertTrue(any(TAKEN in text for text in said),
+                            '%s did not log "%s": %s' % (node, TAKEN, said))
+            self.assertFalse(any('Burger' in text for text in said), said)
 
     def test_the_chain_laps_within_the_limits_without_contact(self):
         score = self.monitor.summary()

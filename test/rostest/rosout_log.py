@@ -4,20 +4,22 @@ from rosgraph_msgs.msg import Log
 
 
 class RosoutLog(object):
-    """Every /rosout line heard from its creation on, as (node name, text)."""
+    """Every /rosout line heard from its creation on, as (node name, level, text)."""
 
     def __init__(self):
         self._lines = []
         self._subscriber = rospy.Subscriber('/rosout', Log, self._on_log, queue_size=1000)
 
     def _on_log(self, msg):
-        self._lines.append((msg.name, msg.msg))
+        self._lines.append((msg.name, msg.level, msg.msg))
 
-    def lines(self, node=None, fragment=''):
-        """The texts logged by node (any node: None) that contain fragment."""
-        return [text for name, text in list(self._lines)
-                if (node is None or name == node) and fragment in text]
+    def lines(self, node=None, fragment='', level=Log.DEBUG):
+        """The texts logged by node (any node: None) at level (a rosgraph_msgs/Log level)
+        or above that contain fragment."""
+        return [text for name, at, text in list(self._lines)
+                if (node is None or name == node) and at >= level and fragment in text]
 
-    def said(self, node, fragment):
-        """True once node (any node: None) has logged a text containing fragment."""
-        return bool(self.lines(node, fragment))
+    def said(self, node, fragment, level=Log.DEBUG):
+        """True once node (any node: None) has logged a text containing fragment at level
+        or above."""
+        return bool(self.lines(node, fragment, level))

@@ -14,3 +14,8 @@ def wait_until(condition, limit):
     while not condition() and time.time() < deadline:
         time.sleep(POLL)
     return condition()
+
+
+def assert_soon(test, limit, condition, what):
+    """Fail test (a unittest.TestCase) unless condition() holds within limit wall seconds."""
+    test.assertTrue(wait_until(condition, limit), 'timed out waiting for ' + what)

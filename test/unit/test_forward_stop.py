@@ -41,3 +41,18 @@ def test_a_wall_beside_the_cone_does_not_stop_it():
     corridor = [((-3.0, 0.3), (3.0, 0.3)), ((-3.0, -0.3), (3.0, -0.3))]
     view = scan_view(corridor, (0.0, 0.0, 0.0), CONVENTIONS[0])
     assert behaviour.update(view, 0.0) == Command(0.2, 0.0)
+
+
+def test_new_periods_start_a_new_cycle_and_other_changes_keep_the_phase():
+    behaviour = ForwardStop(forward_period=1.0, stop_period=1.0)
+    assert behaviour.phase(0.0) == FORWARD and behaviour.phase(1.5) == STOPPED
+    behaviour.reconfigure(forward_period=1.0, stop_period=1.0, speed=0.1)
+    assert behaviour.phase(1.6) == STOPPED
+    behaviour.reconfigure(forward_period=2.0, stop_period=1.0, speed=0.1)
+    assert [behaviour.phase(t) for t in (1.7, 3.6, 3.8, 4.6, 4.8)] == \
+        [FORWARD, FORWARD, STOPPED, STOPPED, FORWARD]
+
+
+def test_a_period_out_of_range_is_refused_by_name():
+    with pytest.raises(ValueError, match='forward_period must be at least'):
+        ForwardStop(forward_period=0.0)

@@ -10,7 +10,7 @@ from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.mapfile import load_map, save_map
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher
 from wall_follower.mapping.poses import between, compose, inverse
-from wall_follower.mapping.slam import DEFAULTS, Mapper, scan_points
+from wall_follower.mapping.slam import Mapper, scan_points
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 
@@ -70,7 +70,7 @@ def _room_scan(pose, beams=360, half=(1.5, 1.2)):
                                     (0.0, 0.0, math.radians(6.0))])
 def test_the_matcher_recovers_a_known_offset_of_a_synthetic_scan(offset):
     # The map from a few scans at known poses, so the far walls are drawn without gaps.
-    mapper = Mapper(DEFAULTS._replace(scan_matching=False, linear_update=0.0, start_patience=0))
+    mapper = Mapper(scan_matching=False, linear_update=0.0, start_patience=0)
     for k in range(4):
         ranges, angles = _room_scan((0.0, 0.0, math.radians(0.25 * k)))
         mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, math.radians(0.25 * k)))
@@ -83,7 +83,7 @@ def test_the_matcher_recovers_a_known_offset_of_a_synthetic_scan(offset):
     # Within one cell of the fine grid: walls on cell edges, as here and in Stage's
     # worlds, are drawn half a cell into their cells, and the scan is matched to those.
     error = math.hypot(match.pose[0] - true_pose[0], match.pose[1] - true_pose[1])
-    assert error < DEFAULTS.match_resolution
+    assert error < mapper.config['match_resolution']
     assert abs(math.degrees(match.pose[2] - true_pose[2])) < 0.1
     assert match.misfit < 0.005
 
@@ -102,7 +102,7 @@ def test_the_matcher_keeps_the_prediction_when_a_match_leaves_the_window():
 
 
 def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():
-    mapper = Mapper(DEFAULTS)
+    mapper = Mapper()
     truth = (0.0, 0.0, 0.0)
     odom = truth
     for _ in range(2):    # standing: the map starts
@@ -124,15 +124,51 @@ def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():
 
 def test_the_map_starts_at_rest_or_once_patience_runs_out():
     ranges, angles = _room_scan((0.0, 0.0, 0.0))
-    mapper = Mapper(DEFAULTS._replace(start_patience=5))
+    mapper = Mapper(start_patience=5)
     for k in range(3):    # turning: odometry a step ahead of the laser would tilt the map
         assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k)) is None
     assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.1)) == (0.0, 0.0, 0.1)
     assert mapper.started and mapper.drawn == 1
-    impatient = Mapper(DEFAULTS._replace(start_patience=5))
+    impatient = Mapper(start_patience=5)
     poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * k, 0.0, 0.0))
              for k in range(7)]
     assert poses[:5] == [None] * 5 and poses[5] is not None
+
+
+def test_new_parameters_apply_from_the_next_scan():
+    ranges, angles = _room_scan((0.0, 0.0, 0.0))
+    mapper = Mapper(scan_matching=False, start_patience=0)
+    for x in (0.0, 0.05):   # the second scan is nearer than linear_update: not drawn
+        mapper.add_scan(ranges, angles, 0.12, 3.5, (x, 0.0, 0.0))
+    assert mapper.drawn == 1
+    mapper.reconfigure(scan_matching=False, start_patience=0, linear_update=0.04,
+                       hit_logodds=1.2, miss_logodds=-0.3)
+    mapper.add_scan(ranges, angles, 0.12, 3.5, (0.1, 0.0, 0.0))
+    assert mapper.drawn == 2
+    assert (mapper.grid.hit, mapper.grid.miss) == (mapper.fine.hit, mapper.fine.miss) == (
+        1.2, -0.3)
+
+
+def test_a_new_match_window_and_reach_apply_to_the_map_already_built():
+    mapper = Mapper(scan_matching=False, start_patience=0)
+    ranges, angles = _room_scan((0.0, 0.0, 0.0))
+    mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.0))
+    mapper.reconfigure(search_window_linear=0.02, match_capture=0.5)
+    assert mapper.matcher.window == (0.02, mapper.config['search_window_angular'])
+    assert mapper.matcher.reaches == (0.5, mapper.config['match_reach'])
+    fresh = DistanceField(mapper.fine, 0.5)
+    fresh.update()
+    assert mapper.field.reach == 0.5
+    assert np.array_equal(mapper.field.values, fresh.values)
+
+
+@pytest.mark.parametrize('name, value', [('delta', 0.1), ('xmax', 5.0),
+                                         ('match_resolution', 0.02)])
+def test_the_grids_cannot_change_on_a_map_being_built(name, value):
+    mapper = Mapper()
+    with pytest.raises(ValueError, match='%s cannot change' % name):
+        mapper.reconfigure(**{name: value})
+    assert mapper.config[name] != value
 
 
 def test_poses_compose_invert_and_relate():

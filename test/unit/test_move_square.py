@@ -59,5 +59,13 @@ def test_sides_at_the_linear_limit_and_corners_at_the_angular_limit():
 def test_bad_parameters_are_refused_by_name():
     with pytest.raises(ValueError, match='side'):
         SquareDriver(side=0.0)
-    with pytest.raises(ValueError, match='unknown parameters: speed'):
+    with pytest.raises(ValueError, match='unknown parameter speed'):
         SquareDriver(speed=1.0)
+
+
+def test_a_new_side_moves_the_corners_of_the_square_laid_out():
+    driver = SquareDriver()
+    driver.start((1.0, 2.0, 0.0))
+    driver.reconfigure(side=0.8)
+    assert driver.corner(1) == pytest.approx((1.8, 2.0))
+    assert driver.update((1.0, 2.0, 0.0)).linear == pytest.approx(0.19)

@@ -54,12 +54,14 @@ def test_values_given_are_used_and_written_back_in_their_type(server):
     assert not fake.logs
 
 
-def test_an_unknown_key_is_named_in_a_warning(server):
+def test_an_unknown_key_is_named_in_a_warning_with_the_known_ones(server):
     fake = server({'target_distanse': 0.3})
     params = parameters.NodeParameters(TABLE)
     assert params.snapshot()['target_distance'] == 0.25
     assert [level for level, _ in fake.logs] == ['warn']
     assert '~target_distanse' in fake.logs[0][1]
+    # No dynamic_reconfigure server to ask: the warning names them.
+    assert '~target_distance, ~wall_min_points, ~find_wall are the known ones' in fake.logs[0][1]
 
 
 @pytest.mark.parametrize('name, value, says', [
@@ -95,3 +97,35 @@ def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server)
     assert answer['target_distance'] == 0.25 and 'groups' in answer
     assert params.take_update() is None
     assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]
+
+
+def _near_unless_found(values):
+    if not values['find_wall'] and values['target_distance'] > 0.5:
+        return 'target_distance must be at most 0.5 without find_wall'
+    return None
+
+
+def test_values_that_break_a_rule_stop_the_node_or_are_refused_live(server):
+    fake = server({'target_distance': 0.7})
+    params = parameters.NodeParameters(TABLE, rules=(_near_unless_found,))
+    config = {'target_distance': 0.7, 'wall_min_points': 6, 'find_wall': False, 'groups': {}}
+    assert params._on_reconfigure(config, 0)['find_wall'] is True
+    assert params.take_update() is None
+    assert fake.logs[-1][0] == 'error' and 'at most 0.5 without find_wall' in fake.logs[-1][1]
+    fake = server({'target_distance': 0.7, 'find_wall': False})
+    with pytest.raises(SystemExit):
+        parameters.NodeParameters(TABLE, rules=(_near_unless_found,))
+    assert fake.logs[-1] == ('fatal', '/node: cannot start: ~target_distance must be at most 0.5 '
+                             'without find_wall (check the launch file and config/*.yaml)')
+
+
+def test_a_change_to_a_value_read_at_start_is_refused_and_the_rest_applied(server):
+    fake = server({})
+    params = parameters.NodeParameters(TABLE, read_at_start=('wall_min_points',))
+    config = {'target_distance': 0.22, 'wall_min_points': 9, 'find_wall': True, 'groups': {}}
+    answer = params._on_reconfigure(config, 0)
+    assert answer['wall_min_points'] == 6 and answer['target_distance'] == 0.22
+    assert params.take_update() == {'target_distance': 0.22, 'wall_min_points': 6,
+                                    'find_wall': True}
+    assert [level for level, _ in fake.logs] == ['warn', 'info']
+    assert '~wall_min_points read at start only; kept as 6' in fake.logs[0][1]

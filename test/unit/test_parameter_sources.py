@@ -19,7 +19,9 @@ import roslaunch.config
 import yaml
 
 from wall_follower.params import ParameterError, checked, defaults, parameters
-from wall_follower.params import odom_recorder, stage_sim, wall_finder, wall_following
+from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
+                                  odom_recorder, range_ahead, simple_move_square, slam,
+                                  stage_sim, teleop_key, wall_finder, wall_following, wander)
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -29,10 +31,25 @@ NODES = {
     'wall_finder': (wall_finder.TABLE, 'WallFinder'),
     'odom_recorder': (odom_recorder.TABLE, 'OdomRecorder'),
     'stage_sim': (stage_sim.TABLE, None),
+    'teleop_key': (teleop_key.TABLE, 'TeleopKey'),
+    'simple_move_square': (simple_move_square.TABLE, 'SimpleMoveSquare'),
+    'forward_stop': (forward_stop.TABLE, 'ForwardStop'),
+    'range_ahead': (range_ahead.TABLE, 'RangeAhead'),
+    'wander': (wander.TABLE, 'Wander'),
+    'slam': (slam.TABLE, 'Slam'),
+    'map_saver': (map_saver.TABLE, None),
+    'course_report': (course_report.TABLE, None),
+    'find_trials': (find_trials.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
-               'odom_recorder.py': 'odom_recorder', 'stage_sim': 'stage_sim'}
+               'odom_recorder.py': 'odom_recorder'}
+EXECUTABLES.update((node, node) for node in NODES if node + '.py' not in EXECUTABLES)
+#: the nodes that drive, whose tables take params.driving's sections
+DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 'forward_stop',
+           'wander')
+#: nodes set only by their launch files' arguments, which document them: no README table
+WITHOUT_README_TABLE = {'course_report', 'find_trials'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 
@@ -65,31 +82,46 @@ def test_a_config_file_holds_only_known_values_that_differ_from_the_defaults(nod
     assert not repeated, 'config/%s.yaml repeats the default of %s' % (node, ', '.join(repeated))
 
 
-def launch_parameters(path):
+def launch_parameters(path, args=()):
     """(node, parameter, value) of every parameter a launch file gives the package's nodes.
 
-    roslaunch's own loader reads the file, with every <arg> at its default,
-    its includes and the config files its rosparam elements load.
+    roslaunch's own loader reads the file, with every <arg> at its default
+    but those of args ('name:=value'), its includes and the config files its
+    rosparam elements load.
     """
     logging.getLogger('roslaunch').setLevel(logging.WARNING)
-    config = roslaunch.config.load_config_default([path], None, verbose=False)
+    config = roslaunch.config.load_config_default([(path, list(args))], None, verbose=False)
     found = []
     for node in config.nodes:
         if node.package != 'wall_follower' or node.type not in EXECUTABLES:
             continue
         prefix = rosgraph.names.ns_join(node.namespace, node.name) + '/'
+        values = {}
         for key, param in config.params.items():
             if key.startswith(prefix):
-                found.append((EXECUTABLES[node.type], key[len(prefix):], param.value))
+                _nest(values, key[len(prefix):].split('/'), param.value)
+        found.extend((EXECUTABLES[node.type], name, value) for name, value in values.items())
     return found
 
 
+def _nest(values, path, value):
+    """Put value at path in values, a dict of dicts: roslaunch hands a structure (find_trials'
+    ~poses) over flattened, one parameter per leaf."""
+    for name in path[:-1]:
+        values = values.setdefault(name, {})
+    values[path[-1]] = value
+
+
 LAUNCH_FILES = sorted(glob.glob(os.path.join(ROOT, 'launch', '*.launch')))
+#: (launch file, its args): each file at its defaults, and with the args that add a node
+LAUNCH_RUNS = [(path, ()) for path in LAUNCH_FILES] + [
+    (os.path.join(ROOT, 'launch', 'main.launch'), ('report:=true',))]
 
 
-@pytest.mark.parametrize('path', LAUNCH_FILES, ids=[os.path.basename(p) for p in LAUNCH_FILES])
-def test_a_launch_file_gives_the_defaults_or_the_config_files(path):
-    for node, name, value in launch_parameters(path):
+@pytest.mark.parametrize('path, args', LAUNCH_RUNS, ids=[
+    ' '.join((os.path.basename(path),) + args) for path, args in LAUNCH_RUNS])
+def test_a_launch_file_gives_the_defaults_or_the_config_files(path, args):
+    for node, name, value in launch_parameters(path, args):
         table = NODES[node][0]
         expected = dict(defaults(table), **config_file_values(node))
         assert name in expected, '%s: unknown parameter ~%s of %s' % (path, name, node)
@@ -98,9 +130,13 @@ def test_a_launch_file_gives_the_defaults_or_the_config_files(path):
 
 def test_the_launch_files_set_the_nodes_parameters():
     """The test above looks at something: the launch files do set parameters."""
-    found = set((node, name) for path in LAUNCH_FILES for node, name, _ in launch_parameters(path))
+    found = set((node, name) for path, args in LAUNCH_RUNS
+                for node, name, _ in launch_parameters(path, args))
     assert {('wall_following', 'laser_x'), ('wall_finder', 'laser_x'),
             ('stage_sim', 'speedup')} <= found
+    assert {('forward_stop', 'forward_period'), ('simple_move_square', 'side')} <= found
+    assert {('slam', 'scan_matching'), ('course_report', 'plot'),
+            ('find_trials', 'poses')} <= found
 
 
 def readme_rows():
@@ -141,7 +177,8 @@ def readme_value_matches(text, default):
 
 def test_the_readme_tables_show_the_defaults():
     rows = readme_rows()
-    assert set(NODES) == set(node for nodes, _, _, _ in rows for node in nodes)
+    assert set(NODES) - WITHOUT_README_TABLE == set(
+        node for nodes, _, _, _ in rows for node in nodes)
     for nodes, names, texts, line in rows:
         assert len(names) == len(texts), line
         for node in nodes:
@@ -161,3 +198,20 @@ def test_a_wrong_type_or_a_misspelling_is_refused_by_name():
     with pytest.raises(ParameterError, match='max_linear must be at most'):
         checked(wall_following.TABLE, {'max_linear': 0.3})
     assert checked(wall_following.TABLE, {'wall_min_points': 7.0})['wall_min_points'] == 7
+    with pytest.raises(ParameterError, match='poses must be a mapping'):
+        checked(find_trials.TABLE, {'poses': [[0.0, 0.0, 0.0]]})
+
+
+@pytest.mark.parametrize('node', DRIVING)
+def test_a_driving_node_declares_the_loop_and_the_clamp_through_params_driving(node):
+    """One declaration of the loop's and the clamp's parameters: only scan_timeout's default
+    and meaning may differ from node to node."""
+    table = NODES[node][0]
+    sections = dict((section.name, section) for section in table)
+    assert sections['limits'] is driving.LIMITS
+    scan_timeout = next(p for p in sections['drive_loop'].parameters if p.name == 'scan_timeout')
+    assert sections['drive_loop'] == driving.loop(scan_timeout.default, scan_timeout.description)
+    shared = set(p.name for p in parameters((driving.loop(1.0), driving.LIMITS)))
+    elsewhere = [p.name for section in table for p in section.parameters
+                 if section.name not in ('drive_loop', 'limits')]
+    assert not shared & set(elsewhere)

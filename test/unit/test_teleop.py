@@ -10,15 +10,15 @@ def ticks(teleop, count):
 
 
 def test_w_raises_the_target_by_a_step_and_the_command_ramps_half_a_step_per_tick():
-    teleop = Teleop(0.19, 0.49)
+    teleop = Teleop()
     assert teleop.press('w') and teleop.press('w')
     assert teleop.target.linear == pytest.approx(0.02)
     linear = [c.linear for c in ticks(teleop, 5)]
     assert linear == pytest.approx([0.005, 0.01, 0.015, 0.02, 0.02])
 
 
-def test_targets_are_clamped_to_the_limits_given():
-    teleop = Teleop(0.19, 0.49)
+def test_targets_are_clamped_to_the_limits():
+    teleop = Teleop()
     for _ in range(30):
         teleop.press('w')
         teleop.press('d')
@@ -28,7 +28,7 @@ def test_targets_are_clamped_to_the_limits_given():
 
 def test_s_and_space_stop_at_once():
     for key in ('s', ' '):
-        teleop = Teleop(0.19, 0.49)
+        teleop = Teleop()
         teleop.press('x')
         teleop.press('a')
         ticks(teleop, 5)
@@ -38,7 +38,7 @@ def test_s_and_space_stop_at_once():
 
 
 def test_ctrl_c_quits_with_a_stopped_command_and_other_keys_do_nothing():
-    teleop = Teleop(0.19, 0.49)
+    teleop = Teleop()
     assert not teleop.press('q')
     assert teleop.target == Command(0.0, 0.0)
     teleop.press('w')
@@ -48,6 +48,16 @@ def test_ctrl_c_quits_with_a_stopped_command_and_other_keys_do_nothing():
 
 
 def test_describe_names_the_target():
-    teleop = Teleop(0.19, 0.49)
+    teleop = Teleop()
     teleop.press('a')
     assert teleop.describe() == 'target: linear 0.00 m/s, angular 0.10 rad/s'
+
+
+def test_new_steps_and_limits_apply_from_the_next_key_and_the_target_within_the_limits():
+    teleop = Teleop()
+    for _ in range(10):
+        teleop.press('w')
+    teleop.reconfigure(max_linear=0.05, linear_step=0.02)
+    assert teleop.target.linear == pytest.approx(0.05)
+    teleop.press('x')
+    assert teleop.target.linear == pytest.approx(0.03)

@@ -1,12 +1,12 @@
 """VelocityCommander: clamps every command, and once shutdown begins sends nothing but stops.
 
-Needs ROS's Python modules but no master: rospy's Publisher, parameters and
-shutdown hooks are replaced by the test's.
+Needs ROS's Python modules but no master: rospy's Publisher and shutdown
+hooks are replaced by the test's.
 """
 import pytest
 import rospy
 
-from wall_follower.control.motion import Command
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command
 from wall_follower.nodes.common import VelocityCommander
 
 
@@ -21,13 +21,10 @@ class Publisher(object):
 @pytest.fixture
 def commander(monkeypatch):
     hooks = []
-    params = {}
     monkeypatch.setattr(rospy, 'Publisher', Publisher)
     monkeypatch.setattr(rospy, 'on_shutdown', hooks.append)
-    monkeypatch.setattr(rospy, 'get_param', lambda name, default=None: params.get(name, default))
-    monkeypatch.setattr(rospy, 'logerr', lambda *args: None)
-    made = VelocityCommander()
-    made.hooks, made.params = hooks, params
+    made = VelocityCommander('cmd_vel', MAX_LINEAR, MAX_ANGULAR)
+    made.hooks = hooks
     return made
 
 
@@ -42,15 +39,6 @@ def test_after_shutdown_begins_every_command_is_a_stop(commander):
         hook()
     commander.send(Command(0.1, 0.2))
     assert commander._pub.sent == [(0.1, 0.2), (0.0, 0.0), (0.0, 0.0)]
-
-
-def test_limits_that_are_not_numbers_fall_back_to_the_robot_limits(monkeypatch):
-    monkeypatch.setattr(rospy, 'Publisher', Publisher)
-    monkeypatch.setattr(rospy, 'on_shutdown', lambda hook: None)
-    monkeypatch.setattr(rospy, 'get_param', lambda name, default=None: 'fast')
-    monkeypatch.setattr(rospy, 'logerr', lambda *args: None)
-    made = VelocityCommander()
-    assert (made.max_linear, made.max_angular) == (0.19, 0.49)
 
 
 def test_limits_given_or_changed_are_the_clamp(commander):

@@ -53,3 +53,17 @@ def test_a_cone_with_nothing_known_counts_as_blocked():
 def test_clear_distance_below_obstacle_distance_is_refused():
     with pytest.raises(ValueError):
         Wanderer(obstacle_distance=0.5, clear_distance=0.4)
+
+
+def test_a_new_speed_is_used_at_the_next_scan():
+    wanderer = Wanderer()
+    view = scan_view(ROOM, (0.0, 0.0, 0.0), CONVENTIONS[0])
+    wanderer.reconfigure(speed=0.1)
+    assert wanderer.update(view) == Command(0.1, 0.0)
+
+
+def test_a_change_that_breaks_a_rule_is_refused_and_the_old_values_kept():
+    wanderer = Wanderer()
+    with pytest.raises(ValueError, match='clear_distance .* must not be below obstacle_distance'):
+        wanderer.reconfigure(obstacle_distance=0.6)
+    assert wanderer.p['obstacle_distance'] < wanderer.p['clear_distance']

@@ -1,18 +1,19 @@
 """Rounding a convex (outer) corner: the arc round its tip, and the turn that flies it.
 
-Circling the end of a wall at the band's distance (0.25 m) holds the wall
-in the band, but at the turn-rate limit it allows only 0.49 * 0.25 = 0.12
-m/s. Two things make the corner faster while its tip stays in the band:
+Circling the end of a wall at target_distance holds the wall in the band,
+but at the turn-rate limit it allows only max_turn_rate * target_distance
+of forward speed, well below cruise_speed. Two things make the corner
+faster while its tip stays in the band:
 
 - the arc round the tip is centred a little off the tip (CornerArc's
-  centre), as if the corner were rounded off: an arc of radius 0.25 + c
-  round a corner rounded off by c starts and ends at the band's distance
-  and comes only 0.41 c nearer half way round;
+  centre), as if the corner were rounded off: an arc of radius
+  target_distance + c round a corner rounded off by c starts and ends at
+  the band's distance and comes only (sqrt 2 - 1) c nearer half way round;
 - the turn starts and ends on the widest arc the turn rate allows at cruise
-  speed (0.39 m, OuterTurn), and circles the tip on the tighter arc only
-  in between. Begun before the tip is reached, a wide arc keeps the tip
-  about as near as circling it would, and only the tight middle part of
-  the turn loses time to the turn-rate limit.
+  speed (cruise_speed / max_turn_rate, OuterTurn), and circles the tip on
+  the tighter arc only in between. Begun before the tip is reached, a
+  wide arc keeps the tip about as near as circling it would, and only the
+  tight middle part of the turn loses time to the turn-rate limit.
 
 The arc is pinned to the corner's tip as the scans see it, and carried
 along with the robot's own motion between scans. Which way the corner

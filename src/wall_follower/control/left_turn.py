@@ -1,15 +1,16 @@
 """The planned left turn onto a wall ahead (inner corner): wide, then tight, then wide again.
 
 Turning at the full turn rate, time is lost only where the arc is tighter
-than cruise_speed / max_turn_rate (0.39 m at 0.19 m/s and 0.49 rad/s). Both
-ends of the turn can be wide. At the start the wall ahead is still far,
-and the robot only drifts a little off the old wall (0.39 * (1 - cos 30
-deg) = 52 mm for the first 30 degrees). At the end the old wall is behind,
-and the last degrees only come nearer the new one (52 mm again for the
-last 30). Only the middle, where the robot passes the corner itself, needs
-the tight arc that keeps both walls within the band; as time is lost in
-proportion to how much tighter than the wide arc it is, a short near
-pivot there costs less than a longer arc of middling radius.
+than cruise_speed / max_turn_rate, the tightest arc flown at full speed.
+Both ends of the turn can be wide. At the start the wall ahead is still
+far, and the robot only drifts off the old wall by wide_radius * (1 - cos
+wide_start), a few centimetres at the defaults. At the end the old wall
+is behind, and the last degrees only come nearer the new one (by as
+little, over wide_end). Only the middle, where the robot passes the
+corner itself, needs the tight arc that keeps both walls within the
+band; as time is lost in proportion to how much tighter than the wide arc
+it is, a short near pivot there costs less than a longer arc of middling
+radius.
 
 A turn is planned by the angle still to turn, which is the angle of the
 wall ahead: that is what each scan measures again. gap(angle) is how much

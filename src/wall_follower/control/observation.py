@@ -52,9 +52,10 @@ class Observation(object):
 def unbiased(points, bias):
     """Hits moved bias metres nearer the laser along their beams.
 
-    Stage raytraces in whole grid cells and so reads a wall long, by about
-    0.008 m on average at its default 0.02 m resolution; a laser that reads
-    true wants bias 0.
+    Stage raytraces in whole grid cells and so reads a wall long, on
+    average by a fraction of its map resolution (the range_bias parameter's
+    default is that average at Stage's default resolution); a laser that
+    reads true wants bias 0.
     """
     ranges = np.hypot(points[:, 0], points[:, 1])
     scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)

@@ -79,22 +79,11 @@ def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,
     Isolated hits (no neighbour within the gap on either side) are dropped
     first, so a lone spurious beam can neither be a wall nor cut one in two.
     """
-    angles = view.angles[view.valid]
-    ranges = view.ranges[view.valid]
-    order = np.argsort(angles, kind='mergesort')
-    angles, ranges = angles[order], ranges[order]
-    beam_step = max(2.0 * view.half_step, 1e-6)
-    if angles.size < min_points:
+    hits = _connected_hits(view, min_points, max_gap, gap_beams)
+    if hits is None:
         return []
-    breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
-    isolated = breaks & np.roll(breaks, 1)
-    if isolated.any():
-        angles, ranges = angles[~isolated], ranges[~isolated]
-        if angles.size < min_points:
-            return []
-        breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
+    angles, ranges, breaks = hits
     points = np.column_stack((ranges * np.cos(angles), ranges * np.sin(angles)))
-    count = len(points)
     walls = []
     for run in _runs(breaks, ranges):
         run_points = points[run]
@@ -104,17 +93,46 @@ def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,
             if (wall is None or wall.count < min_points or wall.rms > max_rms
                     or wall.length < min_length):
                 continue
-            # Only the ends of a run can be hidden: inside one, the hits go on.
-            before, after = (run[0] - 1) % count, (run[-1] + 1) % count
-            hidden_first = first == 0 and breaks[before] and \
-                ranges[before] < ranges[run[0]] - OCCLUSION_STEP
-            hidden_last = stop == len(run) and breaks[run[-1]] and \
-                ranges[after] < ranges[run[-1]] - OCCLUSION_STEP
-            # The hits run counter-clockwise, i.e. from the line's start to its end.
-            walls.append(wall._replace(start_open=bool(hidden_first),
-                                       end_open=bool(hidden_last)))
+            walls.append(_with_open_ends(wall, run, first == 0, stop == len(run), breaks,
+                                         ranges))
     walls.sort(key=lambda wall: wall.distance)
     return walls
+
+
+def _connected_hits(view, min_points, max_gap, gap_beams):
+    """(angles, ranges, breaks) of the valid hits in angle order, isolated hits dropped;
+    None when fewer than min_points remain."""
+    angles = view.angles[view.valid]
+    ranges = view.ranges[view.valid]
+    order = np.argsort(angles, kind='mergesort')
+    angles, ranges = angles[order], ranges[order]
+    beam_step = max(2.0 * view.half_step, 1e-6)
+    if angles.size < min_points:
+        return None
+    breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
+    isolated = breaks & np.roll(breaks, 1)
+    if isolated.any():
+        angles, ranges = angles[~isolated], ranges[~isolated]
+        if angles.size < min_points:
+            return None
+        breaks = _breaks(angles, ranges, beam_step, max_gap, gap_beams)
+    return angles, ranges, breaks
+
+
+def _with_open_ends(wall, run, at_run_start, at_run_end, breaks, ranges):
+    """wall with start_open and end_open set.
+
+    Only the ends of a run can be hidden (inside one, the hits go on), and
+    an end is hidden when the hit just beyond the break is nearer. The hits
+    run counter-clockwise, i.e. from the line's start to its end.
+    """
+    count = breaks.size
+    before, after = (run[0] - 1) % count, (run[-1] + 1) % count
+    hidden_first = at_run_start and breaks[before] and \
+        ranges[before] < ranges[run[0]] - OCCLUSION_STEP
+    hidden_last = at_run_end and breaks[run[-1]] and \
+        ranges[after] < ranges[run[-1]] - OCCLUSION_STEP
+    return wall._replace(start_open=bool(hidden_first), end_open=bool(hidden_last))
 
 
 def _breaks(angles, ranges, beam_step, max_gap, gap_beams):

@@ -1,47 +1,46 @@
 """Forward, stop, forward, ...: the lab's experiment 1, timed on ROS time, stopping for obstacles.
 
 The lab's loop publishes once per rospy.Rate(0.2) sleep: one Twist drives
-for 5 s and one stops for 5 s, and Stage's 0.2 s cmd_vel watchdog stops the
-robot long before the 5 s are up. Here the phase is read from the clock at
-every scan, so the command is re-sent all through its phase, and a forward
-phase stops early (and says why) while something is nearer straight ahead
-than `stop_distance`.
+for one period and one stops for the next, and Stage's 0.2 s cmd_vel
+watchdog stops the robot long before a period is up. Here the phase
+(`forward_period`, then `stop_period`) is read from the clock at every
+scan, so the command is re-sent all through its phase, and a forward phase
+stops early (and says why) while something is nearer straight ahead than
+`stop_distance`.
 """
 import math
 
 from wall_follower.control.motion import STOP, Command
+from wall_follower.params import checked
+from wall_follower.params.forward_stop import FORWARD_STOP
 
 FORWARD = 'FORWARD'
 STOPPED = 'STOPPED'
 BLOCKED = 'BLOCKED'
-
-DEFAULTS = {
-    'forward_period': 5.0,
-    'stop_period': 5.0,
-    'speed': 0.2,
-    'stop_distance': 0.4,
-    'cone_half_width': math.radians(20.0),
-}
-"""forward_period, stop_period: seconds of driving and of standing, alternately
-    (the lab's rospy.Rate(0.2): 5 s each), from the first scan on.
-speed: forward speed [m/s] (the lab's 0.2; the node's clamp holds it to ~max_linear).
-stop_distance: in a forward phase, stand while a valid reading within
-    cone_half_width [rad] of straight ahead is nearer than this [m].
-"""
+PERIODS = ('forward_period', 'stop_period')
 
 
 class ForwardStop(object):
-    """The phase at each time, and the command for it given the scan."""
+    """The phase at each time, and the command for it given the scan.
+
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the FORWARD_STOP table) are the defaults overridden by those given.
+    """
 
     def __init__(self, **params):
-        unknown = set(params) - set(DEFAULTS)
-        if unknown:
-            raise ValueError('unknown parameters: %s' % ', '.join(sorted(unknown)))
-        self.p = dict(DEFAULTS, **params)
-        if self.p['forward_period'] <= 0.0 or self.p['stop_period'] < 0.0:
-            raise ValueError('forward_period must be positive and stop_period not negative')
+        self.p = checked(FORWARD_STOP, params)
         self.started = None
         self.state = None
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next update on.
+
+        New periods start a new cycle there, with a forward phase: the
+        phase in progress was timed for the old ones.
+        """
+        old, self.p = self.p, checked(FORWARD_STOP, params)
+        if any(old[name] != self.p[name] for name in PERIODS):
+            self.restart()
 
     def restart(self):
         """Begin a new forward phase at the next update (e.g. after ROS time moved back)."""

@@ -12,62 +12,42 @@ so the square closes however the robot accelerates:
 The corners are those of the ideal square laid out from the start pose
 (side k heads start yaw + k * 90 deg), so small errors of one side are not
 carried into the next: each side steers back onto its line and ends level
-with its corner. Sides run at the linear limit and slow down linearly over
-the last `slow_down` metres; corners pivot at the angular limit and slow
-down over the last `turn_slow_down` radians, so that the last step before
-the end overshoots by no more than a minimum speed allows.
+with its corner. Sides run at the linear limit (`max_linear`) and slow
+down linearly over the last `slow_down` metres; corners pivot at the
+angular limit (`max_angular`) and slow down over the last `turn_slow_down`
+radians, so that the last step before the end overshoots by no more than a
+minimum speed allows.
 """
 import math
 
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.scan import wrap_angle
+from wall_follower.params import checked
+from wall_follower.params.simple_move_square import SQUARE
 
 SIDE = 'SIDE'
 CORNER = 'CORNER'
 DONE = 'DONE'
 
-DEFAULTS = {
-    'side': 0.5,
-    'laps': 1,
-    'max_linear': 0.19,
-    'max_angular': 0.49,
-    'slow_down': 0.1,
-    'min_linear': 0.02,
-    'turn_slow_down': 0.25,
-    'min_angular': 0.04,
-    'distance_tolerance': 0.003,
-    'heading_tolerance': 0.005,
-    'heading_gain': 2.0,
-    'cross_track_gain': 4.0,
-}
-"""side: length of each side [m]. laps: times round the square.
-max_linear, max_angular: speed along the sides, turn rate at the corners.
-slow_down, min_linear: over the last slow_down metres of a side the speed
-    falls in proportion to the distance left, down to min_linear [m, m/s].
-turn_slow_down, min_angular: the same for the last radians of a corner.
-distance_tolerance, heading_tolerance: a side or a corner is done once this
-    near its end [m, rad].
-heading_gain, cross_track_gain: steering along a side back onto its line,
-    per rad of heading error and per metre off the line [1/s, rad/(m s)].
-"""
-
 
 class SquareDriver(object):
-    """Steps through the square, one odometry pose (x, y, yaw) at a time."""
+    """Steps through the square, one odometry pose (x, y, yaw) at a time.
+
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the SQUARE table) are the defaults overridden by those given.
+    """
 
     def __init__(self, **params):
-        unknown = set(params) - set(DEFAULTS)
-        if unknown:
-            raise ValueError('unknown parameters: %s' % ', '.join(sorted(unknown)))
-        p = dict(DEFAULTS, **params)
-        if p['side'] <= 0.0 or int(p['laps']) < 1:
-            raise ValueError('side must be positive and laps at least 1 (side %r, laps %r)'
-                             % (p['side'], p['laps']))
-        self.p = p
-        self.sides = 4 * int(p['laps'])
+        self.reconfigure(**params)
         self.state = None
         self.start_pose = None
         self.leg = 0
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next update on:
+        the square laid out keeps its start pose, its corners move with a new side."""
+        self.p = checked(SQUARE, params)
+        self.sides = 4 * self.p['laps']
 
     def start(self, pose):
         """Lay the square out from pose: the first side runs straight ahead."""

@@ -13,15 +13,13 @@ from collections import namedtuple
 
 import numpy as np
 
-DEFAULT_HALF_WIDTH = math.radians(5.0)
-
 Ahead = namedtuple('Ahead', ['distance', 'hits', 'free', 'unknown'])
 """distance: median valid range in the window [m], None without one; hits,
 free, unknown: how many beams of the window were valid, proven no-returns
 (nothing up to range_max), and readings that prove nothing."""
 
 
-def range_ahead(view, half_width=DEFAULT_HALF_WIDTH):
+def range_ahead(view, half_width):
     """An Ahead for a ScanView: what lies within half_width [rad] of straight ahead."""
     window = view.in_sector(0.0, half_width)
     hits = view.ranges[window & view.valid]

@@ -1,17 +1,17 @@
 """Keyboard teleoperation with the keys and ramp of ROBOTIS's turtlebot3_teleop_key.
 
-w/x raise/lower the target speed by LINEAR_STEP, a/d the target turn rate
-by ANGULAR_STEP, s or space stop at once, Ctrl-C (or its byte, 0x03, read
-from a pipe) quits. The command sent moves toward the target by half a step
-per tick, as ROBOTIS's does, so that a key held down accelerates smoothly.
-Targets are clamped to the limits given, the package's 0.19 m/s and
-0.49 rad/s by default; ROBOTIS's own limits (BURGER_MAX_*) are the
-hardware's, which the course's real robot does not allow.
+w/x raise/lower the target speed by `linear_step`, a/d the target turn
+rate by `angular_step`, s or space stop at once, Ctrl-C (or its byte, 0x03,
+read from a pipe) quits. The command sent moves toward the target by half a
+step per tick, as ROBOTIS's does, so that a key held down accelerates
+smoothly. Targets are clamped to `max_linear` and `max_angular`, the
+package's limits; ROBOTIS's own (BURGER_MAX_*) are the hardware's, which
+the course's real robot does not allow.
 """
 from wall_follower.control.motion import Command
+from wall_follower.params import checked
+from wall_follower.params.teleop_key import TELEOP
 
-LINEAR_STEP = 0.01    # m/s per key press
-ANGULAR_STEP = 0.1    # rad/s per key press
 BURGER_MAX_LINEAR = 0.22    # the Burger's hardware limits [m/s, rad/s], for reference
 BURGER_MAX_ANGULAR = 2.84
 
@@ -48,17 +48,26 @@ def limit(value, bound):
 
 
 class Teleop(object):
-    """The target set by keys and the command ramping toward it, one tick at a time."""
+    """The target set by keys and the command ramping toward it, one tick at a time.
 
-    def __init__(self, max_linear, max_angular, linear_step=LINEAR_STEP,
-                 angular_step=ANGULAR_STEP):
-        self.max_linear = abs(max_linear)
-        self.max_angular = abs(max_angular)
-        self.linear_step = linear_step
-        self.angular_step = angular_step
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the TELEOP table) are the defaults overridden by those given.
+    """
+
+    def __init__(self, **params):
         self.target = Command(0.0, 0.0)
         self.command = Command(0.0, 0.0)
         self.quit = False
+        self.reconfigure(**params)
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next key and tick
+        on; a target beyond new limits is brought within them."""
+        p = checked(TELEOP, params)
+        self.max_linear, self.max_angular = p['max_linear'], p['max_angular']
+        self.linear_step, self.angular_step = p['linear_step'], p['angular_step']
+        self.target = Command(limit(self.target.linear, self.max_linear),
+                              limit(self.target.angular, self.max_angular))
 
     def press(self, key):
         """Apply one key; True when it changed the target (or stopped the robot)."""

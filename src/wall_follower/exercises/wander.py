@@ -20,38 +20,29 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import Command
+from wall_follower.params import checked
+from wall_follower.params.wander import RULES, WANDER
 
 FORWARD = 'FORWARD'
 TURN = 'TURN'
 
-DEFAULTS = {
-    'speed': 0.19,
-    'turn_rate': 0.49,
-    'obstacle_distance': 0.4,
-    'clear_distance': 0.55,
-    'cone_half_width': math.radians(35.0),
-    'side_reach': 1.5,
-}
-"""speed, turn_rate: forward speed [m/s] and pivot rate [rad/s].
-obstacle_distance: turn once a valid reading in the cone is nearer than this [m].
-clear_distance: stop turning once every valid reading in the cone is at least this far [m].
-cone_half_width: the cone ahead, either side of straight ahead [rad].
-side_reach: when choosing a side, ranges (and no-returns) count up to this far [m].
-"""
-
 
 class Wanderer(object):
-    """FORWARD / TURN, one ScanView at a time."""
+    """FORWARD / TURN, one ScanView at a time.
+
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the WANDER table, what they must satisfy together its RULES) are
+    the defaults overridden by those given.
+    """
 
     def __init__(self, **params):
-        unknown = set(params) - set(DEFAULTS)
-        if unknown:
-            raise ValueError('unknown parameters: %s' % ', '.join(sorted(unknown)))
-        self.p = dict(DEFAULTS, **params)
-        if self.p['clear_distance'] < self.p['obstacle_distance']:
-            raise ValueError('clear_distance must not be below obstacle_distance')
+        self.reconfigure(**params)
         self.state = FORWARD
         self.turn_sign = 1.0
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next update on."""
+        self.p = checked(WANDER, params, RULES)
 
     def update(self, view):
         """The command for one ScanView; sets self.state."""

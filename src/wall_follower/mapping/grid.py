@@ -12,7 +12,13 @@ import math
 
 import numpy as np
 
+from wall_follower.params import defaults
+from wall_follower.params.slam import MAPPER
+
 __all__ = ['LogOddsGrid', 'probability']
+
+# The defaults of hit and miss below: the mapper's.
+_DEFAULT = defaults(MAPPER)
 
 
 def probability(logodds):
@@ -29,8 +35,8 @@ class LogOddsGrid(object):
     beam has updated.
     """
 
-    def __init__(self, resolution, xmin, ymin, xmax, ymax, hit=0.85, miss=-0.4,
-                 bounds=(-4.0, 4.0)):
+    def __init__(self, resolution, xmin, ymin, xmax, ymax, hit=_DEFAULT['hit_logodds'],
+                 miss=_DEFAULT['miss_logodds'], bounds=(-4.0, 4.0)):
         if resolution <= 0.0 or xmax <= xmin or ymax <= ymin:
             raise ValueError('a grid needs resolution > 0 and xmax > xmin, ymax > ymin '
                              '(got %r, x %r..%r, y %r..%r)' % (resolution, xmin, xmax, ymin, ymax))

@@ -15,20 +15,22 @@ from collections import namedtuple
 import numpy as np
 import yaml
 
+from wall_follower.params import defaults
+from wall_follower.params.map_saver import TABLE
+
 __all__ = ['save_map', 'load_map', 'SavedMap', 'FREE', 'OCCUPIED', 'UNKNOWN']
 
 FREE, OCCUPIED, UNKNOWN = 254, 0, 205
-# map_saver's defaults for --occ and --free (percent).
-OCCUPIED_THRESHOLD = 65
-FREE_THRESHOLD = 25
+# The defaults of the thresholds below: the map_saver node's, map_server's map_saver's.
+_DEFAULT = defaults(TABLE)
 
 # data: int8 (rows, cols), row 0 at the bottom as nav_msgs/OccupancyGrid has it:
 # 100 occupied, 0 free, -1 unknown. origin: (x, y, yaw) of the lower-left corner.
 SavedMap = namedtuple('SavedMap', ['data', 'resolution', 'origin'])
 
 
-def pgm_bytes(data, resolution, occupied_threshold=OCCUPIED_THRESHOLD,
-              free_threshold=FREE_THRESHOLD):
+def pgm_bytes(data, resolution, occupied_threshold=_DEFAULT['occupied_threshold'],
+              free_threshold=_DEFAULT['free_threshold']):
     """The PGM file map_saver writes for OccupancyGrid values data (rows, cols)."""
     data = np.asarray(data, dtype=np.int16)
     rows, cols = data.shape
@@ -47,8 +49,9 @@ def yaml_text(image, resolution, origin):
             % (image, float(np.float32(resolution)), origin[0], origin[1], origin[2]))
 
 
-def save_map(name, data, resolution, origin, occupied_threshold=OCCUPIED_THRESHOLD,
-             free_threshold=FREE_THRESHOLD):
+def save_map(name, data, resolution, origin,
+             occupied_threshold=_DEFAULT['occupied_threshold'],
+             free_threshold=_DEFAULT['free_threshold']):
     """Write NAME.pgm and NAME.yaml as `map_saver -f NAME` does; returns the two paths."""
     image, meta = name + '.pgm', name + '.yaml'
     _write_whole(image, pgm_bytes(data, resolution, occupied_threshold, free_threshold))

@@ -30,6 +30,13 @@ class DistanceField(object):
         self.reach = float(reach)
         self.values = np.full(grid.shape, self.reach, dtype=np.float32)
 
+    def set_reach(self, reach):
+        """Cap the distances at reach from now on, recomputed over the observed part."""
+        if reach != self.reach:
+            self.reach = float(reach)
+            self.values.fill(self.reach)
+            self.update()
+
     def update(self):
         """Recompute over the observed part of the grid (after the grid has changed)."""
         margin = int(math.ceil(self.reach / self.grid.resolution)) + 1
@@ -86,8 +93,7 @@ class ScanMatcher(object):
     are not matched.
     """
 
-    def __init__(self, field, window=(0.15, math.radians(10.0)), reaches=None, iterations=12,
-                 min_points=20, damping=1e-3):
+    def __init__(self, field, window, reaches=None, iterations=12, min_points=20, damping=1e-3):
         self.field = field
         self.window = window
         self.reaches = tuple(reaches) if reaches else (field.reach,)

@@ -19,36 +19,18 @@ drawn (and always the first), as gmapping does: a robot standing still
 would otherwise make every wall certain from one viewpoint.
 """
 import math
-from collections import namedtuple
 
 import numpy as np
+
+from wall_follower.params import checked
+from wall_follower.params.slam import GRID, MAPPER
 
 from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher
 from .poses import between, compose, inverse
 
-__all__ = ['MapperConfig', 'Mapper', 'scan_points']
+__all__ = ['Mapper', 'scan_points']
 
-MapperConfig = namedtuple('MapperConfig', [
-    'resolution',        # published map cell [m]
-    'extent',            # (xmin, ymin, xmax, ymax) of the map frame the grids cover [m]
-    'max_range',         # beams are used up to this range, free beyond a cut [m]
-    'linear_update',     # draw a scan after this much travel [m]
-    'angular_update',    # ... or this much turning [rad]
-    'match_resolution',  # cell of the fine grid the matcher aligns to [m]
-    'match_capture',     # the matcher's first pass weighs points this near a wall [m] ...
-    'match_reach',       # ... and its last pass those this near; farther ones not at all [m]
-    'search_window',     # (m, rad) a match may move from the odometry's prediction
-    'scan_matching',     # False: odometry alone places every scan (for comparison)
-    'start_patience',    # scans to wait for the robot to stand still before the map starts
-    'hit', 'miss',       # log-odds added for an occupied / a crossed cell
-])
-
-DEFAULTS = MapperConfig(resolution=0.05, extent=(-10.0, -10.0, 10.0, 10.0), max_range=3.5,
-                        linear_update=0.15, angular_update=0.15, match_resolution=0.01,
-                        match_capture=0.3, match_reach=0.1,
-                        search_window=(0.15, math.radians(10.0)), scan_matching=True,
-                        start_patience=100, hit=0.85, miss=-0.4)
 # Odometry that moved less than this between two scans is at rest [m, rad].
 AT_REST = 1e-4
 
@@ -82,18 +64,22 @@ def _transform(pose, points):
 
 
 class Mapper(object):
-    """Builds the map from (scan, odometry pose) pairs; laser: its pose on the robot."""
+    """Builds the map from (scan, odometry pose) pairs; laser: its pose on the robot.
 
-    def __init__(self, config=DEFAULTS, laser=(0.0, 0.0, 0.0)):
+    Its parameters (keyword arguments; their defaults, ranges and meanings
+    are the MAPPER table) are the defaults overridden by those given.
+    """
+
+    def __init__(self, laser=(0.0, 0.0, 0.0), **params):
+        config = checked(MAPPER, params)
         self.config = config
-        xmin, ymin, xmax, ymax = config.extent
-        self.grid = LogOddsGrid(config.resolution, xmin, ymin, xmax, ymax, config.hit,
-                                config.miss)
-        self.fine = LogOddsGrid(config.match_resolution, xmin, ymin, xmax, ymax, config.hit,
-                                config.miss)
-        self.field = DistanceField(self.fine, max(config.match_capture, config.match_reach))
-        self.matcher = ScanMatcher(self.field, window=config.search_window,
-                                   reaches=(config.match_capture, config.match_reach))
+        box = (config['xmin'], config['ymin'], config['xmax'], config['ymax'])
+        self.grid = LogOddsGrid(config['delta'], *box, hit=config['hit_logodds'],
+                                miss=config['miss_logodds'])
+        self.fine = LogOddsGrid(config['match_resolution'], *box, hit=config['hit_logodds'],
+                                miss=config['miss_logodds'])
+        self.field = DistanceField(self.fine, _field_reach(config))
+        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config))
         self.laser = tuple(laser)
         self.pose = None          # robot in the map frame
         self.odom = None          # robot in the odometry frame at the same scan
@@ -102,6 +88,23 @@ class Mapper(object):
         self.drawn = 0
         self.last_match = None
         self._waiting = []        # odometry of the scans seen before the map started
+
+    def reconfigure(self, **params):
+        """Go on under these parameters (the defaults, overridden) from the next scan on.
+
+        The grids' cells and extent (the GRID section) cannot change on a map
+        being built: a change to one is a ValueError.
+        """
+        config = checked(MAPPER, params)
+        fixed = [p.name for p in GRID.parameters if config[p.name] != self.config[p.name]]
+        if fixed:
+            raise ValueError('%s cannot change on a map being built' % ', '.join(fixed))
+        self.config = config
+        for grid in (self.grid, self.fine):
+            grid.hit, grid.miss = config['hit_logodds'], config['miss_logodds']
+        self.field.set_reach(_field_reach(config))
+        self.matcher.window = _window(config)
+        self.matcher.reaches = _reaches(config)
 
     @property
     def started(self):
@@ -131,7 +134,7 @@ class Mapper(object):
         odom_pose = tuple(float(v) for v in odom_pose)
         if self.pose is None and not self._may_start(odom_pose):
             return None
-        ends, hit = scan_points(ranges, angles, range_min, range_max, self.config.max_range)
+        ends, hit = scan_points(ranges, angles, range_min, range_max, self.config['max_range'])
         base_ends = _transform(self.laser, ends)
         if self.pose is None:
             predicted = odom_pose
@@ -139,7 +142,7 @@ class Mapper(object):
             predicted = compose(self.pose, between(self.odom, odom_pose))
         pose = predicted
         self.last_match = None
-        if self.config.scan_matching and self.drawn:
+        if self.config['scan_matching'] and self.drawn:
             self.last_match = self.matcher.match(base_ends[hit], predicted)
             pose = self.last_match.pose
         self.pose, self.odom = pose, odom_pose
@@ -155,14 +158,14 @@ class Mapper(object):
             moved = between(previous, odom_pose)
             if math.hypot(moved[0], moved[1]) < AT_REST and abs(moved[2]) < AT_REST:
                 return True
-        return len(self._waiting) > self.config.start_patience
+        return len(self._waiting) > self.config['start_patience']
 
     def _due(self, pose):
         if self._drawn_at is None:
             return True
         moved = between(self._drawn_at, pose)
-        return (math.hypot(moved[0], moved[1]) >= self.config.linear_update
-                or abs(moved[2]) >= self.config.angular_update)
+        return (math.hypot(moved[0], moved[1]) >= self.config['linear_update']
+                or abs(moved[2]) >= self.config['angular_update'])
 
     def _draw(self, pose, base_ends, hit):
         origin = compose(pose, self.laser)[:2]
@@ -172,3 +175,15 @@ class Mapper(object):
         self.field.update()
         self._drawn_at = pose
         self.drawn += 1
+
+
+def _field_reach(config):
+    return max(config['match_capture'], config['match_reach'])
+
+
+def _window(config):
+    return (config['search_window_linear'], config['search_window_angular'])
+
+
+def _reaches(config):
+    return (config['match_capture'], config['match_reach'])

@@ -9,30 +9,8 @@ import rospy
 from geometry_msgs.msg import Pose, Twist
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, Command, clamp
+from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
-
-
-def private_params(defaults):
-    """Read each ~name from the parameter server, falling back to defaults[name].
-
-    For the nodes not yet on wall_follower.nodes.parameters (the exercises,
-    the mapper), whose defaults are still their own.
-
-    A value of the wrong type is a configuration error: it is reported once,
-    by name, and the default is used instead of crashing the node.
-    """
-    values = {}
-    for name, default in defaults.items():
-        value = rospy.get_param('~' + name, default)
-        if isinstance(default, (int, float)) and not isinstance(default, bool):
-            try:
-                value = type(default)(value)
-            except (TypeError, ValueError):
-                rospy.logerr('parameter ~%s=%r is not a number; using %r', name, value, default)
-                value = default
-        values[name] = value
-    return values
 
 
 def to_twist(command):
@@ -43,20 +21,16 @@ def to_twist(command):
 
 
 class VelocityCommander(object):
-    """Publishes clamped commands on cmd_vel and stops the robot on shutdown.
+    """Publishes clamped commands on a topic and stops the robot on shutdown.
 
-    The limits (m/s, rad/s) are those given, from the node's parameters, or
-    else read from ~max_linear and ~max_angular, defaulting to the real
-    robot's (motion.MAX_LINEAR, MAX_ANGULAR); they may be changed between
-    two commands. Once shutdown has begun, every
-    command is a stop: a controller thread still answering a scan must not
-    follow the shutdown's zero Twist with a last move.
+    The limits (m/s, rad/s) are the node's parameters (params.driving's
+    max_linear and max_angular); they may be changed between two commands.
+    Once shutdown has begun, every command is a stop: a controller thread
+    still answering a scan must not follow the shutdown's zero Twist with a
+    last move.
     """
 
-    def __init__(self, topic='cmd_vel', max_linear=None, max_angular=None):
-        if max_linear is None or max_angular is None:
-            limits = private_params({'max_linear': MAX_LINEAR, 'max_angular': MAX_ANGULAR})
-            max_linear, max_angular = limits['max_linear'], limits['max_angular']
+    def __init__(self, topic, max_linear, max_angular):
         self.max_linear = abs(max_linear)
         self.max_angular = abs(max_angular)
         self._pub = rospy.Publisher(topic, Twist, queue_size=1)
@@ -136,6 +110,15 @@ class LatestScan(object):
         with self._arrived:
             self._arrived.notify_all()
 
+    @property
+    def topic(self):
+        """The scan topic's resolved name."""
+        return self._sub.resolved_name
+
+    def taken(self):
+        """When the newest scan was taken (rospy.Time), usable or not; None before any."""
+        return self._latest[2]
+
     def forget(self):
         """Drop the scan held, e.g. one that arrived on a clock that has since moved back."""
         self._latest = (None, None, None)
@@ -156,10 +139,10 @@ class LatestScan(object):
         else None for both and the problem, in words."""
         check, arrival, taken = self._latest
         if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
-            problem = 'no scan on %s for %.1f s' % (self._sub.resolved_name, timeout)
+            problem = 'no scan on %s for %.1f s' % (self.topic, timeout)
             return Reading(check, None, None, problem)
         if check.view is None:
-            problem = 'the scan on %s is unusable: %s' % (self._sub.resolved_name, check.problem)
+            problem = 'the scan on %s is unusable: %s' % (self.topic, check.problem)
             return Reading(check, None, None, problem)
         return Reading(check, check.view, taken.to_sec(), None)
 

@@ -11,8 +11,8 @@ so and exits with status 1 instead of waiting for ever, and writes no plot
 or figures: those exist only for a recorded lap. (roslaunch itself exits 0
 whatever its required node's status; tools/run-main checks for the plot.)
 
-Private parameters: ~world (arena), ~plot and ~json (files to write, '' for
-none), ~follower (wall_following: the node whose end means no lap can come).
+Parameters: the table in wall_follower.params.course_report, read once at
+start.
 """
 import json
 import math
@@ -22,8 +22,10 @@ import rospy
 
 from wall_follower.nodes.common import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.plot import plot_course
 from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.params.course_report import TABLE
 from wall_follower.sim.worldfile import WorldFileError
 
 
@@ -117,15 +119,14 @@ def format_summary(f):
 
 def main():
     rospy.init_node('course_report')
-    world = rospy.get_param('~world', 'arena')
-    plot = rospy.get_param('~plot', '')
-    output = rospy.get_param('~json', '')
+    values = NodeParameters(TABLE).snapshot()
+    world, plot, output = values['world'], values['plot'], values['json']
     try:
         course_map = CourseMap(world_path(world))
     except (WorldFileError, EnvironmentError) as err:
         rospy.logerr('course_report: cannot read world %s: %s', world, err)
         return 1
-    follower = rospy.resolve_name(rospy.get_param('~follower', 'wall_following'))
+    follower = rospy.resolve_name(values['follower'])
     monitor = CourseMonitor(course_map, start_on_goal=True)
     if not monitor.start_world():
         rospy.logerr('course_report: could not connect to the simulator (%s) and record_odom',

@@ -21,7 +21,7 @@ import math
 
 import rospy
 
-from wall_follower.control.motion import Command
+from wall_follower.control.motion import STOP, Command
 
 FINISHED_NO_SCAN = 'no scan'
 WARNING_PERIOD = 5.0   # ROS s between repeats of one warning
@@ -47,6 +47,9 @@ class DriveLoop(object):
         self.tune(rate, keepalive, scan_timeout, ahead_half_width)
         self.tick = tick
         self._warned = (None, None)   # (text, ROS time) of the last warning
+        # ROS times, set by run(): of this pass, of the last answer (or the start), of
+        # the last command sent, and of the next tick.
+        self._now = self._started = self._sent = self._due_at = None
 
     def tune(self, rate, keepalive, scan_timeout, ahead_half_width):
         """Take new settings (as in the constructor); call it between two scans, from answer()."""
@@ -67,48 +70,62 @@ class DriveLoop(object):
         Returns None on shutdown. The robot is stopped on every way out.
         """
         seen = None
-        now = started = sent = due = rospy.get_time()
+        self._now = self._started = self._sent = self._due_at = rospy.get_time()
         try:
             while not rospy.is_shutdown():
                 outcome = finished()
                 if outcome is not None:
                     return outcome
-                previous, now = now, rospy.get_time()
-                if now < previous:
-                    self._clock_moved_back(previous, now, on_clock_reset)
-                    started = sent = due = now
+                self._read_clock(on_clock_reset)
                 reading = self.scan.latest(self.scan_timeout)
                 if reading.view is None:
-                    if patience is not None and now - started > patience:
-                        rospy.logwarn('%s: %s; giving up', self.name, reading.problem)
+                    if self._stop_without_scan(reading, patience):
                         return FINISHED_NO_SCAN
-                    self.commander.stop()
-                    sent = now
-                    if reading.check is not None or now - started > self.scan_timeout:
-                        self._warn('%s; stopped' % reading.problem, now)
-                elif self._due(reading.check is not seen, now, due):
-                    started = now
-                    due = self._next_due(due, now)
-                    self.commander.send(self._safe(answer(reading.view, reading.taken),
-                                                   reading.view, now))
-                    sent = now
+                elif self._due(reading.check is not seen):
+                    self._answer(answer, reading)
                     outcome = finished()
                     if outcome is not None:
                         return outcome
-                elif now - sent >= self.keepalive:
-                    self.commander.send(self.commander.last)
-                    sent = now
+                elif self._now - self._sent >= self.keepalive:
+                    self._send(self.commander.last)
                 seen = reading.check
                 self.scan.wait_for_newer(seen, self.period)
             return None
         finally:
             self.commander.stop()
 
-    def _due(self, fresh, now, due):
+    def _read_clock(self, on_clock_reset):
+        """Take the time of this pass; on a clock that moved back, start timing afresh."""
+        previous, self._now = self._now, rospy.get_time()
+        if self._now < previous:
+            self._clock_moved_back(previous, self._now, on_clock_reset)
+            self._started = self._sent = self._due_at = self._now
+
+    def _stop_without_scan(self, reading, patience):
+        """Stop for want of a usable scan, warning why; True once patience has run out."""
+        if patience is not None and self._now - self._started > patience:
+            rospy.logwarn('%s: %s; giving up', self.name, reading.problem)
+            return True
+        self._send(STOP)
+        if reading.check is not None or self._now - self._started > self.scan_timeout:
+            self._warn('%s; stopped' % reading.problem, self._now)
+        return False
+
+    def _answer(self, answer, reading):
+        """Send answer's command for a usable scan, made safe."""
+        self._started = self._now
+        self._due_at = self._next_due(self._due_at, self._now)
+        self._send(self._safe(answer(reading.view, reading.taken), reading.view, self._now))
+
+    def _send(self, command):
+        self.commander.send(command)
+        self._sent = self._now
+
+    def _due(self, fresh):
         """Whether to answer now: at each new scan, or with a tick, once the tick is due."""
         if self.tick is None:
             return fresh
-        return now >= due - TICK_SLACK * self.tick
+        return self._now >= self._due_at - TICK_SLACK * self.tick
 
     def _next_due(self, due, now):
         """When the next tick falls: a steady beat, restarted from now if it fell behind."""

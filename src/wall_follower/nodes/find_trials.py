@@ -4,16 +4,22 @@ Shared by launch/find_trials.launch (a demo to watch in rviz, and the
 benchmark's source of figures) and by the finder rostest. The robot is
 teleported through the simulator's cmd_pose topic, so this needs the
 builtin simulator (or a stageros built with cmd_pose).
+
+Parameters: the table in wall_follower.params.find_trials, read once at
+start.
 """
 import json
 import math
+import numbers
 
 import rospy
 from geometry_msgs.msg import Pose
 
 from wall_follower.nodes.common import pose_message, world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.params.find_trials import TABLE
 from wall_follower.srv import FindWall
 
 # Simulated time for the scan and ground truth to show a new pose.
@@ -55,13 +61,24 @@ class FindTrials(object):
         }
 
 
+def is_pose(start):
+    """True for [x, y, yaw_deg], three numbers."""
+    return isinstance(start, (list, tuple)) and len(start) == 3 and all(
+        isinstance(value, numbers.Real) and not isinstance(value, bool) for value in start)
+
+
 def main():
     rospy.init_node('find_trials')
-    world = rospy.get_param('~world', 'arena')
-    starts = rospy.get_param('~poses', {}).get(world)
-    output = rospy.get_param('~json', '')
+    values = NodeParameters(TABLE).snapshot()
+    world, output = values['world'], values['json']
+    starts = values['poses'].get(world)
     if not starts:
         rospy.logerr('find_trials: no start poses for world %r in ~poses', world)
+        return 1
+    bad = [start for start in starts if not is_pose(start)]
+    if bad:
+        rospy.logerr('find_trials: a start pose in ~poses/%s is [x, y, yaw_deg], not %r',
+                     world, bad[0])
         return 1
     try:
         trials = FindTrials(world)

@@ -5,38 +5,37 @@ through the DriveLoop every driving node shares: its phases are timed on
 the scans' stamps, the command is re-sent all through a phase (Stage's
 0.2 s watchdog would otherwise end a forward phase at once), and a forward
 phase stands while something is nearer straight ahead than ~stop_distance.
+Its parameters (params/forward_stop.py) are tuned live: a change is
+applied at the next scan, and new periods start a new cycle there.
 """
 import rospy
 
-from wall_follower.exercises.forward_stop import BLOCKED
-from wall_follower.exercises.forward_stop import DEFAULTS as BEHAVIOUR_DEFAULTS
-from wall_follower.exercises.forward_stop import ForwardStop, nearest_ahead
-from wall_follower.nodes.common import init_node, private_params
-from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
-                                               split_params)
-
-NODE_DEFAULTS = dict(LOOP_DEFAULTS)
-"""The loop's parameters (exercise_loop.LOOP_DEFAULTS); the behaviour's
-(~forward_period, ~stop_period, ~speed, ~stop_distance, ~cone_half_width)
-are exercises.forward_stop.DEFAULTS. ~speed is held to ~max_linear.
-"""
+from wall_follower.cfg import ForwardStopConfig
+from wall_follower.exercises.forward_stop import BLOCKED, ForwardStop, nearest_ahead
+from wall_follower.nodes.common import init_node
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.forward_stop import FORWARD_STOP, TABLE
 
 
 class ForwardStopNode(object):
 
     def __init__(self):
-        params = private_params(dict(BEHAVIOUR_DEFAULTS, **NODE_DEFAULTS))
-        self.loop = drive_loop('forward_stop', split_params(params, LOOP_DEFAULTS))
-        self.behaviour = behaviour_or_exit('forward_stop', ForwardStop, params)
+        self.params = NodeParameters(TABLE, ForwardStopConfig)
+        values = self.params.snapshot()
+        self.loop = drive_loop('forward_stop', values)
+        self.behaviour = ForwardStop(**pick(values, FORWARD_STOP))
         self.state = None
 
     def run(self):
-        if self.behaviour is None:
-            return 2
         self.loop.run(self._answer, on_clock_reset=self.behaviour.restart)
         return 0
 
     def _answer(self, view, taken):
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            self.behaviour.reconfigure(**pick(values, FORWARD_STOP))
         command = self.behaviour.update(view, taken)
         state = self.behaviour.state
         if state != self.state:

@@ -4,6 +4,9 @@ Without --after-lap it saves the first `map` it hears and exits, as
 map_server's map_saver does. With --after-lap it first waits for the
 record_odom action's result (the course's lap is over), then saves the
 first map stamped at or after it, so the saved map holds the whole lap.
+
+Parameters: the table in wall_follower.params.map_saver, read once at
+start; the command line's flags, map_server's map_saver's, win over them.
 """
 import argparse
 import os
@@ -14,9 +17,11 @@ from nav_msgs.msg import OccupancyGrid
 
 import numpy as np
 
-from wall_follower.mapping.mapfile import FREE_THRESHOLD, OCCUPIED_THRESHOLD, save_map
+from wall_follower.mapping.mapfile import save_map
 from wall_follower.msg import OdomRecordActionResult
 from wall_follower.nodes.common import yaw_of
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params.map_saver import TABLE
 
 
 class MapSaver(object):
@@ -60,14 +65,19 @@ class MapSaver(object):
 
 def main():
     rospy.init_node('map_saver')
+    values = NodeParameters(TABLE).snapshot()
     parser = argparse.ArgumentParser(prog='map_saver', description=__doc__.splitlines()[0])
-    parser.add_argument('-f', dest='name', default='map', help='file name, without .pgm/.yaml')
-    parser.add_argument('--occ', type=int, default=OCCUPIED_THRESHOLD,
-                        help='occupied from this value on (1-100, default %(default)s)')
-    parser.add_argument('--free', type=int, default=FREE_THRESHOLD,
-                        help='free up to this value (0-100, default %(default)s)')
-    parser.add_argument('--after-lap', action='store_true',
-                        help='save the first map after the record_odom result')
+    parser.add_argument('-f', dest='name', default=values['file'],
+                        help='file name, without .pgm/.yaml (default ~file, %(default)s)')
+    parser.add_argument('--occ', type=int, default=values['occupied_threshold'],
+                        help='occupied from this value on (1-100, default '
+                        '~occupied_threshold, %(default)s)')
+    parser.add_argument('--free', type=int, default=values['free_threshold'],
+                        help='free up to this value (0-100, default ~free_threshold, '
+                        '%(default)s)')
+    parser.add_argument('--after-lap', action='store_true', default=values['after_lap'],
+                        help='save the first map after the record_odom result (default '
+                        '~after_lap)')
     args = parser.parse_args(rospy.myargv()[1:])
     if not 1 <= args.occ <= 100 or not 0 <= args.free <= 100 or args.occ <= args.free:
         rospy.logerr('map_saver: need 0 <= --free < --occ <= 100 (got --free %d --occ %d)',

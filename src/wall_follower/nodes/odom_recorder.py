@@ -23,7 +23,8 @@ Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
 """
 import threading
-from collections import deque
+import time
+from collections import deque, namedtuple
 
 import actionlib
 import rospy
@@ -89,7 +90,9 @@ class OdomRecorderNode(object):
         self._lock = threading.Lock()
         self._recording = None
         self._frame_id = ''
+        # ROS time and wall time (monotonic) at which the recording last took a pose.
         self._last_odom_time = None
+        self._last_odom_wall = None
         # The latest ROS time read, to see it move backwards.
         self._latest_time = None
         # How far (s) ROS time moved back under the current recording, if it did.
@@ -172,7 +175,7 @@ class OdomRecorderNode(object):
                           'bag looped?); forgetting the odometry heard before%s', back,
                           '; the goal in progress ends' if self._recording is not None else '')
             self._recent.clear()
-            self._last_odom_time = None
+            self._last_odom_time = self._last_odom_wall = None
             self._goal_on_old_clock = True
             if self._recording is not None:
                 self._time_moved_back = back
@@ -192,6 +195,7 @@ class OdomRecorderNode(object):
         if not recording.takes(stamp):
             return
         self._last_odom_time = self._latest_time
+        self._last_odom_wall = time.monotonic()
         jumps = len(recording.jumps)
         recording.add(stamp, *pose)
         if len(recording.jumps) > jumps:
@@ -252,46 +256,60 @@ class OdomRecorderNode(object):
 
     def _serve(self, recording):
         """Publish progress until the goal ends, and end it the way it ended."""
-        started = rospy.get_time()
+        started, started_wall = rospy.get_time(), time.monotonic()
         published = 0
         # reset: ROS time moving back is seen and answered below, not raised here.
         rate = rospy.Rate(self.params['rate'], reset=True)
         while True:
             with self._lock:
                 now = self._now()
-                time_moved_back = self._time_moved_back
-                points = list(recording.points)
-                total = recording.total_distance
-                closed = recording.closed
-                last_odom = self._last_odom_time
-                frame_id = self._frame_id
-            if len(points) > published:
-                published = len(points)
-                self.server.publish_feedback(OdomRecordFeedback(current_total=total))
-                self.path_pub.publish(_path(points, frame_id))
-            if closed:
-                rospy.loginfo('record_odom: lap complete: %d points, %.2f m', len(points), total)
-                self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
-                return
-            if time_moved_back is not None:
-                text = ('ROS time moved back %.2f s: the recording is on the old clock; '
-                        'send a new goal' % time_moved_back)
-                rospy.loginfo('record_odom: aborted: %s', text)  # warned of already
-                self.server.set_aborted(_result(points), text)
-                return
-            if self.server.is_preempt_requested():
-                rospy.loginfo('record_odom: cancelled after %d points, %.2f m',
-                              len(points), total)
-                self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
-                return
-            silent_since = started if last_odom is None or last_odom < started else last_odom
-            if now - silent_since > self.params['timeout']:
-                text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
-                    rospy.resolve_name('odom'), recording.start, self.params['timeout'])
-                rospy.logerr('record_odom: aborted: %s', text)
-                self.server.set_aborted(_result(points), text)
+                # Silent in wall time too: a simulation running faster than real time
+                # can outrun this node's odometry queue for a few simulated seconds.
+                progress = _Progress(
+                    list(recording.points), recording.total_distance, recording.closed,
+                    self._time_moved_back, self._frame_id,
+                    min(_silence(now, started, self._last_odom_time),
+                        _silence(time.monotonic(), started_wall, self._last_odom_wall)))
+            if len(progress.points) > published:
+                published = len(progress.points)
+                self.server.publish_feedback(OdomRecordFeedback(current_total=progress.total))
+                self.path_pub.publish(_path(progress.points, progress.frame_id))
+            if self._ended(progress, recording.start):
                 return
             rate.sleep()
+
+    def _ended(self, progress, start):
+        """End the goal if its lap closed, its clock moved back, it was cancelled or its
+        odometry fell silent for ~timeout; True if it did."""
+        points, total = progress.points, progress.total
+        if progress.closed:
+            rospy.loginfo('record_odom: lap complete: %d points, %.2f m', len(points), total)
+            self.server.set_succeeded(_result(points), 'lap complete: %.2f m' % total)
+        elif progress.time_moved_back is not None:
+            text = ('ROS time moved back %.2f s: the recording is on the old clock; '
+                    'send a new goal' % progress.time_moved_back)
+            rospy.loginfo('record_odom: aborted: %s', text)  # warned of already
+            self.server.set_aborted(_result(points), text)
+        elif self.server.is_preempt_requested():
+            rospy.loginfo('record_odom: cancelled after %d points, %.2f m', len(points), total)
+            self.server.set_preempted(_result(points), 'cancelled after %.2f m' % total)
+        elif progress.silent > self.params['timeout']:
+            text = 'no odometry on %s stamped since the goal (%.1f s) for %.1f s' % (
+                rospy.resolve_name('odom'), start, self.params['timeout'])
+            rospy.logerr('record_odom: aborted: %s', text)
+            self.server.set_aborted(_result(points), text)
+        else:
+            return False
+        return True
+
+
+_Progress = namedtuple('_Progress', 'points total closed time_moved_back frame_id silent')
+"""A goal's recording as its loop sees it at one pass; silent: seconds since the last pose."""
+
+
+def _silence(now, started, last):
+    """Seconds since the pose last taken at `last`, or since the goal `started` without one."""
+    return now - (started if last is None or last < started else last)
 
 
 def _result(points):

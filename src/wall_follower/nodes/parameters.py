@@ -31,12 +31,19 @@ from wall_follower.params import ParameterError, checked, names
 class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
-    def __init__(self, table, config_type=None, found=None):
+    def __init__(self, table, config_type=None, found=None, rules=(), read_at_start=()):
         """found: name -> value of parameters the node has found out for itself
-        (laser_x from tf, say), in force as if given on the parameter server."""
+        (laser_x from tf, say), in force as if given on the parameter server.
+        rules: what the values must satisfy together (see params.checked),
+        at start and at each reconfiguration.
+        read_at_start: names of parameters the node uses only at start (the
+        size of a map being built, say): a live change to one is refused with
+        a warning, and the value it started with stays in force."""
         self._table = table
+        self._rules = rules
+        self._read_at_start = tuple(read_at_start)
         self._lock = threading.Lock()
-        self._values = _load(table, found or {})
+        self._values = _load(table, found or {}, rules, config_type is not None)
         self._version = 0
         self._taken = 0
         self.server = None
@@ -63,12 +70,20 @@ class NodeParameters(object):
     def _on_reconfigure(self, config, _level):
         """dynamic_reconfigure's callback (its thread): keep the new values for the node."""
         try:
-            values = checked(self._table, dict((name, config[name]) for name in names(self._table)))
+            given = dict((name, config[name]) for name in names(self._table))
+            values = checked(self._table, given, self._rules)
         except ParameterError as error:
             rospy.logerr('%s: reconfiguration refused: %s', rospy.get_name(), error)
             config.update(self.snapshot())   # the values still in force
             return config
         with self._lock:
+            kept = [name for name in self._read_at_start if values[name] != self._values[name]]
+            if kept:
+                rospy.logwarn('%s: %s read at start only; kept as %s', rospy.get_name(),
+                              ', '.join('~' + name for name in kept),
+                              ', '.join(repr(self._values[name]) for name in kept))
+                values.update((name, self._values[name]) for name in kept)
+                config.update(values)
             changed = sorted(name for name in values if values[name] != self._values[name])
             if changed:
                 rospy.loginfo('%s: %s (applied at the next scan)', rospy.get_name(), ', '.join(
@@ -78,9 +93,10 @@ class NodeParameters(object):
         return config
 
 
-def _load(table, found):
+def _load(table, found, rules, tunable):
     """The node's ~parameters, and those found, checked against its table; exits with an
-    error on bad values.
+    error on bad values. rules: as NodeParameters'; tunable: the node will serve
+    dynamic_reconfigure.
 
     Unknown keys only warn: the node may run on a parameter server that
     also holds settings for another version of it. The values read are
@@ -90,14 +106,16 @@ def _load(table, found):
     given = rospy.get_param('~', {})
     unknown = sorted(set(given) - set(names(table)))
     if unknown:
-        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? `rosrun '
-                      'dynamic_reconfigure dynparam get %s` lists the known ones)',
-                      rospy.get_name(), ', '.join('~' + name for name in unknown),
-                      rospy.get_name())
+        if tunable:
+            hint = '`rosrun dynamic_reconfigure dynparam get %s` lists' % rospy.get_name()
+        else:
+            hint = '%s are' % ', '.join('~' + name for name in names(table))
+        rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? %s the known ones)',
+                      rospy.get_name(), ', '.join('~' + name for name in unknown), hint)
     known = dict((name, value) for name, value in given.items() if name not in unknown)
     known.update(found)
     try:
-        values = checked(table, known)
+        values = checked(table, known, rules)
     except ParameterError as error:
         rospy.logfatal('%s: cannot start: %s (check the launch file and config/*.yaml)',
                        rospy.get_name(), '; '.join('~' + problem for problem in error.problems))
@@ -107,11 +125,12 @@ def _load(table, found):
     return values
 
 
-def drive_loop(name, values):
-    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value)."""
+def drive_loop(name, values, tick=None):
+    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value:
+    those of params.driving's sections); tick as DriveLoop's."""
     commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
     return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
-                     values['scan_timeout'], values['ahead_half_width'])
+                     values['scan_timeout'], values['ahead_half_width'], tick=tick)
 
 
 def tune_drive_loop(loop, values):

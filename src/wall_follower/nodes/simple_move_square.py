@@ -8,7 +8,8 @@ sector ahead that it cannot see, even here where the laser does not steer.
 Each scan is answered from the odometry of the same moment, waited for
 briefly when it has not come yet (in lockstep simulation the scan may come
 first), and the robot stands while odometry lags the scan by more than
-~odom_timeout.
+~odom_timeout. Its parameters (params/simple_move_square.py) are tuned
+live: a change is applied at the next scan, to the square already laid out.
 """
 import math
 import threading
@@ -17,20 +18,13 @@ import time
 import rospy
 from nav_msgs.msg import Odometry
 
+from wall_follower.cfg import SimpleMoveSquareConfig
 from wall_follower.control.motion import STOP
-from wall_follower.exercises.move_square import DEFAULTS as SQUARE_DEFAULTS
 from wall_follower.exercises.move_square import SquareDriver
-from wall_follower.nodes.common import init_node, pose_of, private_params
-from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
-                                               split_params)
-
-NODE_DEFAULTS = dict(LOOP_DEFAULTS, odom_timeout=0.5, odom_wait=0.05)
-"""The loop's parameters (exercise_loop.LOOP_DEFAULTS) and:
-odom_timeout: stand while the newest odometry is older than the scan by more than this (ROS s).
-odom_wait: how long to wait for odometry as new as the scan (wall s).
-The square's own (~side, ~laps, ...) are exercises.move_square.DEFAULTS;
-its speeds are held to ~max_linear and ~max_angular.
-"""
+from wall_follower.nodes.common import init_node, pose_of
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.simple_move_square import SQUARE, TABLE
 
 
 # Stamps of one simulated step are identical; elsewhere odometry this much
@@ -70,21 +64,16 @@ class LatestOdom(object):
 class SimpleMoveSquareNode(object):
 
     def __init__(self):
-        params = private_params(dict(SQUARE_DEFAULTS, **NODE_DEFAULTS))
-        loop_params = split_params(params, LOOP_DEFAULTS)
-        self.odom_timeout = params.pop('odom_timeout')
-        self.odom_wait = params.pop('odom_wait')
-        self.loop = drive_loop('simple_move_square', loop_params)
-        commander = self.loop.commander
-        params['max_linear'] = min(params['max_linear'], commander.max_linear)
-        params['max_angular'] = min(params['max_angular'], commander.max_angular)
-        self.driver = behaviour_or_exit('simple_move_square', SquareDriver, params)
+        self.params = NodeParameters(TABLE, SimpleMoveSquareConfig)
+        values = self.params.snapshot()
+        self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
+        # max_linear and max_angular are the square's speeds and the clamp alike.
+        self.loop = drive_loop('simple_move_square', values)
+        self.driver = SquareDriver(**pick(values, SQUARE))
         self.odom = LatestOdom('odom')
         self._started = False
 
     def run(self):
-        if self.driver is None:
-            return 2
         p = self.driver.p
         rospy.loginfo('simple_move_square: %d lap(s) of a %.2f m square', p['laps'], p['side'])
         outcome = self.loop.run(self._answer, self._finished, on_clock_reset=self._restart)
@@ -93,6 +82,11 @@ class SimpleMoveSquareNode(object):
         return 0
 
     def _answer(self, _view, taken):
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
+            self.driver.reconfigure(**pick(values, SQUARE))
         pose, stamp = self.odom.at(taken, self.odom_wait)
         if pose is None or taken - stamp > self.odom_timeout:
             rospy.logwarn_throttle(5.0, 'simple_move_square: no odometry on %s within %.1f s of '

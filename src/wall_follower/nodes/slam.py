@@ -8,6 +8,12 @@ every ~map_update_interval seconds of ROS time, and the tf map_frame ->
 odom_frame that puts the robot where scan matching found it. Every scan is
 processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
+
+Parameters: the table in wall_follower.params.slam. A mapping run is long
+and tuned while it runs (`rosrun dynamic_reconfigure dynparam set /slam
+map_update_interval 1.0`, or rqt_reconfigure): a change applies at the next
+scan, in the scan callback, which alone touches the mapper. The frames and
+the grids (READ_AT_START) keep the values they started with.
 """
 import bisect
 import math
@@ -22,31 +28,14 @@ from sensor_msgs.msg import LaserScan
 
 import numpy as np
 
-from wall_follower.mapping.slam import DEFAULTS, Mapper
+from wall_follower.cfg import SlamConfig
+from wall_follower.mapping.slam import Mapper
 from wall_follower.mapping.poses import wrap
-from wall_follower.nodes.common import (pose_message, pose_of, private_params, quaternion_z,
-                                        yaw_of)
+from wall_follower.nodes.common import pose_message, pose_of, quaternion_z, yaw_of
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params import pick
+from wall_follower.params.slam import MAPPER, READ_AT_START, TABLE
 
-PARAMS = {
-    'base_frame': 'base_footprint',
-    'odom_frame': 'odom',
-    'map_frame': 'map',
-    'map_update_interval': 2.0,   # s of ROS time between map publications
-    'delta': DEFAULTS.resolution,
-    'xmin': DEFAULTS.extent[0], 'ymin': DEFAULTS.extent[1],
-    'xmax': DEFAULTS.extent[2], 'ymax': DEFAULTS.extent[3],
-    'max_range': DEFAULTS.max_range,
-    'linear_update': DEFAULTS.linear_update,
-    'angular_update': DEFAULTS.angular_update,
-    'match_resolution': DEFAULTS.match_resolution,
-    'match_capture': DEFAULTS.match_capture,
-    'match_reach': DEFAULTS.match_reach,
-    'search_window_linear': DEFAULTS.search_window[0],
-    'search_window_angular': DEFAULTS.search_window[1],
-    'scan_matching': DEFAULTS.scan_matching,
-    'start_patience': DEFAULTS.start_patience,
-    'odom_timeout': 1.0,          # wall s to wait for odometry at or after a scan's stamp
-}
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
 # outpace the mapper for a while, but not lose it scans; one this far behind drops the oldest.
 SCAN_QUEUE = 1000
@@ -69,17 +58,9 @@ def _pose_of(transform):
 
 class SlamNode(object):
     def __init__(self):
-        self.p = private_params(PARAMS)
-        p = self.p
-        config = DEFAULTS._replace(
-            resolution=p['delta'], extent=(p['xmin'], p['ymin'], p['xmax'], p['ymax']),
-            max_range=p['max_range'], linear_update=p['linear_update'],
-            angular_update=p['angular_update'], match_resolution=p['match_resolution'],
-            match_capture=p['match_capture'], match_reach=p['match_reach'],
-            search_window=(p['search_window_linear'], p['search_window_angular']),
-            scan_matching=bool(p['scan_matching']), start_patience=p['start_patience'])
-        self.config = config
-        self.mapper = Mapper(config)     # raises ValueError on a grid that cannot be
+        self.params = NodeParameters(TABLE, SlamConfig, read_at_start=READ_AT_START)
+        self.p = self.params.snapshot()
+        self.mapper = Mapper(**pick(self.p, MAPPER))   # ValueError on a grid that cannot be
         self.laser_known = False         # the laser's mount is read at the first scan
         self.odom_stamps, self.odom_poses = [], []
         self.odom_arrived = threading.Condition()
@@ -133,7 +114,15 @@ class SlamNode(object):
                                    self.p['base_frame'], frame, err)
             return None
 
+    def _retune(self):
+        """Put the parameters changed since the last scan in force (in the scan callback)."""
+        values = self.params.take_update()
+        if values is not None:
+            self.p = values
+            self.mapper.reconfigure(**pick(values, MAPPER))
+
     def on_scan(self, msg):
+        self._retune()
         if msg.angle_increment == 0.0 or msg.range_max <= msg.range_min:
             rospy.logwarn_throttle(5.0, 'slam: malformed scan (angle_increment %g, range %g..%g)'
                                    ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
@@ -145,7 +134,7 @@ class SlamNode(object):
             self.mapper.laser = _pose_of(mount)
             self.laser_known = True
             rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
-                          'on %s', self.config.resolution, *(self.mapper.laser[:2] + (
+                          'on %s', self.p['delta'], *(self.mapper.laser[:2] + (
                               math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
         odom = self.odometry_at(msg.header.stamp.to_sec())
         if odom is None:
@@ -190,7 +179,7 @@ class SlamNode(object):
         msg.header.frame_id = self.p['map_frame']
         info = msg.info
         info.map_load_time = stamp
-        info.resolution = self.config.resolution
+        info.resolution = self.p['delta']
         info.height, info.width = values.shape
         info.origin = pose_message(*origin)
         msg.data = values.reshape(-1).tolist()
@@ -206,7 +195,8 @@ def main():
     try:
         node = SlamNode()
     except ValueError as err:
-        rospy.logerr('slam: bad parameters: %s', err)
+        rospy.logfatal('slam: cannot start: %s (check the launch file and config/slam.yaml)',
+                       err)
         return 1
     rospy.spin()
     if node.mapper.scans:

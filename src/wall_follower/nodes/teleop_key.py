@@ -9,26 +9,20 @@ key or 0.1 s idle), through the DriveLoop every driving node shares: so the
 robot also stops while the laser is stale or unusable, and does not drive
 forward into a sector ahead that it cannot see. Ctrl-C (a signal from a
 terminal, or the byte 0x03 from a pipe) or the end of the input quits with
-a zero Twist.
+a zero Twist. Its parameters (params/teleop_key.py: the steps, the
+limits, the tick) are tuned live, from the next tick on.
 """
 import os
 import queue
 import sys
 import threading
 
-
-from wall_follower.exercises.teleop import ANGULAR_STEP, LINEAR_STEP, USAGE, Teleop
-from wall_follower.nodes.common import init_node, private_params
-from wall_follower.nodes.exercise_loop import LOOP_DEFAULTS, drive_loop, split_params
-
-NODE_DEFAULTS = dict(LOOP_DEFAULTS, tick=0.1, linear_step=LINEAR_STEP,
-                     angular_step=ANGULAR_STEP)
-"""The loop's parameters (exercise_loop.LOOP_DEFAULTS) and:
-tick: ROS seconds between commands, pressed key or not (10 Hz, as ROBOTIS's idle loop).
-linear_step, angular_step: change of the target per key press [m/s, rad/s];
-    the command ramps toward the target by half of it per tick.
-The targets are clamped to ~max_linear and ~max_angular (0.19, 0.49).
-"""
+from wall_follower.cfg import TeleopKeyConfig
+from wall_follower.exercises.teleop import USAGE, Teleop
+from wall_follower.nodes.common import init_node
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.teleop_key import TABLE, TELEOP
 
 
 class KeyReader(object):
@@ -73,21 +67,28 @@ class KeyReader(object):
 class TeleopKeyNode(object):
 
     def __init__(self):
-        params = private_params(NODE_DEFAULTS)
-        self.loop = drive_loop('teleop_key', split_params(params, LOOP_DEFAULTS),
-                               tick=params['tick'])
-        commander = self.loop.commander
-        self.teleop = Teleop(commander.max_linear, commander.max_angular,
-                             params['linear_step'], params['angular_step'])
+        self.params = NodeParameters(TABLE, TeleopKeyConfig)
+        values = self.params.snapshot()
+        self.loop = drive_loop('teleop_key', values, tick=values['tick'])
+        self.teleop = Teleop(**pick(values, TELEOP))
         self.keys = KeyReader(sys.stdin)
 
     def run(self):
         say(USAGE % (self.teleop.max_linear, self.teleop.max_angular))
         try:
-            self.loop.run(lambda view, taken: self.teleop.tick(), self._keys)
+            self.loop.run(self._tick, self._keys)
         finally:
             self.keys.restore()
         return 0
+
+    def _tick(self, _view, _taken):
+        """The next command of the ramp, under any parameters changed since the last tick."""
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            self.loop.tick = values['tick']
+            self.teleop.reconfigure(**pick(values, TELEOP))
+        return self.teleop.tick()
 
     def _keys(self):
         """Apply the keys pressed since the last pass; 'quit' once one says so."""

@@ -10,6 +10,8 @@ Exit status: 0 after a recorded lap (with ~stop_after_lap) or a plain
 shutdown; 1 when find_wall or record_odom is missing, find_wall fails, or
 record_odom aborts the lap (its odometry stopped, say).
 """
+import time
+
 import actionlib
 from actionlib.action_client import CommState
 import rospy
@@ -28,6 +30,8 @@ from wall_follower.srv import FindWall
 
 LAP_RECORDED = 'lap recorded'
 RECORDING_FAILED = 'recording failed'
+# Wall seconds between two looks at the clock while it catches up with the laser.
+CLOCK_POLL = 0.005
 
 
 class WallFollowingNode(object):
@@ -74,6 +78,15 @@ class WallFollowingNode(object):
             rospy.logerr('wall_following: no %s action server after %.0f s; '
                          'is odom_recorder running?', name, self.node['service_wait'])
             return False
+        # On wall time the laser may stamp by the robot's clock, not this machine's:
+        # record_odom allows for that offset, and there is no clock to wait for.
+        on_sim_time = rospy.get_param('/use_sim_time', False)
+        if on_sim_time and not wait_in_wall_time(self._clock_at_newest_scan,
+                                                 self.node['service_wait']):
+            rospy.logerr('wall_following: no scan on %s, or ROS time short of its stamp, after '
+                         '%.0f s; not recording', self.loop.scan.topic,
+                         self.node['service_wait'])
+            return False
         # The goal handle is kept so that the goal stays tracked; the callbacks
         # use the handle they are given, as they can run before send_goal returns.
         self._recording = self._recorder.send_goal(OdomRecordGoal(), self._on_transition,
@@ -92,6 +105,32 @@ class WallFollowingNode(object):
         if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
             rospy.logerr('wall_following: /use_sim_time is set and no /clock has come; '
                          'is the simulator running?')
+        return False
+
+    def _clock_at_newest_scan(self):
+        """Block until a scan has come and this node's ROS time has reached its stamp.
+
+        On simulated time only. The goal is stamped with this node's ROS
+        time, and the lap is counted from that stamp. This node's clock can
+        lag the world's, when its /clock connection is slow to come up or the node
+        is starved of CPU: a goal stamped then would date the lap's start
+        back to before find_wall moved the robot. The scan's stamp is the
+        world's time when it was taken, so a clock that has reached it is
+        no longer behind the robot.
+        """
+        warned = False
+        while not rospy.is_shutdown():
+            taken = self.loop.scan.taken()
+            if taken is not None:
+                now = rospy.Time.now()
+                if now >= taken:
+                    return True
+                if not warned:
+                    rospy.loginfo('wall_following: waiting for ROS time (%.3f s) to reach the '
+                                  'newest scan (%.3f s) before recording', now.to_sec(),
+                                  taken.to_sec())
+                    warned = True
+            time.sleep(CLOCK_POLL)
         return False
 
     def _on_feedback(self, _goal, feedback):

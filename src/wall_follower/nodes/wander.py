@@ -2,39 +2,39 @@
 
 Answered once per scan through the DriveLoop every driving node shares:
 clamped to ~max_linear and ~max_angular, stopped while the laser is stale
-or unusable, never forward into a sector ahead that it cannot see.
+or unusable, never forward into a sector ahead that it cannot see. Its
+parameters (params/wander.py) are tuned live: a change is applied at the
+next scan.
 """
 
 import rospy
 
-from wall_follower.exercises.wander import DEFAULTS as BEHAVIOUR_DEFAULTS
+from wall_follower.cfg import WanderConfig
 from wall_follower.exercises.wander import TURN, Wanderer, nearest_in_cone
-from wall_follower.nodes.common import init_node, private_params
-from wall_follower.nodes.exercise_loop import (LOOP_DEFAULTS, behaviour_or_exit, drive_loop,
-                                               split_params)
-
-NODE_DEFAULTS = dict(LOOP_DEFAULTS)
-"""The loop's parameters (exercise_loop.LOOP_DEFAULTS); the behaviour's
-(~speed, ~turn_rate, ~obstacle_distance, ~clear_distance, ~cone_half_width,
-~side_reach) are exercises.wander.DEFAULTS, held to ~max_linear and ~max_angular.
-"""
+from wall_follower.nodes.common import init_node
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.params import pick
+from wall_follower.params.wander import RULES, TABLE, WANDER
 
 
 class WanderNode(object):
 
     def __init__(self):
-        params = private_params(dict(BEHAVIOUR_DEFAULTS, **NODE_DEFAULTS))
-        self.loop = drive_loop('wander', split_params(params, LOOP_DEFAULTS))
-        self.wanderer = behaviour_or_exit('wander', Wanderer, params)
+        self.params = NodeParameters(TABLE, WanderConfig, rules=RULES)
+        values = self.params.snapshot()
+        self.loop = drive_loop('wander', values)
+        self.wanderer = Wanderer(**pick(values, WANDER))
 
     def run(self):
-        if self.wanderer is None:
-            return 2
         rospy.loginfo('wander: driving about')
         self.loop.run(self._answer)
         return 0
 
     def _answer(self, view, _taken):
+        values = self.params.take_update()
+        if values is not None:
+            tune_drive_loop(self.loop, values)
+            self.wanderer.reconfigure(**pick(values, WANDER))
         before = self.wanderer.state
         command = self.wanderer.update(view)
         if self.wanderer.state != before:

@@ -2,17 +2,19 @@
 
 Each node has one table here (wall_following.py, wall_finder.py, ...), a
 tuple of Sections of Parameters. That table is the single source of the
-node's defaults, their units and their meanings; everything else derives
-from it:
+node's defaults, their units and their meanings (the sections every
+driving node shares, its loop's and its clamp's, come from driving.py);
+everything else derives from it:
 
 - cfg/<Node>.cfg, dynamic_reconfigure's generator script, imports the
   table and declares each parameter from it (declare() below); catkin then
   generates wall_follower.cfg.<Node>Config, which the node's
   dynamic_reconfigure server, `dynparam` and rqt_reconfigure read;
-- the pure-logic classes (FollowerParams, WallFinder, LapRecorder) take
-  their defaults from the same table through defaults() and checked(), so
-  that unit tests and the simulator's closed loops build them with no ROS
-  master, no catkin build and no dynamic_reconfigure installed;
+- the pure-logic classes (FollowerParams, WallFinder, LapRecorder, the
+  exercises' behaviours) take their defaults from the same table through
+  defaults() and checked(), so that unit tests and the simulator's closed
+  loops build them with no ROS master, no catkin build and no
+  dynamic_reconfigure installed;
 - config/*.yaml and the launch files hold only the values that differ
   from these defaults, and test/unit/test_parameter_sources.py holds them,
   the README's tables and the generated modules to this table.
@@ -31,7 +33,9 @@ import numbers
 
 
 class Parameter(collections.namedtuple('Parameter', 'name default description minimum maximum')):
-    """One tunable value. The default fixes its type: bool, int, float or str.
+    """One tunable value. The default fixes its type: bool, int, float or str, or
+    dict for a structure read from YAML (dynamic_reconfigure has no type for
+    one: only a node without live tuning can declare it).
 
     description: what it means, with its unit in brackets; it is what
     rqt_reconfigure shows. minimum, maximum: the range a number must lie
@@ -45,7 +49,7 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
 
     @property
     def kind(self):
-        """Its dynamic_reconfigure type: 'bool', 'int', 'double' or 'str'."""
+        """Its dynamic_reconfigure type: 'bool', 'int', 'double' or 'str' (or 'dict')."""
         return _kind(self.default)
 
     def check(self, value):
@@ -58,8 +62,10 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
                 isinstance(value, float) and value.is_integer())
         elif kind == 'double':
             ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
-        else:
+        elif kind == 'str':
             ok = isinstance(value, str)
+        else:
+            ok = isinstance(value, dict)
         if not ok:
             raise ValueError('%s must be %s, not %r (%s)' % (
                 self.name, _KIND_NAMES[kind], value, type(value).__name__))
@@ -72,7 +78,7 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
 
 
 _KIND_NAMES = {'bool': 'true or false', 'int': 'a whole number', 'double': 'a number',
-               'str': 'a string'}
+               'str': 'a string', 'dict': 'a mapping'}
 
 
 def _kind(default):
@@ -84,7 +90,10 @@ def _kind(default):
         return 'double'
     if isinstance(default, str):
         return 'str'
-    raise TypeError('a parameter default must be bool, int, float or str, not %r' % (default,))
+    if isinstance(default, dict):
+        return 'dict'
+    raise TypeError('a parameter default must be bool, int, float, str or dict, not %r'
+                    % (default,))
 
 
 Section = collections.namedtuple('Section', 'name parameters')
@@ -118,13 +127,15 @@ def pick(values, table):
     return dict((name, values[name]) for name in names(table) if name in values)
 
 
-def checked(table, values):
+def checked(table, values, rules=()):
     """The defaults of table, overridden by values (name -> value), each checked.
 
     Raises ParameterError naming every unknown name, every value of the
     wrong type and every one out of range, so that a misspelling or a
     slip in a configuration file is reported instead of leaving a default
-    in force.
+    in force. rules: what values must satisfy together, which no range
+    can say (functions of name -> value answering a sentence saying what
+    is wrong, or None); checked once each value is good.
     """
     declared = dict((parameter.name, parameter) for parameter in parameters(table))
     result = defaults(table)
@@ -135,6 +146,8 @@ def checked(table, values):
                 result[name] = declared[name].check(value)
             except ValueError as error:
                 problems.append(str(error))
+    if not problems:
+        problems = [problem for problem in (rule(result) for rule in rules) if problem]
     if problems:
         raise ParameterError(problems)
     return result

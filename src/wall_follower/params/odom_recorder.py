@@ -8,7 +8,9 @@ NODE = (
         P('sample_period', 1.0, 'a point is recorded every this many seconds of ROS time [s]',
           0.01, 60.0),
         P('timeout', 5.0, 'a goal is aborted when no odometry stamped since the goal has '
-          'arrived for this long [s], also when the client clock is far ahead', 0.1, 600.0),
+          'arrived for this long [s] of ROS time and of wall time (a simulation faster than '
+          'real time can outrun the odometry queue), also when the client clock is far ahead',
+          0.1, 600.0),
         P('rate', 10.0, 'how often the goal loop checks for new points, the end of the lap, '
           'cancellation and the odometry time-out [Hz]', 1.0, 100.0),
     )),

@@ -1,22 +1,16 @@
 """Parameters of the wall_finder node (the find_wall service): the node's own, then the finder's."""
 import math
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.params import Parameter as P, Section
+from wall_follower.params import Parameter as P, Section, driving
 
 NODE = (
     Section('node', (
-        P('rate', 20.0, 'how often the loop looks at the clock between scans [Hz]; each new scan '
-          'is answered at once', 1.0, 100.0),
-        P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
-          'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
         P('timeout', 60.0, 'a call that has not succeeded after this long answers false [s]',
           0.0, 3600.0),
-        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
-          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
-        P('scan_timeout', 1.0, 'a call answers false when no scan younger than this is '
-          'available this long after it started, or at any point later on [s]', 0.05, 10.0),
     )),
+    driving.loop(scan_timeout=1.0, scan_timeout_meaning='a call answers false when no scan '
+                 'younger than this is available this long after it started, or at any point '
+                 'later on [s]'),
 )
 """The node's own parameters (wall_follower.nodes.wall_finder)."""
 
@@ -25,11 +19,8 @@ FINDER = (
         P('laser_x', -0.032, 'laser position ahead of the rotation centre [m]; the robot stops '
           'wall_distance - laser_x from the wall, so that the quarter turn that follows leaves '
           'the laser at wall_distance', -0.3, 0.3),
-        P('max_linear', MAX_LINEAR, 'speed limit of the behaviour, and the clamp on every command '
-          'sent [m/s]', 0.0, MAX_LINEAR),
-        P('max_angular', MAX_ANGULAR, 'turn rate limit of the behaviour, and the clamp [rad/s]',
-          0.0, MAX_ANGULAR),
     )),
+    driving.LIMITS,
     Section('behaviour', (
         P('wall_distance', 0.30, 'final distance from the laser to the wall on the right [m]',
           0.12, 1.0),
@@ -61,6 +52,7 @@ FINDER = (
         P('max_reacquire', 3, 'choices again before giving up', 0, 100),
     )),
 )
-"""The finder's parameters (wall_follower.control.finder.WallFinder)."""
+"""The finder's parameters (wall_follower.control.finder.WallFinder); its speed limits are
+the clamp's."""
 
 TABLE = NODE + FINDER

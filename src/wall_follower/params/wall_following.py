@@ -4,23 +4,12 @@ Distances are the laser's, to the wall, in metres, unless said otherwise.
 """
 import math
 
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.params import Parameter as P, Section
+from wall_follower.params import Parameter as P, Section, driving
 
 NODE = (
+    driving.loop(scan_timeout=0.5),
+    driving.LIMITS,
     Section('node', (
-        P('rate', 20.0, 'how often the loop looks at the clock while it waits for scans [Hz]',
-          1.0, 100.0),
-        P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
-          'a velocity watchdog never stops the robot [s]', 0.01, 1.0),
-        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
-          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
-        P('scan_timeout', 0.5, 'stop the robot while the newest scan is older than this [s]',
-          0.05, 5.0),
-        P('max_linear', MAX_LINEAR, 'clamp on every forward speed sent [m/s] (the real robot kills '
-          'a node above the default)', 0.0, MAX_LINEAR),
-        P('max_angular', MAX_ANGULAR, 'clamp on every turn rate sent [rad/s] (the same)',
-          0.0, MAX_ANGULAR),
         P('find_wall', True, 'call the find_wall service first; do not follow if it fails '
           '(read at start)'),
         P('record_odom', True, 'send a goal to the record_odom action before following '

@@ -28,7 +28,7 @@ from wall_follower.evaluation.map_scoring import map_quality
 from wall_follower.evaluation.scoring import CourseMap, RunScore
 from wall_follower.mapping.mapfile import load_map, save_map
 from wall_follower.mapping.poses import between, wrap
-from wall_follower.mapping.slam import DEFAULTS, Mapper
+from wall_follower.mapping.slam import Mapper
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
@@ -45,8 +45,8 @@ def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
     course = CourseMap(world_path)
     score = RunScore(course)
     ranger = world.robots[0].ranger
-    mapper = Mapper(DEFAULTS._replace(scan_matching=scan_matching),
-                    (ranger.pose[0], ranger.pose[1], ranger.pose[3]))
+    mapper = Mapper((ranger.pose[0], ranger.pose[1], ranger.pose[3]),
+                    scan_matching=scan_matching)
     controller = WallFinder(laser_x=ranger.pose[0])
     controller.start()
     start = simulation.robots[0].start_pose
@@ -83,7 +83,7 @@ def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
         map_name = os.path.join(directory, 'map')
     save_map(map_name, values, mapper.grid.resolution, origin)
     quality = map_quality(load_map(map_name + '.yaml'), world_path, start, path,
-                          DEFAULTS.max_range)
+                          mapper.config['max_range'])
     if directory:
         shutil.rmtree(directory)
     true = between(start, path[-1])

@@ -1,0 +1,40 @@
+"""The parameters of every node that drives: its DriveLoop's and its clamp's, declared once.
+
+Each driving node's table (wall_following, wall_finder and the exercises)
+takes these two Sections rather than declaring the same names again;
+nodes/parameters.py builds and retunes the loop and the clamp from them.
+"""
+import math
+
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.params import Parameter as P, Section
+
+STALE_SCAN_STOPS = 'stop the robot while the newest scan is older than this [s]'
+"""What scan_timeout means to a node that drives for as long as it runs."""
+
+
+def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
+    """The Section of the DriveLoop's parameters (nodes/drive_loop.py).
+
+    scan_timeout: its default [s], which differs between nodes, and
+    scan_timeout_meaning what the node does when a scan is that old.
+    """
+    return Section('drive_loop', (
+        P('rate', 20.0, 'how often the loop looks at the clock while it waits for scans [Hz]; '
+          'each new scan is answered at once', 1.0, 100.0),
+        P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
+          'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
+        P('scan_timeout', scan_timeout, scan_timeout_meaning, 0.05, 10.0),
+        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
+          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
+    ))
+
+
+LIMITS = Section('limits', (
+    P('max_linear', MAX_LINEAR, 'clamp on every forward speed sent, and the speed limit of the '
+      'behaviour [m/s] (the real robot kills a node above the default)', 0.0, MAX_LINEAR),
+    P('max_angular', MAX_ANGULAR, 'clamp on every turn rate sent, and the turn rate limit of '
+      'the behaviour [rad/s] (the same)', 0.0, MAX_ANGULAR),
+))
+"""The clamp on every command (nodes/common.VelocityCommander), which behaviours that plan
+their own speeds (WallFinder, SquareDriver) also take as their limits."""

@@ -1,0 +1,74 @@
+"""Parameters of the slam node (the package's mapper): the node's own, then the mapper's.
+
+Named as gmapping names the same settings (base_frame, map_update_interval,
+delta, xmin, ...), so that a launch file can hand either mapper the same
+values. The frames and the grids' cells and extent shape a map being
+built and are read at start only (READ_AT_START); the rest can be tuned
+live through dynamic_reconfigure and applies from the next scan.
+"""
+import math
+
+from wall_follower.params import Parameter as P, Section, names
+
+FRAMES = Section('frames', (
+    P('base_frame', 'base_footprint', "the robot's frame in the odometry's tf; read at start"),
+    P('odom_frame', 'odom', "the odometry's frame; read at start"),
+    P('map_frame', 'map', 'the frame of the map, published as map_frame -> odom_frame; '
+      'read at start'),
+))
+
+NODE = (
+    FRAMES,
+    Section('publishing', (
+        P('map_update_interval', 2.0, 'publish map and map_metadata every this many seconds '
+          'of ROS time [s]; 0: at every scan', 0.0, 3600.0),
+        P('odom_timeout', 1.0, "how long to wait for odometry at or after a scan's stamp "
+          'before skipping the scan [wall s]', 0.01, 60.0),
+    )),
+)
+"""The node's own parameters (wall_follower.nodes.slam)."""
+
+GRID = Section('grid', (
+    P('delta', 0.05, "cell of the published map [m], as gmapping's delta; read at start",
+      0.005, 1.0),
+    P('xmin', -10.0, 'the map frame the grids cover, from xmin ... [m]; the published map is '
+      'cropped to the part observed; read at start', -100.0, 100.0),
+    P('ymin', -10.0, '... and ymin ... [m]; read at start', -100.0, 100.0),
+    P('xmax', 10.0, '... to xmax ... [m]; read at start', -100.0, 100.0),
+    P('ymax', 10.0, '... and ymax [m]; read at start', -100.0, 100.0),
+    P('match_resolution', 0.01, 'cell of the fine grid scans are matched against [m]; read at '
+      'start', 0.002, 0.5),
+))
+
+MAPPER = (
+    GRID,
+    Section('updates', (
+        P('max_range', 3.5, 'beams are used up to this range; longer ones only clear space [m]',
+          0.1, 100.0),
+        P('linear_update', 0.15, 'draw a scan into the map after this much travel [m] ...',
+          0.0, 10.0),
+        P('angular_update', 0.15, '... or this much turning since the last one drawn [rad]',
+          0.0, math.pi),
+        P('hit_logodds', 0.85, 'log-odds added to the cell a beam ends in', 0.0, 10.0),
+        P('miss_logodds', -0.4, 'log-odds added to each cell a beam crosses', -10.0, 0.0),
+        P('start_patience', 100, 'the map starts at the first scan taken at rest, or after this '
+          'many scans', 0, 100000),
+    )),
+    Section('matching', (
+        P('scan_matching', True, 'false: odometry alone places every scan (to compare)'),
+        P('match_capture', 0.3, "the matcher's first pass weighs scan points this near a "
+          'mapped wall [m] ...', 0.01, 2.0),
+        P('match_reach', 0.1, '... its last pass those this near; farther ones are not matched '
+          '[m]', 0.01, 2.0),
+        P('search_window_linear', 0.15, "a match may move the robot this far from odometry's "
+          'prediction [m] ...', 0.0, 5.0),
+        P('search_window_angular', math.radians(10.0), '... and turn it this much [rad]; beyond '
+          'either, the prediction is kept', 0.0, math.pi),
+    )),
+)
+"""The mapper's parameters (wall_follower.mapping.slam.Mapper)."""
+
+TABLE = NODE + MAPPER
+
+READ_AT_START = names((FRAMES, GRID))
+"""What a live map cannot change: a change through dynamic_reconfigure is refused."""
