@@ -5,7 +5,12 @@ The saved map must match the world (precision >= 95 %, recall >= 90 %, see
 wall_follower/evaluation/map_scoring.py), and once the robot has stopped
 after the lap, the mapper's pose (tf map -> base_footprint) must be within
 3 cm and 1 degree of the true pose, while the raw odometry is off by more.
-The simulator starts paused and is let go once this check listens.
+The simulator starts paused and is let go once this check listens and the
+mapper is connected to every topic of the simulator it reads (scan, tf,
+clock): a mapper that misses the first steps starts its map on a scan taken
+while turning, and Stage's odometry then runs a step ahead of the laser, which
+tilts the whole map by that step's turn. Runs with either mapper of
+slam.launch (~slam_methods).
 """
 import math
 import os
@@ -13,6 +18,7 @@ import sys
 import threading
 import time
 import unittest
+import xmlrpc.client
 
 import rosgraph
 import rospy
@@ -45,7 +51,9 @@ class Mapping(unittest.TestCase):
         cls.map_file = rospy.get_param('~map_file')
         course = CourseMap(cls.world)
         cls.start = course.robot.pose
-        cls.max_range = rospy.get_param('/slam/max_range', defaults(TABLE)['max_range'])
+        # The range up to which beams draw walls: ~max_range (builtin), ~maxUrange (gmapping).
+        cls.max_range = rospy.get_param('/slam/max_range', rospy.get_param(
+            '/slam/maxUrange', defaults(TABLE)['max_range']))
         cls.guard = DriveGuard()
         cls.truth = []   # (stamp, pose)
         cls.odom = None
@@ -57,7 +65,8 @@ class Mapping(unittest.TestCase):
         cls.listener = tf2_ros.TransformListener(cls.buffer)
         deadline = time.monotonic() + RUN_LIMIT
         # Let the world go only once the mapper hears the laser, or it misses the start.
-        assert cls.wait_for(cls.mapper_listens, deadline), 'slam never subscribed to scan'
+        assert cls.wait_for(cls.mapper_listens, deadline), \
+            'slam never connected to the simulator'
         rospy.wait_for_service('unpause_physics', timeout=30.0)
         rospy.ServiceProxy('unpause_physics', Empty)()
         cls.saved = cls.wait_for(lambda: os.path.exists(cls.map_file + '.yaml'), deadline)
@@ -70,9 +79,27 @@ class Mapping(unittest.TestCase):
 
     @classmethod
     def mapper_listens(cls):
-        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
-        return any(topic == rospy.resolve_name('scan') and '/slam' in nodes
-                   for topic, nodes in subscribers)
+        """True once the mapper is connected to every topic the simulator publishes and
+        it subscribes to: registered with the master is not yet connected."""
+        master = rosgraph.Master(rospy.get_name())
+        publishers, subscribers, _ = master.getSystemState()
+        simulators = dict(publishers).get(rospy.resolve_name('scan'), [])
+        if len(simulators) != 1:
+            return False
+        simulator = simulators[0]
+        wanted = {topic for topic, nodes in subscribers if '/slam' in nodes} & \
+            {topic for topic, nodes in publishers if simulator in nodes}
+        if rospy.resolve_name('scan') not in wanted:
+            return False
+        try:
+            _, _, connections = xmlrpc.client.ServerProxy(
+                master.lookupNode(simulator)).getBusInfo(rospy.get_name())
+        except (IOError, rosgraph.MasterError, xmlrpc.client.Error):
+            return False
+        # (id, subscriber, direction, transport, topic, connected, ...)
+        connected = {info[4] for info in connections
+                     if info[1] == '/slam' and info[2] == 'o' and info[5]}
+        return wanted <= connected
 
     @classmethod
     def mapper_pose_at(cls, stamp):
