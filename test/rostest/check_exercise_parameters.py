@@ -27,9 +27,12 @@ class NodeOutput(object):
     """A node started as a child process, its output (stdout and stderr) gathered by a thread."""
 
     def __init__(self, name, *params):
+        # Unbuffered: Python holds a pipe's output back until its buffer fills, and
+        # a line the node has logged must be read while it runs.
         self.process = subprocess.Popen(
             ['rosrun', 'wall_follower', 'wander', '__name:=' + name] + list(params),
-            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=dict(os.environ))
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+            env=dict(os.environ, PYTHONUNBUFFERED='1'))
         self._lines = []
         self._lock = threading.Lock()
         thread = threading.Thread(target=self._read)
