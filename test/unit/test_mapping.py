@@ -7,7 +7,7 @@ import pytest
 
 from wall_follower.evaluation.map_scoring import map_quality
 from wall_follower.mapping.grid import LogOddsGrid
-from wall_follower.mapping.mapfile import load_map, save_map
+from wall_follower.mapping.mapfile import SavedMap, load_map, save_map
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher
 from wall_follower.mapping.poses import between, compose, inverse
 from wall_follower.mapping.slam import Mapper, scan_points
@@ -227,6 +227,18 @@ def _true_map(resolution=0.05):
     data = np.zeros(grid.shape, dtype=np.int8)
     data[rows[inside], cols[inside]] = 100
     return data, (grid.origin[0], grid.origin[1], 0.0)
+
+
+@pytest.mark.parametrize('origin', [-2.0, -2.05, -2.5, -3.0, -2.0125])
+def test_the_seen_walls_do_not_depend_on_where_the_maps_cells_fall(origin):
+    """The room's walls lie on cell boundaries for most of these origins, and float
+    rounding put some of their points on one side of a boundary, some on the other."""
+    path = [(-0.8 + 0.1 * k, -0.95, 0.0) for k in range(20)]
+    unknown = SavedMap(np.full((200, 200), -1, dtype=np.int8), 0.05, (origin, origin, 0.0))
+    quality = map_quality(unknown, ROOM, (-0.8, -0.95, 0.0), path, 3.5)
+    reference = map_quality(unknown._replace(origin=(-2.0125, -2.0125, 0.0)), ROOM,
+                            (-0.8, -0.95, 0.0), path, 3.5)
+    assert abs(quality.seen_walls - reference.seen_walls) <= 2
 
 
 def test_a_true_map_scores_full_and_a_shifted_one_does_not(tmp_path):

@@ -23,6 +23,8 @@ MapQuality = namedtuple('MapQuality', ['precision', 'recall', 'occupied', 'seen_
 _BEAMS = 360
 # The path is sampled every path_step metres, or this much turning [rad].
 _PATH_TURN = 0.2
+# Cells: how near a cell boundary a point counts as on it.
+_ON_BOUNDARY = 1e-6
 
 
 def _to_map(points, map_in_world):
@@ -34,10 +36,18 @@ def _to_map(points, map_in_world):
 
 
 def _cell_mask(points, saved_map):
+    """The map's cells that hold points (N, 2), as a boolean mask of its shape.
+
+    A point within rounding of a cell boundary goes to the cell above it
+    (the larger index), so that a wall lying along a boundary marks one row
+    of cells whichever float noise the map's origin brings: else that row
+    came out once or twice by the origin, and with it the count of seen
+    wall cells.
+    """
     rows, cols = saved_map.data.shape
     res = saved_map.resolution
-    c = np.floor((points[:, 0] - saved_map.origin[0]) / res).astype(np.int64)
-    r = np.floor((points[:, 1] - saved_map.origin[1]) / res).astype(np.int64)
+    c = np.floor((points[:, 0] - saved_map.origin[0]) / res + _ON_BOUNDARY).astype(np.int64)
+    r = np.floor((points[:, 1] - saved_map.origin[1]) / res + _ON_BOUNDARY).astype(np.int64)
     inside = (r >= 0) & (r < rows) & (c >= 0) & (c < cols)
     mask = np.zeros((rows, cols), dtype=bool)
     mask[r[inside], c[inside]] = True
