@@ -19,6 +19,7 @@ import rospy
 import rostest
 from geometry_msgs.msg import Twist
 from sim_probe import SimProbe, pose_of
+from waiting import wait_until
 
 EXIT_LIMIT = 10.0     # wall s for the node to exit after SIGINT
 SIGINT_ATTEMPTS = 5
@@ -44,19 +45,28 @@ class Kill(unittest.TestCase):
             self.commands.append((msg.linear.x, msg.angular.z))
 
     def start_follower(self):
-        """wall_following as a child process, once it drives."""
+        """wall_following as a child process, once it drives and this node hears its
+        commands; and the index in self.commands of its first one."""
+        with self.lock:
+            first = len(self.commands)
         node = subprocess.Popen(['rosrun', 'wall_follower', 'wall_following.py',
                                  '__name:=wall_following', '_find_wall:=false',
                                  '_record_odom:=false'])
         start = rospy.get_time()
         self.probe.wait_for(lambda: moved(self.probe.truths_since(start)) > 0.01,
                             'the follower to drive', limit=60.0)
-        return node
+        self.probe.wait_for(lambda: any(v != 0.0 for v, _ in self.commands_since(first)),
+                            'its commands to be heard', limit=60.0)
+        return node, first
+
+    def commands_since(self, first):
+        with self.lock:
+            return self.commands[first:]
 
     def test_sigint_ends_with_a_stop(self):
         # A signal can land anywhere, publishing included: try it a few times.
         for attempt in range(SIGINT_ATTEMPTS):
-            node = self.start_follower()
+            node, first = self.start_follower()
             node.send_signal(signal.SIGINT)
             deadline = time.monotonic() + EXIT_LIMIT
             while node.poll() is None and time.monotonic() < deadline:
@@ -66,11 +76,14 @@ class Kill(unittest.TestCase):
                 node.kill()
             self.assertTrue(exited, 'attempt %d: still running %.0f s after SIGINT'
                             % (attempt, EXIT_LIMIT))
-            with self.lock:
-                self.assertEqual(self.commands[-1], (0.0, 0.0), 'attempt %d' % attempt)
+            # Its last command may still be on its way when it has exited.
+            self.assertTrue(wait_until(lambda: self.commands_since(first)[-1] == (0.0, 0.0),
+                                       EXIT_LIMIT),
+                            'attempt %d: last command %s' % (attempt,
+                                                             self.commands_since(first)[-1]))
 
     def test_sigkill_is_stopped_by_the_watchdog(self):
-        node = self.start_follower()
+        node, _ = self.start_follower()
         node.kill()
         killed = rospy.get_time()
         node.wait()
