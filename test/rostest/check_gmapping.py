@@ -20,21 +20,13 @@ import sys
 import tempfile
 import unittest
 
-import rospkg
 import rospy
 import rostest
+from installed import package_installed
 
 WORLD = 'arena'
 # Wall seconds: find_wall and the lap take about 75 s of simulated time.
 BOUND = 360.0
-
-
-def gmapping_installed():
-    try:
-        rospkg.RosPack().get_path('gmapping')
-    except rospkg.ResourceNotFound:
-        return False
-    return True
 
 
 class GmappingMapping(unittest.TestCase):
@@ -66,5 +58,5 @@ class NotRunGmappingNotInstalled(unittest.TestCase):
 if __name__ == '__main__':
     rospy.init_node('check_gmapping')
     rostest.rosrun('wall_follower', 'check_gmapping',
-                   GmappingMapping if gmapping_installed() else NotRunGmappingNotInstalled,
+                   GmappingMapping if package_installed('gmapping') else NotRunGmappingNotInstalled,
                    sys.argv)

@@ -16,10 +16,10 @@ import sys
 import tempfile
 import unittest
 
-import rospkg
 import rospy
 import rostest
 
+from installed import package_installed
 from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
                                                            launch_and_wait, launch_command)
 
@@ -27,14 +27,6 @@ WORLD = 'room'
 # Wall seconds for the launch: real Stage runs at the world's pace (speedup
 # 1), and the room's lap takes about 50 s after find_wall's 10 s.
 BOUND = 180.0
-
-
-def stage_ros_installed():
-    try:
-        rospkg.RosPack().get_path('stage_ros')
-    except rospkg.ResourceNotFound:
-        return False
-    return True
 
 
 class RealStageCourse(unittest.TestCase):
@@ -94,7 +86,7 @@ class NotRunNoDisplay(unittest.TestCase):
 
 
 def suite():
-    if not stage_ros_installed():
+    if not package_installed('stage_ros'):
         return NotRunStageRosNotInstalled
     if display_wrapper() is None:
         return NotRunNoDisplay
