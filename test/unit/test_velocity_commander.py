@@ -1,4 +1,4 @@
-"""VelocityCommander: clamps every command, and once shutdown begins sends nothing but stops.
+"""VelocityCommander: clamps every command, and sends one stop on shutdown and nothing after.
 
 Needs ROS's Python modules but no master: rospy's Publisher and shutdown
 hooks are replaced by the test's.
@@ -11,10 +11,15 @@ from wall_follower.nodes.common import VelocityCommander
 
 
 class Publisher(object):
+    """rospy's, which raises once rospy has closed the topic after the shutdown hooks."""
+
     def __init__(self, *args, **kwargs):
         self.sent = []
+        self.closed = False
 
     def publish(self, twist):
+        if self.closed:
+            raise rospy.ROSException('publish() to a closed topic')
         self.sent.append((twist.linear.x, twist.angular.z))
 
 
@@ -33,12 +38,14 @@ def test_commands_are_clamped_to_the_robot_limits(commander):
     assert commander._pub.sent == [(0.19, -0.49)]
 
 
-def test_after_shutdown_begins_every_command_is_a_stop(commander):
+def test_shutdown_sends_one_stop_and_nothing_after_it(commander):
     commander.send(Command(0.1, 0.2))
     for hook in commander.hooks:
         hook()
-    commander.send(Command(0.1, 0.2))
-    assert commander._pub.sent == [(0.1, 0.2), (0.0, 0.0), (0.0, 0.0)]
+    commander._pub.closed = True
+    assert commander.send(Command(0.1, 0.2)) == Command(0.0, 0.0)
+    commander.stop()
+    assert commander._pub.sent == [(0.1, 0.2), (0.0, 0.0)]
 
 
 def test_limits_given_or_changed_are_the_clamp(commander):

@@ -24,9 +24,10 @@ class VelocityCommander(object):
 
     The limits (m/s, rad/s) are the node's parameters (params.driving's
     max_linear and max_angular); they may be changed between two commands.
-    Once shutdown has begun, every command is a stop: a controller thread
-    still answering a scan must not follow the shutdown's zero Twist with a
-    last move.
+    Shutdown sends one zero Twist, and nothing goes out after it: a
+    controller thread still answering a scan must not follow it with a last
+    move, and rospy closes the topic once its shutdown hooks have run (a
+    publish then raises).
     """
 
     def __init__(self, topic, max_linear, max_angular):
@@ -39,21 +40,24 @@ class VelocityCommander(object):
         rospy.on_shutdown(self._halt)
 
     def send(self, command):
-        """Clamp and publish a Command; returns what was actually sent."""
+        """Clamp and publish a Command; returns what was actually sent (after shutdown
+        began: nothing more, and STOP, the last command sent)."""
         with self._lock:
-            if self._halted:
-                command = STOP
-            self.last = clamp(Command(*command), self.max_linear, self.max_angular)
-            self._pub.publish(to_twist(self.last))
+            if not self._halted:
+                self._publish(clamp(Command(*command), self.max_linear, self.max_angular))
             return self.last
 
     def stop(self):
         self.send(STOP)
 
+    def _publish(self, command):
+        self._pub.publish(to_twist(command))
+        self.last = command
+
     def _halt(self):
         with self._lock:
+            self._publish(STOP)
             self._halted = True
-        self.stop()
 
 
 def init_node(name):

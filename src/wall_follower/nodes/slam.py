@@ -154,10 +154,15 @@ class SlamNode(object):
             self.rejected += 1
             rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used',
                                    match.reason)
-        self._send_transform(msg.header.stamp)
-        if self.last_published is None or \
-                (msg.header.stamp - self.last_published).to_sec() >= self.p['map_update_interval']:
-            self.publish_map(msg.header.stamp)
+        try:
+            self._send_transform(msg.header.stamp)
+            if self.last_published is None or (msg.header.stamp - self.last_published).to_sec() \
+                    >= self.p['map_update_interval']:
+                self.publish_map(msg.header.stamp)
+        except rospy.ROSException:
+            if not rospy.is_shutdown():
+                raise
+            # A scan that came as the node shut down: rospy has closed the topics.
 
     def _send_transform(self, stamp):
         x, y, yaw = self.mapper.map_to_odom()
