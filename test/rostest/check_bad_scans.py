@@ -77,7 +77,7 @@ class BadScans(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.log = RosoutLog()
+        cls.log = RosoutLog('/wall_following', '/finder/wall_finder')
 
     def test_the_follower_stops_on_each_unusable_scan_and_resumes_after(self):
         feed = Feed()

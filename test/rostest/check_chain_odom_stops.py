@@ -34,7 +34,7 @@ class ChainOdometryStops(unittest.TestCase):
         passing = threading.Event()
         passing.set()
         feedback = []
-        log = RosoutLog()
+        log = RosoutLog('/wall_following')
         relay = rospy.Publisher('odom_relayed', Odometry, queue_size=100)
         rospy.Subscriber('odom', Odometry,
                          lambda msg: relay.publish(msg) if passing.is_set() else None,

@@ -61,7 +61,7 @@ class TestClock(object):
 class ClockJump(unittest.TestCase):
 
     def test_both_nodes_carry_on_after_time_moves_back(self):
-        log, commands = RosoutLog(), []
+        log, commands = RosoutLog('/wall_following', '/finder/wall_finder'), []
         rospy.Subscriber('cmd_vel', Twist, lambda msg: commands.append(msg.linear.x),
                          queue_size=1000)
         clock = TestClock()

@@ -87,7 +87,7 @@ class ClockLag(unittest.TestCase):
         self.assertTrue(wait_until(lambda: world.goals, WAIT_LIMIT), 'no goal')
 
     def goal_waits_for_the_clock_to_reach_the_scans(self):
-        log = RosoutLog()
+        log = RosoutLog(NODE)
         world = World(rospy.Time.from_sec(CLOCK_BEHIND), rospy.Time.from_sec(SCAN_TAKEN))
         waiting = 'waiting for ROS time'
         self.assertTrue(wait_until(lambda: world.goals or log.said(NODE, waiting), WAIT_LIMIT),

@@ -13,6 +13,8 @@ import unittest
 import rospy
 import rostest
 from drive_guard import DriveGuard
+from nav_msgs.msg import Odometry
+from paused_world import start_world
 from rosout_log import RosoutLog
 from sim_probe import SimProbe, pose_of
 from waiting import wait_until
@@ -25,16 +27,19 @@ EXIT_LIMIT = 60.0   # wall s
 class NoWall(unittest.TestCase):
 
     def test_find_wall_fails_and_the_follower_exits_without_moving(self):
-        log = RosoutLog()
+        # The world starts paused: both nodes say why at once when it goes.
+        log = RosoutLog('/wall_finder', '/wall_following')
         guard = DriveGuard()
         probe = SimProbe()
+        truth = rospy.Subscriber('base_pose_ground_truth', Odometry, lambda _: None)
+        self.assertTrue(start_world([truth]), 'the simulator never connected')
         probe.wait_ready()
         start = pose_of(probe.latest_truth())
         deadline = time.monotonic() + EXIT_LIMIT
         while node_alive('/wall_following') and time.monotonic() < deadline:
             time.sleep(0.1)
         self.assertFalse(node_alive('/wall_following'), 'wall_following still runs')
-        # Log lines come on /rosout, a connection of their own: they may come later.
+        # Log lines come on /rosout, connections of their own: they may come later.
         self.assertTrue(wait_until(lambda: log.said('/wall_finder', 'no wall in range'),
                                    EXIT_LIMIT), 'find_wall did not say why')
         self.assertTrue(wait_until(lambda: log.said('/wall_following', 'found no wall'),

@@ -48,7 +48,7 @@ class TimeMovesBack(unittest.TestCase):
 
     def setUp(self):
         self.statuses = []
-        self.log = RosoutLog()
+        self.log = RosoutLog(RECORDER)
         rospy.Subscriber('record_odom/status', GoalStatusArray, self.statuses.append)
         self.world = OdometryWorld(OLD_CLOCK, WALL_STEP)
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)

@@ -34,7 +34,7 @@ class WaitOnFrozenClock(unittest.TestCase):
 
     def test_gives_up_in_wall_time_with_an_error(self):
         started = time.time()
-        log = RosoutLog()
+        log = RosoutLog(NODE)
         service_wait = rospy.get_param(NODE + '/service_wait')
         self.assertTrue(wait_until(alive, MARGIN), 'wall_following is not running')
         self.assertTrue(wait_until(lambda: not alive(), service_wait + MARGIN),

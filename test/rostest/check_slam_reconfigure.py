@@ -33,7 +33,7 @@ class SlamReconfigure(unittest.TestCase):
     def setUpClass(cls):
         cls.lock = threading.Lock()
         cls.maps = []   # (stamp [s], resolution [m]) of every map heard
-        cls.log = RosoutLog()
+        cls.log = RosoutLog('/slam')
         cls.sub = rospy.Subscriber('map', OccupancyGrid, cls._on_map, queue_size=100)
         cls.client = Client('slam', timeout=WALL_LIMIT)
 

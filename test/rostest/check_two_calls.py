@@ -27,7 +27,7 @@ WAIT_LIMIT = 30.0   # wall s
 class TwoCalls(unittest.TestCase):
 
     def test_the_second_call_is_refused_while_the_first_searches(self):
-        log = RosoutLog()
+        log = RosoutLog('/wall_finder')
         guard = DriveGuard()
         rospy.wait_for_service('find_wall', WAIT_LIMIT)
         find_wall = rospy.ServiceProxy('find_wall', FindWall)

@@ -28,7 +28,7 @@ class WaffleMount(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.log = RosoutLog()
+        cls.log = RosoutLog(*NODES)
         cls.guard = DriveGuard()
         cls.monitor = CourseMonitor(CourseMap(world_path(rospy.get_param('~world'))),
                                     start_on_goal=True)
