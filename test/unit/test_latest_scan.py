@@ -72,3 +72,15 @@ def test_a_forgotten_scan_is_no_scan(clock):
     scan._on_scan(scan_taken_at(3.0))
     scan.forget()
     assert scan.latest(0.5).check is None
+
+
+def test_a_scan_that_came_before_the_clock_started_is_aged_from_its_start(clock):
+    # On simulated time ROS time reads 0 until this node's first /clock, which
+    # may come a second after the first scans.
+    scan = LatestScan()
+    scan._on_scan(scan_taken_at(0.9))
+    clock.now = 1.1
+    reading = scan.latest(1.0)
+    assert reading.view is not None and reading.taken == pytest.approx(0.9)
+    clock.now = 2.2
+    assert scan.latest(1.0).view is None

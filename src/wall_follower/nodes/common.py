@@ -109,8 +109,8 @@ class LatestScan(object):
     def _on_scan(self, msg):
         arrival = rospy.Time.now()
         taken = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
-        self._latest = (check_scan(msg), arrival, taken)
         with self._arrived:
+            self._latest = (check_scan(msg), arrival, taken)
             self._arrived.notify_all()
 
     @property
@@ -137,10 +137,27 @@ class LatestScan(object):
             if self._latest[0] is seen:
                 self._arrived.wait(timeout)
 
+    def _arrival_dated(self):
+        """The newest (check, arrival, taken), a scan that came before this node's
+        clock first ran dated from now.
+
+        On simulated time ROS time reads 0 until the node's first /clock,
+        which may come a second after its first scans: aged from 0, such a
+        scan would look a second old the moment the clock starts, and a
+        node with patience would give up on a laser that works.
+        """
+        with self._arrived:
+            check, arrival, taken = self._latest
+            now = rospy.Time.now()
+            if check is not None and arrival.is_zero() and not now.is_zero():
+                arrival, taken = now, (now if taken.is_zero() else taken)
+                self._latest = (check, arrival, taken)
+            return check, arrival, taken
+
     def latest(self, timeout):
         """The newest scan as a Reading: its view and time taken [s] if usable and fresh,
         else None for both and the problem, in words."""
-        check, arrival, taken = self._latest
+        check, arrival, taken = self._arrival_dated()
         if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
             problem = 'no scan on %s for %.1f s' % (self.topic, timeout)
             return Reading(check, None, None, problem)
