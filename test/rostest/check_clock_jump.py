@@ -12,6 +12,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
@@ -21,7 +22,7 @@ from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
 
 from wall_follower.srv import FindWall
-from waiting import assert_soon
+from waiting import assert_soon, wait_until
 
 STEP = 0.1         # simulated s per tick
 TICK = 0.02        # wall s per tick
@@ -35,6 +36,7 @@ class TestClock(object):
 
     def __init__(self):
         self.now = START
+        self.ticks = 0
         self.lock = threading.Lock()
         self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
         self.scans = [(rospy.Publisher('scan', LaserScan, queue_size=1), wall_on_the_right()),
@@ -46,12 +48,24 @@ class TestClock(object):
         with self.lock:
             self.now = when
 
+    def heard_by_all(self):
+        """Whether every node that subscribes /clock is connected, and a tick has gone
+        out since: each then has this clock's time before any jump (one connection
+        delivers in order), not the 0 of a clock it has not heard yet."""
+        _, subscribers, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+        listeners = next((len(nodes) for topic, nodes in subscribers if topic == '/clock'), 0)
+        if self.clock.get_num_connections() < listeners:
+            return False
+        ticks = self.ticks
+        return wait_until(lambda: self.ticks > ticks, WAIT_LIMIT)
+
     def _run(self):
         while not rospy.core.is_shutdown():
             with self.lock:
                 self.now += STEP
                 stamp = rospy.Time.from_sec(self.now)
             self.clock.publish(Clock(clock=stamp))
+            self.ticks += 1
             for publisher, scan in self.scans:
                 scan.header.stamp = stamp
                 publisher.publish(scan)
@@ -65,7 +79,9 @@ class ClockJump(unittest.TestCase):
         rospy.Subscriber('cmd_vel', Twist, lambda msg: commands.append(msg.linear.x),
                          queue_size=1000)
         clock = TestClock()
-        assert_soon(self, WAIT_LIMIT, lambda: any(v > 0.1 for v in commands),
+        assert_soon(self, WAIT_LIMIT, clock.heard_by_all, 'every node to hear the clock')
+        after = len(commands)
+        assert_soon(self, WAIT_LIMIT, lambda: any(v > 0.1 for v in commands[after:]),
                     'the follower to drive')
         clock.jump_to(START - JUMP_BACK)
         assert_soon(self, WAIT_LIMIT, lambda: log.said('/wall_following', 'ROS time moved back'),
