@@ -13,7 +13,7 @@ import rospy
 from wall_follower.cfg import ForwardStopConfig
 from wall_follower.exercises.forward_stop import BLOCKED, ForwardStop, nearest_ahead
 from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.forward_stop import FORWARD_STOP, TABLE
 
@@ -32,9 +32,8 @@ class ForwardStopNode(object):
         return 0
 
     def _answer(self, view, taken):
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
-            tune_drive_loop(self.loop, values)
             self.behaviour.reconfigure(**pick(values, FORWARD_STOP))
         command = self.behaviour.update(view, taken)
         state = self.behaviour.state

@@ -140,3 +140,13 @@ def tune_drive_loop(loop, values):
               values['ahead_half_width'])
     loop.commander.max_linear = values['max_linear']
     loop.commander.max_angular = values['max_angular']
+
+
+def take_retuned(params, loop):
+    """params.take_update() for a driving node: the values changed since the last call,
+    with its loop and clamp already put on them (tune_drive_loop); None if none changed.
+    In the loop's own thread, at a scan."""
+    values = params.take_update()
+    if values is not None:
+        tune_drive_loop(loop, values)
+    return values

@@ -22,7 +22,7 @@ from wall_follower.cfg import SimpleMoveSquareConfig
 from wall_follower.control.motion import STOP
 from wall_follower.exercises.move_square import SquareDriver
 from wall_follower.nodes.common import init_node, pose_of
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.simple_move_square import SQUARE, TABLE
 
@@ -82,9 +82,8 @@ class SimpleMoveSquareNode(object):
         return 0
 
     def _answer(self, _view, taken):
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
-            tune_drive_loop(self.loop, values)
             self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
             self.driver.reconfigure(**pick(values, SQUARE))
         pose, stamp = self.odom.at(taken, self.odom_wait)

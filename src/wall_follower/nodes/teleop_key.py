@@ -20,7 +20,7 @@ import threading
 from wall_follower.cfg import TeleopKeyConfig
 from wall_follower.exercises.teleop import USAGE, Teleop
 from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.teleop_key import TABLE, TELEOP
 
@@ -83,9 +83,8 @@ class TeleopKeyNode(object):
 
     def _tick(self, _view, _taken):
         """The next command of the ramp, under any parameters changed since the last tick."""
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
-            tune_drive_loop(self.loop, values)
             self.loop.tick = values['tick']
             self.teleop.reconfigure(**pick(values, TELEOP))
         return self.teleop.tick()

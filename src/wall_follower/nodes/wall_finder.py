@@ -15,7 +15,8 @@ from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
 from wall_follower.nodes.common import init_node
 from wall_follower.nodes.laser_mount import laser_x
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import (NodeParameters, drive_loop, take_retuned,
+                                            tune_drive_loop)
 from wall_follower.params import pick
 from wall_follower.params.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
@@ -62,9 +63,8 @@ class WallFinderNode(object):
 
     def _answer(self, search, view, taken):
         """The search's answer to a scan, under any parameters changed since the last."""
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
-            tune_drive_loop(self.loop, values)
             search.timeout = values['timeout']
             search.finder.reconfigure(**pick(values, FINDER))
         return search.answer(view, taken)

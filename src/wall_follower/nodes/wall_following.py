@@ -22,7 +22,7 @@ from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import init_node, wait_in_wall_time
 from wall_follower.nodes.laser_mount import laser_x
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
@@ -178,11 +178,10 @@ class WallFollowingNode(object):
         self.loop.run(self._answer, lambda: self.ended, on_clock_reset=self._restart_controller)
 
     def _answer(self, view, taken):
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
             self.node = pick(values, NODE)
             self.controller.reconfigure(FollowerParams(**pick(values, FOLLOWER)))
-            tune_drive_loop(self.loop, values)
         command = self.controller.update(view, taken)
         if self.controller.state != self._state:
             rospy.loginfo('wall_following: %s -> %s', self._state, self.controller.state)

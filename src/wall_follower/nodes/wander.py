@@ -12,7 +12,7 @@ import rospy
 from wall_follower.cfg import WanderConfig
 from wall_follower.exercises.wander import TURN, Wanderer, nearest_in_cone
 from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.wander import RULES, TABLE, WANDER
 
@@ -31,9 +31,8 @@ class WanderNode(object):
         return 0
 
     def _answer(self, view, _taken):
-        values = self.params.take_update()
+        values = take_retuned(self.params, self.loop)
         if values is not None:
-            tune_drive_loop(self.loop, values)
             self.wanderer.reconfigure(**pick(values, WANDER))
         before = self.wanderer.state
         command = self.wanderer.update(view)
