@@ -5,7 +5,8 @@ The node is started as a user starts it (rosrun, the value given as a
 private parameter on the command line) against this test's master, once
 for each kind of bad value: of the wrong type, out of its range, and a
 grid that cannot be (xmax below xmin, which no one parameter's range
-tells). Each time it must end with status 1 and a line that names the
+tells), and grids too large for memory (each value in its range, the cells
+of all of them together not). Each time it must end with status 1 and a line that names the
 problem, and print no traceback.
 """
 import subprocess
@@ -15,18 +16,20 @@ import unittest
 import rospy
 import rostest
 
-# (the bad value, as rosrun's argument; what the error must say)
+# (the bad values, as rosrun's arguments; what the error must say)
 CASES = [
-    ('_map_update_interval:=often', 'cannot start: ~map_update_interval must be a number'),
-    ('_delta:=-0.05', 'cannot start: ~delta must be at least'),
-    ('_xmax:=-20.0', 'cannot start: a grid needs resolution > 0 and xmax > xmin'),
+    (['_map_update_interval:=often'], 'cannot start: ~map_update_interval must be a number'),
+    (['_delta:=-0.05'], 'cannot start: ~delta must be at least'),
+    (['_xmax:=-20.0'], 'cannot start: ~xmax (-20.0) must be above xmin (-10.0)'),
+    (['_xmin:=-100.0', '_xmax:=100.0', '_ymin:=-100.0', '_ymax:=100.0', '_delta:=0.005'],
+     'cannot start: ~xmin, xmax, ymin, ymax, delta and match_resolution ask for'),
 ]
 WALL_LIMIT = 30.0   # wall s for the node to start and stop
 
 
-def run_slam(argument, name):
-    """The exit status and the output of a slam node started with argument."""
-    done = subprocess.run(['rosrun', 'wall_follower', 'slam', argument, '__name:=' + name],
+def run_slam(arguments, name):
+    """The exit status and the output of a slam node started with arguments."""
+    done = subprocess.run(['rosrun', 'wall_follower', 'slam'] + arguments + ['__name:=' + name],
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                           universal_newlines=True, timeout=WALL_LIMIT)
     return done.returncode, done.stdout
@@ -35,9 +38,9 @@ def run_slam(argument, name):
 class SlamBadValue(unittest.TestCase):
 
     def check_case(self, index):
-        argument, says = CASES[index]
+        arguments, says = CASES[index]
         # A node name of its own: a private parameter stays on the master after its node.
-        status, output = run_slam(argument, 'slam_bad_%d' % index)
+        status, output = run_slam(arguments, 'slam_bad_%d' % index)
         self.assertEqual(status, 1, output)
         self.assertIn(says, output)
         self.assertNotIn('Traceback', output)

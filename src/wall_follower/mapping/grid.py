@@ -8,12 +8,11 @@ misses, and cells beyond its end are left alone. The last cell before a hit
 is left alone too: a beam that grazes a wall crosses the wall's own cells
 just before it ends, and would otherwise wear the wall away.
 """
-import math
 
 import numpy as np
 
 from wall_follower.params import defaults
-from wall_follower.params.slam import MAPPER
+from wall_follower.params.slam import MAPPER, grid_shape
 
 __all__ = ['LogOddsGrid', 'probability']
 
@@ -42,8 +41,7 @@ class LogOddsGrid(object):
                              '(got %r, x %r..%r, y %r..%r)' % (resolution, xmin, xmax, ymin, ymax))
         self.resolution = float(resolution)
         self.origin = (float(xmin), float(ymin))
-        cols = int(math.ceil((xmax - xmin) / resolution - 1e-9))
-        rows = int(math.ceil((ymax - ymin) / resolution - 1e-9))
+        rows, cols = grid_shape(resolution, xmin, ymin, xmax, ymax)
         self.logodds = np.zeros((rows, cols), dtype=np.float32)
         self.observed = np.zeros((rows, cols), dtype=bool)
         self.hit = float(hit)

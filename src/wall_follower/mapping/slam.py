@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from wall_follower.params import checked
-from wall_follower.params.slam import GRID, MAPPER
+from wall_follower.params.slam import GRID, MAPPER, RULES
 
 from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher
@@ -71,7 +71,7 @@ class Mapper(object):
     """
 
     def __init__(self, laser=(0.0, 0.0, 0.0), **params):
-        config = checked(MAPPER, params)
+        config = checked(MAPPER, params, RULES)
         self.config = config
         box = (config['xmin'], config['ymin'], config['xmax'], config['ymax'])
         self.grid = LogOddsGrid(config['delta'], *box, hit=config['hit_logodds'],

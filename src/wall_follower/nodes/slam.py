@@ -34,7 +34,7 @@ from wall_follower.mapping.poses import wrap
 from wall_follower.nodes.common import pose_message, pose_of, quaternion_z, yaw_of
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
-from wall_follower.params.slam import MAPPER, READ_AT_START, TABLE
+from wall_follower.params.slam import MAPPER, READ_AT_START, RULES, TABLE
 
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
 # outpace the mapper for a while, but not lose it scans; one this far behind drops the oldest.
@@ -58,7 +58,8 @@ def _pose_of(transform):
 
 class SlamNode(object):
     def __init__(self):
-        self.params = NodeParameters(TABLE, SlamConfig, read_at_start=READ_AT_START)
+        self.params = NodeParameters(TABLE, SlamConfig, rules=RULES,
+                                     read_at_start=READ_AT_START)
         self.p = self.params.snapshot()
         self.mapper = Mapper(**pick(self.p, MAPPER))   # ValueError on a grid that cannot be
         self.laser_known = False         # the laser's mount is read at the first scan

@@ -68,6 +68,48 @@ MAPPER = (
 )
 """The mapper's parameters (wall_follower.mapping.slam.Mapper)."""
 
+# The most cells the two grids may hold together. Each cell of the fine grid takes about
+# ten bytes (log-odds, observed, distance field) and scipy's distance transform several
+# times that over the observed part while it runs: this bounds the mapper to a few hundred
+# MB, where a slip in the extent or a cell could otherwise ask for many GB at start.
+MAX_CELLS = 20000000
+
+
+def grid_shape(resolution, xmin, ymin, xmax, ymax):
+    """(rows, cols) of the mapper's grid of `resolution` over [xmin, xmax) x [ymin, ymax)."""
+    cols = int(math.ceil((xmax - xmin) / resolution - 1e-9))
+    rows = int(math.ceil((ymax - ymin) / resolution - 1e-9))
+    return rows, cols
+
+
+def grid_cells(resolution, xmin, ymin, xmax, ymax):
+    rows, cols = grid_shape(resolution, xmin, ymin, xmax, ymax)
+    return rows * cols
+
+
+def _extent_not_empty(values):
+    for low, high in (('xmin', 'xmax'), ('ymin', 'ymax')):
+        if values[high] <= values[low]:
+            return '%s (%r) must be above %s (%r)' % (high, values[high], low, values[low])
+    return None
+
+
+def _cells_within_memory(values):
+    if _extent_not_empty(values) is not None:
+        return None     # said by that rule
+    box = (values['xmin'], values['ymin'], values['xmax'], values['ymax'])
+    cells = grid_cells(values['delta'], *box) + grid_cells(values['match_resolution'], *box)
+    if cells > MAX_CELLS:
+        return ('xmin, xmax, ymin, ymax, delta and match_resolution ask for %d cells in the '
+                'two grids, more than the %d allowed: narrow the extent or coarsen the cells' % (
+                    cells, MAX_CELLS))
+    return None
+
+
+RULES = (_extent_not_empty, _cells_within_memory)
+"""What the grids' values must satisfy together (params.checked's rules): an extent that is
+not empty, and cells in total that fit in memory."""
+
 TABLE = NODE + MAPPER
 
 READ_AT_START = names((FRAMES, GRID))
