@@ -7,6 +7,10 @@ first map stamped at or after it, so the saved map holds the whole lap.
 
 Parameters: the table in wall_follower.params.map_saver, read once at
 start; the command line's flags, map_server's map_saver's, win over them.
+
+A map that cannot be one (mapfile.map_problem: no cells, data that do not
+fill width x height, a resolution that is not positive, an origin that is
+not finite) is not written: the node says why and exits with status 1.
 """
 import argparse
 import os
@@ -17,7 +21,7 @@ from nav_msgs.msg import OccupancyGrid
 
 import numpy as np
 
-from wall_follower.mapping.mapfile import save_map
+from wall_follower.mapping.mapfile import map_problem, save_map
 from wall_follower.msg import OdomRecordActionResult
 from wall_follower.nodes.common import yaw_of
 from wall_follower.nodes.parameters import NodeParameters
@@ -29,6 +33,7 @@ class MapSaver(object):
         self.name, self.occupied, self.free = name, occupied, free
         self.lap_end = None if after_lap else rospy.Time(0)
         self.done = threading.Event()
+        self.saved = False
         self._lock = threading.Lock()
         if after_lap:
             rospy.loginfo('map_saver: waiting for the lap to end (record_odom/result)')
@@ -50,9 +55,16 @@ class MapSaver(object):
             info = msg.info
             rospy.loginfo('map_saver: received a %d X %d map @ %.3f m/pix', info.width,
                           info.height, info.resolution)
-            data = np.array(msg.data, dtype=np.int8).reshape(info.height, info.width)
             origin = (info.origin.position.x, info.origin.position.y,
                       yaw_of(info.origin.orientation))
+            problem = map_problem(info.width, info.height, len(msg.data), info.resolution,
+                                  origin)
+            if problem:
+                rospy.logerr('map_saver: not saving the map on %s: %s', rospy.resolve_name('map'),
+                             problem)
+                self.done.set()
+                return
+            data = np.array(msg.data, dtype=np.int8).reshape(info.height, info.width)
             try:
                 image, meta = save_map(self.name, data, info.resolution, origin,
                                        self.occupied, self.free)
@@ -60,6 +72,7 @@ class MapSaver(object):
                 rospy.logerr("map_saver: couldn't save the map to %s (%s)", self.name, err)
             else:
                 rospy.loginfo('map_saver: wrote %s and %s', image, meta)
+                self.saved = True
             self.done.set()
 
 
@@ -90,4 +103,4 @@ def main():
     saver = MapSaver(os.path.expanduser(args.name), args.occ, args.free, args.after_lap)
     while not rospy.is_shutdown() and not saver.done.wait(0.1):
         pass
-    return 0
+    return 0 if saver.saved or not saver.done.is_set() else 1
