@@ -5,8 +5,9 @@ teleop_key runs as a child of this test with its standard input a pipe; the
 test types keys into it and checks what comes out on cmd_vel: the ramp of
 half a step per tick toward the target, the clamp at ~max_linear and
 ~max_angular, the stop at once on s, and a zero Twist when Ctrl-C's byte
-quits it while the robot is moving. Also: the targets it prints, its exit
-status, and the drive guard (limits, no contact). The ramp is checked on
+quits it while the robot is moving, with a line saying so; with its
+standard input closed, it stops at once with an error. Also: the targets
+it prints, its exit status, and the drive guard (limits, no contact). The ramp is checked on
 the ROS time each command is heard at, one tick (0.1 s) per half step
 within RAMP_JITTER, so that a command superseded before it was sent (the
 publisher keeps only the newest) does not fail it.
@@ -39,12 +40,15 @@ class TeleopKey(unittest.TestCase):
         self.lock = threading.Lock()
         self.sent = []
         self.heard = []
-        listening = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
-                     rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.listening = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
+                          rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.node = None
+
+    def start(self, **stdin):
+        """teleop_key with its standard input a pipe, or as stdin (Popen's arguments) says."""
         self.node = subprocess.Popen(['rosrun', 'wall_follower', 'teleop_key'],
-                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.STDOUT, env=dict(os.environ))
-        self.assertTrue(start_world(listening), 'teleop_key never connected')
+                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     env=dict(os.environ), **(stdin or {'stdin': subprocess.PIPE}))
 
     def _on_command(self, msg):
         with self.lock:
@@ -52,7 +56,7 @@ class TeleopKey(unittest.TestCase):
             self.heard.append(rospy.get_time())
 
     def tearDown(self):
-        if self.node.poll() is None:
+        if self.node is not None and self.node.poll() is None:
             self.node.kill()
             self.node.wait()
 
@@ -92,6 +96,8 @@ class TeleopKey(unittest.TestCase):
                                  % (ramp[tick], when - heard[0], tick * TICK))
 
     def test_keys_ramp_clamp_stop_and_quit(self):
+        self.start()
+        self.assertTrue(start_world(self.listening), 'teleop_key never connected')
         self.wait_for(lambda c: True, 'a first command')
         self.type('w' * 25)
         top = self.wait_for(lambda c: c[0] >= 0.19 - EXACT, 'full speed')
@@ -127,7 +133,19 @@ class TeleopKey(unittest.TestCase):
         self.assertIn('target: linear 0.00 m/s, angular 0.00 rad/s', output)
         self.assertNotIn('0.20 m/s', output)
         self.assertNotIn('0.50 rad/s', output)
+        self.assertIn('teleop_key: Ctrl-C (byte 0x03) read; stopping', output)
         self.guard.assert_safe(self)
+
+    def test_a_closed_standard_input_stops_it_with_an_error(self):
+        # rosrun's shell, then the node, start with no file descriptor 0 at all.
+        self.start(stdin=None, preexec_fn=lambda: os.close(0))
+        self.assertEqual(self.node.wait(WAIT), 1)
+        output = self.node.stdout.read().decode('utf-8', 'replace')
+        self.assertIn('teleop_key: no standard input to read keys from (it is closed); '
+                      'stopping', output)
+        self.assertNotIn('Traceback', output)
+        self.assertTrue(all(command == (0.0, 0.0) for command in self.commands()),
+                        'it drove: %r' % self.commands())
 
 
 if __name__ == '__main__':

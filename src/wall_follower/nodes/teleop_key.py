@@ -9,13 +9,17 @@ key or 0.1 s idle), through the DriveLoop every driving node shares: so the
 robot also stops while the laser is stale or unusable, and does not drive
 forward into a sector ahead that it cannot see. Ctrl-C (a signal from a
 terminal, or the byte 0x03 from a pipe) or the end of the input quits with
-a zero Twist. Its parameters (params/teleop_key.py: the steps, the
-limits, the tick) are tuned live, from the next tick on.
+a zero Twist, and so does an input that cannot be read (standard input
+closed, or not readable), with an error and exit status 1. Its
+parameters (params/teleop_key.py: the steps, the limits, the tick) are
+tuned live, from the next tick on.
 """
 import os
 import queue
 import sys
 import threading
+
+import rospy
 
 from wall_follower.cfg import TeleopKeyConfig
 from wall_follower.exercises.teleop import USAGE, Teleop
@@ -26,12 +30,22 @@ from wall_follower.params.teleop_key import TABLE, TELEOP
 
 
 class KeyReader(object):
-    """Reads standard input byte by byte in a thread of its own; keys wait in a queue."""
+    """Reads standard input byte by byte in a thread of its own; keys wait in a queue.
+
+    stream: the input (sys.stdin, None when the process has none). An input
+    that cannot be read ends the keys as its end does, with `problem` saying
+    why (None for a plain end of input).
+    """
 
     def __init__(self, stream):
-        self.fd = stream.fileno()
         self.keys = queue.Queue()
+        self.problem = None
         self._terminal = None
+        self.fd = _descriptor(stream)
+        if self.fd is None:
+            self.problem = 'no standard input to read keys from (it is closed)'
+            self.keys.put(None)
+            return
         if os.isatty(self.fd):
             import termios
             import tty
@@ -43,7 +57,12 @@ class KeyReader(object):
 
     def _read(self):
         while True:
-            data = os.read(self.fd, 1)
+            try:
+                data = os.read(self.fd, 1)
+            except OSError as err:
+                self.problem = 'cannot read keys from standard input (%s)' % (
+                    err.strerror or err)
+                data = b''
             if not data:
                 self.keys.put(None)     # end of input
                 return
@@ -64,6 +83,16 @@ class KeyReader(object):
             termios.tcsetattr(self.fd, termios.TCSADRAIN, self._terminal)
 
 
+def _descriptor(stream):
+    """The file descriptor of stream, None if it has none (closed, or not a file)."""
+    if stream is None:
+        return None
+    try:
+        return stream.fileno()
+    except (AttributeError, OSError, ValueError):   # io.UnsupportedOperation is both
+        return None
+
+
 class TeleopKeyNode(object):
 
     def __init__(self):
@@ -79,7 +108,7 @@ class TeleopKeyNode(object):
             self.loop.run(self._tick, self._keys)
         finally:
             self.keys.restore()
-        return 0
+        return 1 if self.keys.problem else 0
 
     def _tick(self, _view, _taken):
         """The next command of the ramp, under any parameters changed since the last tick."""
@@ -93,11 +122,15 @@ class TeleopKeyNode(object):
         """Apply the keys pressed since the last pass; 'quit' once one says so."""
         for key in self.keys.pending():
             if key is None:
-                say('teleop_key: end of input; stopping')
+                if self.keys.problem:
+                    rospy.logerr('teleop_key: %s; stopping', self.keys.problem)
+                else:
+                    say('teleop_key: end of input; stopping')
                 return 'quit'
             if self.teleop.press(key):
                 say(self.teleop.describe())
             if self.teleop.quit:
+                say('teleop_key: Ctrl-C (byte 0x03) read; stopping')
                 return 'quit'
         return None
 
