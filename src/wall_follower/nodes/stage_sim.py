@@ -25,7 +25,13 @@ Services beyond stageros, named as Gazebo's: pause_physics and unpause_physics
 
 /use_sim_time must be true before any node starts, which is the launch
 file's job; like stageros, this node sets it if nobody did, too late for the
-nodes already running.
+nodes already running; unlike stageros, it puts back what was there (or
+deletes it) when it exits, so that nodes started later on the same master
+are not left waiting for a /clock that no longer comes.
+
+A world whose robots cannot start where they are put (none at all, one
+inside a wall or outside the map: sim.start_check) is refused with an error
+naming the world file and the robot, and exit status 1.
 """
 import argparse
 import math
@@ -52,6 +58,7 @@ from wall_follower.params.stage_sim import TABLE
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.sim.start_check import start_problems
 from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choose_simulator
 from wall_follower.sim.worldfile import WorldFileError, load_world
 from wall_follower.sim.stage_interface import parse_pose, quit_report, robot_prefix
@@ -134,6 +141,14 @@ class RobotTopics(object):
         return transforms
 
 
+class StartRefused(Exception):
+    """The world's robots cannot start where they are put; problems: a sentence each."""
+
+    def __init__(self, problems):
+        Exception.__init__(self, '; '.join(problems))
+        self.problems = problems
+
+
 class StageSimNode(object):
     """Steps a Simulation at the paced rate and speaks stageros' ROS interface.
 
@@ -152,6 +167,10 @@ class StageSimNode(object):
         self._sim = Simulation(world, laser_profile=params['laser_profile'],
                                seed=params['seed'], poses=poses,
                                watchdog_timeout=params['base_watchdog_timeout'])
+        problems = start_problems(world, self._sim.grid,
+                                  [robot.start_pose for robot in self._sim.robots])
+        if problems:
+            raise StartRefused(problems)
         self._quit_time = quit_time
         self._lock = threading.Lock()
         count = len(self._sim.robots)
@@ -339,12 +358,17 @@ def run_node(world, argv):
         node = StageSimNode(world, params,
                             params['quit_time'] if params['quit_time'] >= 0.0 else world.quit_time,
                             params['paused'] or bool(world.paused))
+    except StartRefused as refused:
+        for problem in refused.problems:
+            rospy.logerr('stage_sim: cannot start: %s', problem)
+        return 1
     except ValueError as error:
         rospy.logerr('~%s', error)
         return 1
     signal.signal(signal.SIGINT, node.request_stop)
     signal.signal(signal.SIGTERM, node.request_stop)
-    if not rospy.get_param('/use_sim_time', False):
+    found = rospy.get_param('/use_sim_time', None)
+    if not found:
         rospy.set_param('/use_sim_time', True)
         rospy.logwarn('/use_sim_time was not set: set it now, as stageros does; nodes that '
                       'started before keep wall time (set it in the launch file)')
@@ -357,9 +381,30 @@ def run_node(world, argv):
         rospy.loginfo('paused: call unpause_physics to start the world')
     if world.unknown_keywords:
         rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
-    node.run()
+    try:
+        node.run()
+    finally:
+        if not found:
+            put_back_sim_time(found)
     rospy.signal_shutdown('simulation ended')
     return 0
+
+
+def put_back_sim_time(found):
+    """Undo this node's setting of /use_sim_time: found is what was there (None: nothing).
+
+    At the end of a roslaunch the master may already be gone: then there is
+    nothing left to undo.
+    """
+    try:
+        if found is None:
+            rospy.delete_param('/use_sim_time')
+        else:
+            rospy.set_param('/use_sim_time', found)
+    except (KeyError, OSError, rospy.ROSException):
+        return
+    rospy.loginfo('/use_sim_time put back as it was (%s)',
+                  'not set' if found is None else repr(found))
 
 
 if __name__ == '__main__':
