@@ -7,7 +7,11 @@
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
 
 REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-WS_DIR="${WALL_FOLLOWER_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/wall_follower_ws}"
+# One workspace per clone (its folder's name and a hash of its path), so that a
+# workspace never links to another clone, nor to one since deleted;
+# $WALL_FOLLOWER_WS names another.
+CLONE_NAME="$(basename "$REPO_DIR")-$(printf '%s' "$REPO_DIR" | sha1sum | cut -c1-8)"
+WS_DIR="${WALL_FOLLOWER_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/wall_follower_ws/$CLONE_NAME}"
 
 APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-roslaunch python3-rostest librostest-dev python3-actionlib
@@ -59,6 +63,7 @@ build_workspace() {
   set +u
   # shellcheck disable=SC1091
   source "$WS_DIR/devel/setup.bash"
+  echo "== workspace $WS_DIR; in a shell of your own: source $WS_DIR/devel/setup.bash"
 }
 
 prepare_workspace() {
