@@ -10,7 +10,9 @@ blocks, or of a bitmap's black pixels, is scaled to the model's `size` and
 centred on the model's pose.
 
 A malformed file raises WorldFileError("<file>:<line>: <problem>") and never
-a traceback from deep inside the parser.
+a traceback from deep inside the parser; so does a world whose obstacles
+span more cells of its `resolution` than the simulator's grid may hold
+(MAX_GRID_CELLS), before anything that size is allocated.
 """
 import math
 import os
@@ -35,6 +37,13 @@ _TOP_LEVEL_IGNORED = frozenset(('window', 'gui'))
 
 # Black pixels: Stage treats a pixel as free when its first channel is above 127.
 _BITMAP_THRESHOLD = 127
+
+# The most cells of `resolution` the obstacles may span: the simulator's grid keeps some
+# 30 bytes a cell (sim.grid), so this bounds it to about half a GB, where a resolution
+# slipped by a few decimal places would otherwise ask for many GB.
+MAX_GRID_CELLS = 20000000
+# The most beams a ranger may have: far above any laser's, far below what exhausts memory.
+MAX_SAMPLES = 100000
 
 
 class WorldFileError(Exception):
@@ -373,6 +382,13 @@ class _Interpreter(object):
                 self.unknown.append(key)
         for child in self.root.children:
             self.top_level_entity(child)
+        cells = _cells_spanned(self.obstacles, resolution)
+        if cells > MAX_GRID_CELLS:
+            prop = top.props.get('resolution') or _Prop((), self.path, 0)
+            raise WorldFileError(prop.path, prop.line, 'the obstacles span about %d cells of '
+                                 'resolution %g m, more than the %d the simulator holds: a '
+                                 'coarser resolution or smaller models' % (
+                                     cells, resolution, MAX_GRID_CELLS))
         return World(
             path=self.path, resolution=resolution, interval_sim=int(interval_ms) / 1000.0,
             speedup=self.number(top, 'speedup', 1.0), quit_time=self.number(top, 'quit_time', 0.0),
@@ -509,9 +525,10 @@ class _Interpreter(object):
         sensor_size = self.numbers(sensor, 'size', 3, (0.02, 0.02, 0.02), 'lll')
         range_min, range_max = self.numbers(sensor, 'range', 2, (0.0, 5.0), 'll')
         samples = int(self.number(sensor, 'samples', 1.0))
-        if samples < 1:
+        if not 1 <= samples <= MAX_SAMPLES:
             prop = sensor.props['samples']
-            raise WorldFileError(prop.path, prop.line, 'samples must be at least 1')
+            raise WorldFileError(prop.path, prop.line, 'samples must be from 1 to %d, not %d'
+                                 % (MAX_SAMPLES, samples))
         noise = self.numbers(sensor, 'noise', 3, (0.0, 0.0, 0.0), 'lfa')
         height = robot_size[2] + pose[2] + sensor_pose[2] + sensor_size[2] / 2.0
         return RangerSpec(pose=pose, sensor_pose=sensor_pose, sensor_height=height,
@@ -555,6 +572,23 @@ def _compose4(parent, local, parent_height):
             parent[1] + local[0] * sina + local[1] * cosa,
             parent[2] + parent_height + local[2],
             normalize_angle(parent[3] + local[3]))
+
+
+def _cells_spanned(obstacles, resolution):
+    """About how many cells of resolution the box round every obstacle holds (not fewer):
+    each obstacle is taken as the disc round its geometry's centre that holds its edges."""
+    if not obstacles:
+        return 0
+    low, high = np.full(2, np.inf), np.full(2, -np.inf)
+    for obstacle in obstacles:
+        gx, gy, _, ga = obstacle.pose
+        ox, oy = obstacle.origin[0], obstacle.origin[1]
+        centre = np.array([gx + ox * math.cos(ga) - oy * math.sin(ga),
+                           gy + ox * math.sin(ga) + oy * math.cos(ga)])
+        reach = float(np.hypot(obstacle.edges[..., 0], obstacle.edges[..., 1]).max())
+        low, high = np.minimum(low, centre - reach), np.maximum(high, centre + reach)
+    cols, rows = (high - low) / resolution + 1.0
+    return int(math.ceil(cols) * math.ceil(rows))
 
 
 def polygon_edges(points):
