@@ -17,7 +17,7 @@ from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.control.lines import fit_line
 from wall_follower.control.scan import RIGHT, wrap_angle
 from wall_follower.sim.grid import footprint_corners
-from wall_follower.sim.worldfile import load_world
+from wall_follower.sim.worldfile import WorldFileError, load_world
 
 BAND = (0.20, 0.30)
 TARGET = 0.25
@@ -31,10 +31,17 @@ class CourseMap(object):
     """A world's obstacles and one of its robots, for measurements at true poses."""
 
     def __init__(self, world_path, robot=0):
+        """Raises WorldFileError for a world that cannot be read, or has no such robot or
+        no ranger on it."""
         self.world = load_world(world_path)
         self.edges = solid_edges(self.world)
+        if robot >= len(self.world.robots):
+            raise WorldFileError(world_path, 0, 'no robot %d to score (the world has %d)'
+                                 % (robot, len(self.world.robots)))
         self.robot = self.world.robots[robot]
         ranger = self.robot.ranger
+        if ranger is None:
+            raise WorldFileError(world_path, 0, 'robot "%s" has no ranger' % self.robot.name)
         self.laser_offset = (ranger.pose[0], ranger.pose[1], ranger.pose[3])
         self.range_max = ranger.range_max
         self._sector = np.linspace(-RIGHT_SECTOR, RIGHT_SECTOR, _SECTOR_BEAMS)

@@ -23,6 +23,7 @@ import rospy
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.evaluation.outputs import output_problem
 from wall_follower.evaluation.plot import plot_course
 from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.params.course_report import TABLE
@@ -121,6 +122,11 @@ def main():
     rospy.init_node('course_report')
     values = NodeParameters(TABLE).snapshot()
     world, plot, output = values['world'], values['plot'], values['json']
+    for name, path in (('plot', plot), ('json', output)):
+        problem = output_problem(path) if path else None
+        if problem:
+            rospy.logerr('course_report: cannot write ~%s: %s', name, problem)
+            return 1
     try:
         course_map = CourseMap(world_path(world))
     except (WorldFileError, EnvironmentError) as err:

@@ -19,8 +19,10 @@ from wall_follower.nodes.common import pose_message
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.evaluation.outputs import output_problem
 from wall_follower.evaluation.scoring import CourseMap
 from wall_follower.params.find_trials import TABLE
+from wall_follower.sim.worldfile import WorldFileError
 from wall_follower.srv import FindWall
 
 # Simulated time for the scan and ground truth to show a new pose.
@@ -81,8 +83,15 @@ def main():
         rospy.logerr('find_trials: a start pose in ~poses/%s is [x, y, yaw_deg], not %r',
                      world, bad[0])
         return 1
+    problem = output_problem(output) if output else None
+    if problem:
+        rospy.logerr('find_trials: cannot write ~json: %s', problem)
+        return 1
     try:
         trials = FindTrials(world)
+    except WorldFileError as err:
+        rospy.logerr('find_trials: cannot read world %s: %s', world, err)
+        return 1
     except rospy.ROSException as err:
         rospy.logerr('find_trials: %s', err)
         return 1
