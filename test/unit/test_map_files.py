@@ -122,6 +122,13 @@ def test_a_bad_description_is_refused_naming_it(tmp_path, text, says):
     assert says in error
 
 
+def test_a_description_that_is_not_text_is_refused_naming_it(tmp_path):
+    path = os.path.join(str(tmp_path), 'm.yaml')
+    with open(path, 'wb') as stream:
+        stream.write(b'image: \xe4\xff\n')
+    assert _refused(path).startswith(path + ': not a map description: not text (')
+
+
 def test_a_missing_description_is_refused_naming_it(tmp_path):
     error = _refused(os.path.join(str(tmp_path), 'none.yaml'))
     assert error.startswith(os.path.join(str(tmp_path), 'none.yaml') + ': cannot read')

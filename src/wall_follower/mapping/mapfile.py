@@ -144,6 +144,8 @@ def _read_description(yaml_path):
     except (IOError, OSError) as err:
         raise ValueError('%s: cannot read the map description (%s)' % (
             yaml_path, err.strerror or err))
+    except UnicodeDecodeError as err:
+        raise ValueError('%s: not a map description: not text (%s)' % (yaml_path, err.reason))
     except yaml.YAMLError as err:
         mark = getattr(err, 'problem_mark', None)
         raise ValueError('%s:%s not YAML (%s)' % (
