@@ -5,13 +5,14 @@ ground-truth figures of each trial.
 """
 import argparse
 
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, run_launch
+from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, laser_profile, print_table,
+                                                           run_launch, shipped_world)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark find', description=__doc__)
-    parser.add_argument('--worlds', nargs='+', default=list(WORLDS))
-    parser.add_argument('--laser-profile', default='stage')
+    parser.add_argument('--worlds', nargs='+', default=list(WORLDS), type=shipped_world())
+    parser.add_argument('--laser-profile', default='stage', type=laser_profile)
     args = parser.parse_args(argv)
     rows = []
     for world in args.worlds:

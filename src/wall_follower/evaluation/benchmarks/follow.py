@@ -16,7 +16,8 @@ import argparse
 import sys
 
 from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
-                                                           print_table, run_launch)
+                                                           laser_profile, print_table, run_launch,
+                                                           shipped_world)
 
 PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
@@ -55,8 +56,8 @@ def lap_args(simulator, world, profile, seed):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark follow', description=__doc__)
-    parser.add_argument('--worlds', nargs='+', default=list(WORLDS))
-    parser.add_argument('--profiles', nargs='+', default=list(PROFILES))
+    parser.add_argument('--worlds', nargs='+', default=list(WORLDS), type=shipped_world())
+    parser.add_argument('--profiles', nargs='+', default=list(PROFILES), type=laser_profile)
     parser.add_argument('--seeds', type=int, default=5,
                         help='laps per noisy laser profile, one per noise seed (default 5)')
     parser.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',

@@ -3,6 +3,7 @@
 Each run gets its own master on a free port, so runs never share state and
 a roscore already running on the machine is left alone.
 """
+import argparse
 import json
 import os
 import shutil
@@ -12,7 +13,30 @@ import subprocess
 import sys
 import tempfile
 
+from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.sim.stage_interface import world_path
+
 WORLDS = ('room', 'arena', 'obstacles')
+
+
+def shipped_world(suffix=''):
+    """An argparse type for a world argument: the name of a world in the package's worlds/
+    (NAME + suffix + .world, as NAME_odom) or a .world path; a name with no such file is a
+    one-line usage error at once, instead of a row of failed runs or a traceback."""
+    def check(name):
+        path = world_path(name + suffix)
+        if not os.path.isfile(path):
+            raise argparse.ArgumentTypeError('no world %s' % path)
+        return name
+    return check
+
+
+def laser_profile(name):
+    """An argparse type for a laser profile: one of the simulator's."""
+    if name not in PROFILES:
+        raise argparse.ArgumentTypeError('no laser profile %r (known: %s)' % (
+            name, ', '.join(PROFILES)))
+    return name
 
 
 def free_port():

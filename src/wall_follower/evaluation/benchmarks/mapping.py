@@ -23,7 +23,7 @@ from wall_follower.control.finder import WallFinder
 from wall_follower.control.follower import WallFollower
 from wall_follower.control.motion import clamp
 from wall_follower.control.scan import ScanView
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table
+from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, shipped_world
 from wall_follower.evaluation.map_scoring import map_quality
 from wall_follower.evaluation.scoring import CourseMap, RunScore
 from wall_follower.mapping.mapfile import load_map, save_map
@@ -102,7 +102,8 @@ def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark mapping', description=__doc__)
-    parser.add_argument('--worlds', nargs='+', default=list(WORLDS))
+    parser.add_argument('--worlds', nargs='+', default=list(WORLDS),
+                        type=shipped_world('_odom'))
     parser.add_argument('--maps', default='',
                         help='keep the maps (with scan matching) here as WORLD_odom.pgm/.yaml')
     args = parser.parse_args(argv)

@@ -23,7 +23,8 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
 import wall_follower
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, free_port, print_table
+from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, free_port, print_table,
+                                                           shipped_world)
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
@@ -236,7 +237,8 @@ def raytrace_ms(world, repeats):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark sim', description=__doc__.split('\n\n')[0])
-    parser.add_argument('--world', default='arena', help='world for the node runs (default arena)')
+    parser.add_argument('--world', default='arena', type=shipped_world(),
+                        help='world for the node runs (default arena)')
     parser.add_argument('--seconds', type=float, default=5.0, help='wall seconds per run')
     parser.add_argument('--repeats', type=int, default=200, help='scans per raytrace timing')
     args = parser.parse_args(argv)

@@ -13,7 +13,8 @@ import subprocess
 import sys
 import tempfile
 
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table
+from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, laser_profile,
+                                                           print_table, shipped_world)
 
 EXERCISE_WORLDS = WORLDS + ('pillars',)
 
@@ -41,8 +42,9 @@ def run_wander(world, profile, duration, timeout=900.0):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark wander', description=__doc__)
-    parser.add_argument('--worlds', nargs='+', default=list(EXERCISE_WORLDS))
-    parser.add_argument('--profiles', nargs='+', default=['stage'])
+    parser.add_argument('--worlds', nargs='+', default=list(EXERCISE_WORLDS),
+                        type=shipped_world())
+    parser.add_argument('--profiles', nargs='+', default=['stage'], type=laser_profile)
     parser.add_argument('--duration', type=float, default=300.0, help='simulated seconds')
     args = parser.parse_args(argv)
     rows = []

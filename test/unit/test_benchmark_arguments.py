@@ -1,0 +1,29 @@
+"""The benchmark's parts refuse a world or a laser profile that does not exist in one usage
+line, before any run: a wrong name once gave a traceback (sim, mapping) or a table of failed
+runs and status 0 (find, follow, wander). Needs the package on ROS_PACKAGE_PATH (the worlds
+are found through rospkg), no master."""
+import pytest
+
+from wall_follower.evaluation.benchmark import main
+
+# Parts are imported by name on demand: all of them, and each refusal, come before any run.
+CASES = [
+    (['sim', '--world', 'nowhere'], "argument --world: no world ", 'nowhere.world'),
+    (['mapping', '--worlds', 'pillars'], 'argument --worlds: no world ', 'pillars_odom.world'),
+    (['find', '--worlds', 'nowhere'], 'argument --worlds: no world ', 'nowhere.world'),
+    (['find', '--laser-profile', 'sonar'], "no laser profile 'sonar'", ''),
+    (['follow', '--worlds', 'room', 'nowhere'], 'argument --worlds: no world ', 'nowhere.world'),
+    (['follow', '--profiles', 'sonar'], "argument --profiles: no laser profile 'sonar'", ''),
+    (['wander', '--worlds', '/nowhere/x.world'], 'argument --worlds: no world /nowhere/x.world',
+     ''),
+]
+
+
+@pytest.mark.parametrize('argv, says, names', CASES)
+def test_an_unknown_world_or_profile_is_a_usage_error(capsys, argv, says, names):
+    with pytest.raises(SystemExit) as ended:
+        main(argv)
+    assert ended.value.code == 2
+    error = capsys.readouterr().err.splitlines()[-1]
+    assert error.startswith('benchmark %s: error: ' % argv[0])
+    assert says in error and error.endswith(names)
