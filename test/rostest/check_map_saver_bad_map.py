@@ -6,7 +6,8 @@ started as a user starts it (rosrun, -f into a fresh folder) with `map`
 remapped there. It must exit with status 1 (it once printed a ValueError
 traceback in its callback and then waited for ever), log why in one line,
 print no traceback and leave the folder empty. A good map, published the
-same way, is saved (so a failure here is the map's, not the set-up's).
+same way, is saved (so a failure here is the map's, not the set-up's), also
+under a ~file that names the home folder as `~`.
 """
 import math
 import os
@@ -71,6 +72,22 @@ class MapSaverBadMap(unittest.TestCase):
         self.assertIn('map_saver: not saving the map on %s: ' % topic, done.stdout)
         self.assertIn(says, done.stdout)
         self.assertEqual(os.listdir(self.folder), [])
+
+    def test_a_name_under_the_home_folder_is_expanded(self):
+        # As a launch file's ~file:=~/map, which no shell expands.
+        topic = '/good_map_home'
+        publisher = rospy.Publisher(topic, OccupancyGrid, queue_size=1, latch=True)
+        publisher.publish(grid())
+        done = subprocess.run(['rosrun', 'wall_follower', 'map_saver', '_file:=~/home',
+                               'map:=' + topic, '__name:=saver_home'],
+                              env=dict(os.environ, HOME=self.folder),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              universal_newlines=True, timeout=WALL_LIMIT)
+        publisher.unregister()
+        self.assertEqual(done.returncode, 0, done.stdout)
+        saved = os.listdir(self.folder)     # beside ROS's own ~/.ros
+        self.assertIn('home.pgm', saved)
+        self.assertIn('home.yaml', saved)
 
 
 for _index in range(len(CASES)):

@@ -96,11 +96,12 @@ def main():
         rospy.logerr('map_saver: need 0 <= --free < --occ <= 100 (got --free %d --occ %d)',
                      args.free, args.occ)
         return 1
-    directory = os.path.dirname(os.path.abspath(args.name))
+    name = os.path.expanduser(args.name)   # a launch file's ~file is not expanded by a shell
+    directory = os.path.dirname(os.path.abspath(name))
     if not os.path.isdir(directory):
         rospy.logerr('map_saver: no directory %s for the map', directory)
         return 1
-    saver = MapSaver(os.path.expanduser(args.name), args.occ, args.free, args.after_lap)
+    saver = MapSaver(name, args.occ, args.free, args.after_lap)
     while not rospy.is_shutdown() and not saver.done.wait(0.1):
         pass
     return 0 if saver.saved or not saver.done.is_set() else 1
