@@ -43,6 +43,15 @@ OUTLINES = {
     'obstacles': [(-2.0, -1.5), (2.0, -1.5), (2.0, -0.2), (1.4, -0.2),
                   (1.4, 0.2), (2.0, 0.2), (2.0, 1.5), (0.2, 1.5), (0.2, 0.9),
                   (-0.2, 0.9), (-0.2, 1.5), (-2.0, 1.5)],
+    # Mapping on angled walls: an octagon 3.0 m across its flats (walls at
+    # x, y = +-1.5), its four slanted walls at 45 degrees; the square pillar
+    # inside it is a model of octagon.world.
+    'octagon': [(-0.62, -1.5), (0.62, -1.5), (1.5, -0.62), (1.5, 0.62), (0.62, 1.5),
+                (-0.62, 1.5), (-1.5, 0.62), (-1.5, -0.62)],
+    # Mapping on walls that meet at 60 and 120 degrees: a parallelogram, 3.0 m
+    # along its walls at y = +-1.09, its other two walls rising 2.18 m over
+    # 1.26 m (60 degrees to the first); the pillar is a model of the world.
+    'parallelogram': [(-2.13, -1.09), (0.87, -1.09), (2.13, 1.09), (-0.87, 1.09)],
     # Like ROBOTIS's turtlebot3_world, for the lab exercises: a hexagon 5.0 m
     # corner to corner (4.32 m flat to flat) round a 3 x 3 grid of pillars.
     'pillars': [(-2.5, 0.0), (-1.24, -2.16), (1.24, -2.16), (2.5, 0.0), (1.24, 2.16),
