@@ -12,12 +12,14 @@ import threading
 import pytest
 import rospy
 
+from wall_follower.nodes import signals
 from wall_follower.nodes.common import init_node
 
 
 @pytest.fixture
-def handlers():
-    """Restore the process's signal handlers after the test."""
+def handlers(monkeypatch):
+    """Restore the process's signal handlers after the test; no node's answer in force."""
+    monkeypatch.setattr(signals, '_answers', [])
     saved = dict((number, signal.getsignal(number)) for number in (signal.SIGINT, signal.SIGTERM))
     yield
     for number, handler in saved.items():
@@ -40,3 +42,14 @@ def test_a_signal_shuts_rospy_down_from_a_thread_of_its_own(monkeypatch, handler
     os.kill(os.getpid(), number)
     assert done.wait(5.0)
     assert calls[1] == ('signal %d' % number, False)
+
+
+def test_a_signal_before_init_node_ends_the_process_at_once(monkeypatch, handlers):
+    """SIGINT while the node still imports ends it there, even if it came in ignored
+    (a shell's background job): no exception that an import could swallow."""
+    ended = []
+    monkeypatch.setattr(os, '_exit', ended.append)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signals.catch()
+    os.kill(os.getpid(), signal.SIGINT)
+    assert ended == [128 + signal.SIGINT]

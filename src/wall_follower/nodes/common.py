@@ -1,6 +1,5 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
-import signal
 import threading
 from collections import namedtuple
 
@@ -10,6 +9,7 @@ from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
+from wall_follower.nodes import signals
 
 
 def to_twist(command):
@@ -68,8 +68,12 @@ def init_node(name):
     driving node's last stop) then deadlocks on a publisher lock whenever
     the signal lands while the main thread is publishing, and the node
     never exits. Here the handler only wakes a thread that shuts rospy down.
+
+    The handler is in force before rospy.init_node starts, which can take
+    seconds (registering with the master, reading /use_sim_time): a signal
+    then ends the start-up, and the node exits quietly, having driven
+    nothing. (Before this call, nodes.signals answers.)
     """
-    rospy.init_node(name, disable_signals=True)
     caught = []
     wake = threading.Event()
 
@@ -77,13 +81,19 @@ def init_node(name):
         wake.wait()
         rospy.signal_shutdown('signal %d' % caught[0])
 
-    def on_signal(number, _frame):
+    def on_signal(number):
         caught.append(number)
         wake.set()
 
     threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
-    for number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(number, on_signal)
+    signals.answer_with(on_signal)
+    try:
+        rospy.init_node(name, disable_signals=True)
+    except rospy.ROSInitException:
+        if not caught:
+            raise
+    if caught:
+        raise SystemExit(0)
 
 
 Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])

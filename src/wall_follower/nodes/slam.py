@@ -31,7 +31,7 @@ import numpy as np
 from wall_follower.cfg import SlamConfig
 from wall_follower.mapping.slam import Mapper
 from wall_follower.mapping.poses import wrap
-from wall_follower.nodes.common import pose_message, pose_of, quaternion_z, yaw_of
+from wall_follower.nodes.common import init_node, pose_message, pose_of, quaternion_z, yaw_of
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.slam import MAPPER, READ_AT_START, RULES, TABLE
@@ -197,7 +197,7 @@ class SlamNode(object):
 
 
 def main():
-    rospy.init_node('slam')
+    init_node('slam')
     try:
         node = SlamNode()
     except ValueError as err:

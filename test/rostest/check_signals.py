@@ -1,0 +1,243 @@
+#!/usr/bin/env python3
+"""rostest: every long-running node that scripts/ installs ends on SIGINT, whenever it comes.
+
+Each node is started as a child process and given SIGINT at one of
+MOMENTS after its start (while Python imports, while rospy.init_node
+registers, while the node waits for its first scan, odometry, service or
+action server, and once it runs): it must end within EXIT_LIMIT wall
+seconds, and a node that drives must have sent a zero Twist last. The
+nodes of one wave start together, each at another moment, so that the
+machine is as busy as a launch file's start makes it. Half the runs start
+with SIGINT ignored, as a shell starts a job in the background (and the
+issue's nodes were started): a node must answer it all the same, from its
+first line on, not only once rospy is up. The nodes are started as
+roslaunch starts them, by their path: rosrun would first run a lookup of
+its own (catkin_find, a Python program) that a signal can land in.
+
+In wall time (/use_sim_time false): the test itself is about wall time,
+and it feeds the nodes a room's scan and a standing robot's odometry
+(with tf between them) so that the ones that drive do. Left out: the
+tools that end by themselves (benchmark, course_report's plot, map_png,
+require_package, find_trials' series of calls), which a launch file does
+not keep running.
+"""
+import math
+import os
+import pty
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import roslib.packages
+import rosgraph
+import rospkg
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import LaserScan
+
+from waiting import wait_until
+
+EXIT_LIMIT = 2.0      # wall s from SIGINT to the node's exit
+DELIVERY_LIMIT = 2.0  # wall s for its last command to reach this node
+PERIOD = 0.1          # wall s between two scans and two odometry messages
+MOMENTS = (0.5, 1.0, 1.5, 2.0, 3.0, 4.5)   # wall s from start to SIGINT
+WAVES = 3
+ROOM = 1.2            # m from the robot to each wall of the room in the scans
+
+# script -> (arguments, whether it drives)
+NODES = {
+    'wall_following.py': (['_laser_x:=-0.032', '_service_wait:=30.0'], True),
+    'wall_finder.py': (['_laser_x:=-0.032'], True),
+    'odom_recorder.py': ([], False),
+    'teleop_key': ([], True),
+    'simple_move_square': ([], True),
+    'forward_stop': ([], True),
+    'range_ahead': ([], False),
+    'wander': ([], True),
+    'slam': ([], False),
+    'map_saver': (['-f', os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'map')], False),
+    'stage_sim': (['--simulator', 'builtin', '-g', os.path.join(
+        rospkg.RosPack().get_path('wall_follower'), 'worlds', 'room.world')], False),
+}
+
+
+def room_scan():
+    """A 360-beam scan (index 0 ahead) of a square room, ROOM m to each wall."""
+    scan = LaserScan()
+    scan.header.frame_id = 'base_scan'
+    scan.angle_min, scan.angle_increment = 0.0, 2.0 * math.pi / 360
+    scan.angle_max = scan.angle_increment * 359
+    scan.range_min, scan.range_max = 0.12, 3.5
+    scan.ranges = [ROOM / max(abs(math.cos(a)), abs(math.sin(a)))
+                   for a in (scan.angle_increment * i for i in range(360))]
+    return scan
+
+
+def signal_masks(pid):
+    """(ignored, caught): the process's signal masks as /proc shows them; None once gone."""
+    try:
+        with open('/proc/%d/status' % pid) as status:
+            fields = dict(line.split(':', 1) for line in status)
+        return int(fields['SigIgn'], 16), int(fields['SigCgt'], 16)
+    except (OSError, ValueError, KeyError):
+        return None
+
+
+def has(mask, number):
+    return bool(mask & (1 << (number - 1)))
+
+
+def registered(name):
+    """Whether the master knows the node."""
+    try:
+        rosgraph.Master(rospy.get_name()).lookupNode(name)
+        return True
+    except rosgraph.MasterError:
+        return False
+
+
+class Feed(object):
+    """Scans, odometry and tf for every node under test, from a thread of its own."""
+
+    def __init__(self):
+        self.scans = rospy.Publisher('/signals/scan', LaserScan, queue_size=1)
+        self.odom = rospy.Publisher('/signals/odom', Odometry, queue_size=1)
+        self.tf = tf2_ros.TransformBroadcaster()
+        threading.Thread(target=self._run, daemon=True).start()
+
+    def _run(self):
+        scan, odom = room_scan(), Odometry()
+        odom.header.frame_id, odom.child_frame_id = 'odom', 'base_footprint'
+        odom.pose.pose.orientation.w = 1.0
+        links = []
+        for parent, child in (('odom', 'base_footprint'), ('base_footprint', 'base_link'),
+                              ('base_link', 'base_scan')):
+            link = TransformStamped()
+            link.header.frame_id, link.child_frame_id = parent, child
+            link.transform.rotation.w = 1.0
+            links.append(link)
+        while not rospy.is_shutdown():
+            now = rospy.Time.now()
+            for message in [scan, odom] + links:
+                message.header.stamp = now
+            self.scans.publish(scan)
+            self.odom.publish(odom)
+            self.tf.sendTransform(links)
+            time.sleep(PERIOD)
+
+
+class Run(object):
+    """One node under test: its process, when to signal it, and what it commanded."""
+
+    def __init__(self, script, wave, moment, inherited):
+        arguments, self.drives = NODES[script]
+        name = '%s_%d' % (script.split('.')[0], wave)
+        self.label = '%s (SIGINT %.1f s after start, started with SIGINT %s)' % (
+            script, moment, 'ignored' if inherited == signal.SIG_IGN else 'default')
+        self.moment = moment
+        self.lock = threading.Lock()
+        self.commands = []
+        rospy.Subscriber('/signals/%s/cmd_vel' % name, Twist, self._on_cmd, queue_size=1000)
+        self.terminal, child_end = pty.openpty()   # teleop_key reads a keyboard
+        self.errors = tempfile.TemporaryFile()
+        self.process = subprocess.Popen(
+            roslib.packages.find_node('wall_follower', script)[:1] + arguments +
+            ['__name:=' + name, '__ns:=/signals/' + name, 'scan:=/signals/scan',
+             'odom:=/signals/odom'],
+            stdin=child_end, stdout=subprocess.DEVNULL, stderr=self.errors,
+            preexec_fn=lambda: signal.signal(signal.SIGINT, inherited))
+        os.close(child_end)
+        self.name, self.inherited = '/signals/%s/%s' % (name, name), inherited
+        self.started = self.signalled = self.ended = None
+        self.registered_first = False
+
+    def _on_cmd(self, msg):
+        with self.lock:
+            self.commands.append((msg.linear.x, msg.angular.z))
+
+    def step(self, now):
+        """Signal the node when its moment has come; note when it has ended.
+
+        The moments count from the node's first line: what comes before (the exec,
+        the interpreter's start, seconds on a loaded machine) is no part of the
+        package. With SIGINT inherited as default, that is when Python ignores
+        SIGPIPE (this process's children start with it restored); with SIGINT
+        ignored, when the node catches SIGINT, which it must do before it
+        registers with the master (a signal ignored until then is lost for good).
+        """
+        masks = signal_masks(self.process.pid) if self.started is None else None
+        if masks is not None:
+            ignored, caught = masks
+            if self.inherited == signal.SIG_IGN and has(caught, signal.SIGINT):
+                self.started, self.registered_first = now, registered(self.name)
+            elif self.inherited == signal.SIG_DFL and has(ignored, signal.SIGPIPE):
+                self.started = now
+        if self.signalled is None and self.started is not None and \
+                now - self.started >= self.moment:
+            self.process.send_signal(signal.SIGINT)
+            self.signalled = now
+        if self.ended is None and self.process.poll() is not None:
+            self.ended = now
+
+    def done(self, now):
+        return self.ended is not None or (self.signalled is not None
+                                          and now - self.signalled > EXIT_LIMIT)
+
+    def finish(self):
+        """What went wrong with this run, in words (None if nothing did); kills a node
+        still running."""
+        os.close(self.terminal)
+        if self.ended is None:
+            self.process.kill()
+            self.process.wait()
+            return '%s: still running %.1f s after SIGINT; it wrote:\n%s' % (
+                self.label, EXIT_LIMIT, self.written())
+        if self.registered_first:
+            return '%s: caught SIGINT only after registering with the master' % self.label
+        if self.signalled is None or self.ended < self.signalled:
+            return '%s: ended by itself before SIGINT (status %s)' % (
+                self.label, self.process.returncode)
+        if self.drives and not wait_until(self._stopped_last, DELIVERY_LIMIT):
+            return '%s: last command %s, not a stop' % (self.label, self.commands[-1])
+        return None
+
+    def written(self):
+        """The end of what the node wrote on stderr."""
+        self.errors.seek(0)
+        return self.errors.read().decode(errors='replace')[-2000:]
+
+    def _stopped_last(self):
+        with self.lock:
+            return not self.commands or self.commands[-1] == (0.0, 0.0)
+
+
+class Signals(unittest.TestCase):
+
+    def test_every_node_ends_on_sigint(self):
+        Feed()
+        scripts = sorted(NODES)
+        problems, runs_done = [], 0
+        for wave in range(WAVES):
+            runs = [Run(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
+                        (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
+                    for index, script in enumerate(scripts)]
+            while not all(run.done(time.monotonic()) for run in runs):
+                for run in runs:
+                    run.step(time.monotonic())
+                time.sleep(0.02)
+            problems.extend(problem for problem in (run.finish() for run in runs) if problem)
+            runs_done += len(runs)
+        self.assertEqual(problems, [], '%d of %d runs failed:\n%s'
+                         % (len(problems), runs_done, '\n'.join(problems)))
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_signals')
+    rostest.rosrun('wall_follower', 'check_signals', Signals, sys.argv)
