@@ -27,8 +27,8 @@ from collections import namedtuple
 
 import numpy as np
 
-__all__ = ['Solid', 'CameraScene', 'CameraRenderer', 'CameraFrame', 'BACKGROUND', 'FLOOR',
-           'body_solids', 'camera_intrinsics', 'optical_frame_rpy']
+__all__ = ['Solid', 'CameraScene', 'CameraRenderer', 'CameraFrame', 'CameraMount', 'BACKGROUND',
+           'FLOOR', 'body_solids', 'camera_intrinsics', 'optical_frame_rpy', 'camera_mount']
 
 # Stage's glClearColor (canvas.cc) where no floor or model is drawn, and its floor.
 BACKGROUND = (0.7, 0.7, 0.8)
@@ -40,6 +40,9 @@ RASTER_EDGES = 32
 RASTER_CELL = 0.0025
 # Edges tested against all pixels at once (bounds the temporary arrays).
 EDGE_CHUNK = 16
+
+# base_link -> camera as stageros publishes it: translation and quaternion (x, y, z, w).
+CameraMount = namedtuple('CameraMount', ['x', 'y', 'z', 'rotation'])
 
 CameraFrame = namedtuple('CameraFrame', [
     'rgba',    # (height, width, 4) uint8, rows top-down
@@ -183,6 +186,19 @@ def optical_frame_rpy(camera):
     return (-(math.pi / 2.0 + tilt), 0.0, camera.pose[3] - math.pi / 2.0 - pan)
 
 
+def camera_mount(robot):
+    """base_link -> camera of a RobotSpec with a camera, as stageros publishes it: the camera
+    model's x, y, body height + its z, and the optical frame of optical_frame_rpy."""
+    camera = robot.camera
+    roll, pitch, yaw = optical_frame_rpy(camera)
+    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
+    cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
+    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
+    rotation = (sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+                cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy)
+    return CameraMount(camera.pose[0], camera.pose[1], robot.size[2] + camera.pose[2], rotation)
+
+
 class CameraRenderer(object):
     """Renders one CameraSpec's frames in a CameraScene.
 
@@ -251,8 +267,8 @@ class CameraRenderer(object):
                     full = np.zeros(count, dtype=bool)
                     full[index[hit]] = True
                     offer(t, full, solid.color)
-                if not solid.flat:
-                    self._sides(solid, eye, rays, offer)
+                if not solid.flat and not _seen_only_from_above(solid, eye):
+                    self._sides(solid, eye, rays, best, offer)
         depth = np.where(np.isfinite(best), best, np.inf).astype(np.float32)
         rgba = np.empty((count, 4), dtype=np.uint8)
         rgba[:, :3] = np.round(color * 255.0)
@@ -260,10 +276,19 @@ class CameraRenderer(object):
         return CameraFrame(rgba.reshape(self.shape + (4,)), depth.reshape(self.shape))
 
     @staticmethod
-    def _sides(solid, eye, rays, offer):
+    def _sides(solid, eye, rays, best, offer):
         """Offer each pixel's hit on the solid's side faces (a ray's xy line against each
-        edge; the height at the hit must lie within the solid's z span)."""
-        dx, dy, dz = rays[:, 0:1], rays[:, 1:2], rays[:, 2:3]
+        edge; the height at the hit must lie within the solid's z span). Only the pixels
+        whose nearest hit so far lies beyond the solid's footprint (in xy) are tested."""
+        reach = _distance_to_box(solid, eye)
+        horizontal = np.hypot(rays[:, 0], rays[:, 1])
+        with np.errstate(invalid='ignore'):
+            index = np.nonzero(best * horizontal >= reach)[0]
+        if not len(index):
+            return
+        picked = rays[index]
+        dx, dy, dz = picked[:, 0:1], picked[:, 1:2], picked[:, 2:3]
+        count = len(best)
         for start in range(0, len(solid.edges), EDGE_CHUNK):
             edges = solid.edges[start:start + EDGE_CHUNK]
             ax, ay = edges[:, 0, 0][None, :], edges[:, 0, 1][None, :]
@@ -278,14 +303,24 @@ class CameraRenderer(object):
             z = eye[2] + t * dz
             hit = (det != 0) & (s >= 0) & (s <= 1) & (t > 0) & (z >= solid.zmin) & \
                 (z <= solid.zmax)
-            t = np.where(hit, t, np.inf)
-            column = np.argmin(t, axis=1)
-            nearest = t[np.arange(len(t)), column]
+            nearest = np.full(count, np.inf)
+            nearest[index] = np.where(hit, t, np.inf).min(axis=1)
             offer(nearest, np.isfinite(nearest), solid.color)
+
+
+def _distance_to_box(solid, eye):
+    """Distance in xy from the eye to the solid's bounding box (0 inside it)."""
+    nearest_x = min(max(eye[0], solid.lower[0]), solid.upper[0])
+    nearest_y = min(max(eye[1], solid.lower[1]), solid.upper[1])
+    return math.hypot(nearest_x - eye[0], nearest_y - eye[1])
 
 
 def _within_reach(solid, eye, far):
     """False when the solid's footprint lies wholly beyond `far` of the eye (in xy)."""
-    nearest_x = min(max(eye[0], solid.lower[0]), solid.upper[0])
-    nearest_y = min(max(eye[1], solid.lower[1]), solid.upper[1])
-    return math.hypot(nearest_x - eye[0], nearest_y - eye[1]) < far
+    return _distance_to_box(solid, eye) < far
+
+
+def _seen_only_from_above(solid, eye):
+    """True when the eye is above the solid and over its top: every ray that reaches a
+    side from there passes through the top first (a camera over its own robot's body)."""
+    return eye[2] > solid.zmax and bool(solid.inside(np.array([eye[0]]), np.array([eye[1]]))[0])

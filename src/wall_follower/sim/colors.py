@@ -43,7 +43,7 @@ def color_by_name(name):
     key = name.strip().lower()
     gray = _GRAY_RE.match(key)
     if gray and int(gray.group(1)) <= 100:
-        level = int(round(int(gray.group(1)) * 255 / 100.0)) / 255.0
+        level = int(int(gray.group(1)) * 255 / 100.0 + 0.5) / 255.0
         return (level, level, level)
     rgb = _table()[key]
     return tuple(value / 255.0 for value in rgb)
