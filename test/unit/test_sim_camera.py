@@ -103,7 +103,8 @@ def test_unknown_colour_is_a_one_line_error(tmp_path):
 
 
 def test_colours_by_name_and_rgba(tmp_path):
-    models = 'model( color "gray30" pose [5 0 0 0] )\nmodel( color_rgba [0 0.5 1 1] pose [5 2 0 0] )'
+    models = ('model( color "gray30" pose [5 0 0 0] )\n'
+              'model( color_rgba [0 0.5 1 1] pose [5 2 0 0] )')
     world = _world(tmp_path, models=models)
     assert world.obstacles[0].color == pytest.approx((77 / 255.0,) * 3)
     assert world.obstacles[1].color == (0.0, 0.5, 1.0)
