@@ -122,7 +122,7 @@ def line_raster(centreline):
     xs = (lower[0] + np.arange(cols) + 0.5) * LINE_PIXEL
     ys = (upper[1] - np.arange(rows) - 0.5) * LINE_PIXEL
     gx, gy = np.meshgrid(xs, ys)
-    black = centreline.distance(gx, gy) <= half
+    black = centreline.distance(gx, gy, within=half + LINE_PIXEL) <= half
     used_rows = np.nonzero(black.any(axis=1))[0]
     used_cols = np.nonzero(black.any(axis=0))[0]
     r0, r1, c0, c1 = used_rows[0], used_rows[-1] + 1, used_cols[0], used_cols[-1] + 1

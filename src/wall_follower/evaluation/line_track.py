@@ -54,6 +54,7 @@ class Centreline(object):
         segments = np.diff(self.points, axis=0)
         self._lengths = np.hypot(segments[:, 0], segments[:, 1])
         self._along = np.concatenate([[0.0], np.cumsum(self._lengths)])
+        self.step = float(self._lengths.max()) if len(self._lengths) else 0.0
         from scipy.spatial import cKDTree
         self._tree = cKDTree(self.points)
 
@@ -71,14 +72,21 @@ class Centreline(object):
         """Where an open line ends (a closed one ends at its start)."""
         return tuple(self.points[-1])
 
-    def nearest(self, x, y):
-        """(distance [m], arc length [m] of the nearest centreline point) for points x, y."""
+    def nearest(self, x, y, within=np.inf):
+        """(distance [m], arc length [m] of the nearest centreline point) for points x, y;
+        points farther than `within` [m] (a shortcut for many far points) get inf, 0."""
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
         query = np.stack([x.ravel(), y.ravel()], axis=1)
-        _, index = self._tree.query(query)
         best = np.full(len(query), np.inf)
         along = np.zeros(len(query))
+        # The nearest sample lies within half a step of the nearest point of the polyline.
+        _, index = self._tree.query(query, distance_upper_bound=within + self.step)
+        close = index < len(self.points)
+        if not close.all():
+            near_best, near_along = self.nearest(x.ravel()[close], y.ravel()[close])
+            best[close], along[close] = near_best, near_along
+            return best.reshape(x.shape), along.reshape(x.shape)
         last = len(self.points) - 2
         for offset in (-1, 0):
             seg = np.clip(index + offset, 0, last)
@@ -93,9 +101,10 @@ class Centreline(object):
             along[better] = self._along[seg[better]] + s[better] * self._lengths[seg[better]]
         return best.reshape(x.shape), along.reshape(x.shape)
 
-    def distance(self, x, y):
-        """Distance [m] from points (x, y) (scalars or arrays) to the centreline."""
-        return self.nearest(x, y)[0]
+    def distance(self, x, y, within=np.inf):
+        """Distance [m] from points (x, y) (scalars or arrays) to the centreline (inf for
+        points farther than `within`)."""
+        return self.nearest(x, y, within)[0]
 
     def distance_to_end(self, x, y):
         """Straight-line distance [m] from (x, y) to the end of the line."""
