@@ -51,7 +51,7 @@ from std_srvs.srv import Empty, EmptyResponse
 from wall_follower.nodes.common import quaternion_z, yaw_of
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.stage_sim import TABLE
-from wall_follower.sim import compiled_raytrace
+from wall_follower.sim import compiled_camera, compiled_raytrace
 from wall_follower.sim.camera import camera_intrinsics, camera_mount
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
@@ -383,6 +383,10 @@ def main(argv=None):
         return 1
     if not compiled_raytrace.available():
         sys.stderr.write('stage_sim: error: %s\n' % compiled_raytrace.MISSING)
+        return 1
+    if any(robot.camera is not None for robot in world.robots) and \
+            not compiled_camera.available():
+        sys.stderr.write('stage_sim: error: %s\n' % compiled_camera.MISSING)
         return 1
     try:
         return run_node(world, argv)

@@ -16,16 +16,20 @@ xvfb-run, see DESIGN.md "Stage's camera"):
 - depth is the distance along the optical axis (stageros: -inf nearer than
   `near`, +inf where nothing was drawn).
 
-Vectorised numpy: each frame intersects one ray per pixel with the floor,
-with each model's top (a raster lookup, or a crossing test for a few edges)
-and with each model's side faces (one segment test per edge and pixel).
-Flat models (a line painted on the floor) have no sides worth drawing, so a
-world of a room and a line costs a few dozen edge tests per pixel.
+The per-pixel loop is C (src/stage_camera.c, through compiled_camera):
+each ray meets the floor, each model's top (a raster lookup, or a crossing
+test for a few edges) and each model's side faces (one segment test per
+edge). Flat models (a line painted on the floor) have no sides worth
+drawing, so a world of a room and a line costs a few dozen edge tests per
+pixel. This module prepares what the loop needs: the pixel rays, the models
+as solids, the eye.
 """
 import math
 from collections import namedtuple
 
 import numpy as np
+
+from . import compiled_camera
 
 __all__ = ['Solid', 'CameraScene', 'CameraRenderer', 'CameraFrame', 'CameraMount', 'BACKGROUND',
            'FLOOR', 'body_solids', 'camera_intrinsics', 'optical_frame_rpy', 'camera_mount']
@@ -38,8 +42,6 @@ FLAT_HEIGHT = 0.005
 # Models with more edges than this test their top against a filled raster of this cell.
 RASTER_EDGES = 32
 RASTER_CELL = 0.0025
-# Edges tested against all pixels at once (bounds the temporary arrays).
-EDGE_CHUNK = 16
 
 # base_link -> camera as stageros publishes it: translation and quaternion (x, y, z, w).
 CameraMount = namedtuple('CameraMount', ['x', 'y', 'z', 'rotation'])
@@ -53,7 +55,8 @@ CameraFrame = namedtuple('CameraFrame', [
 class Solid(object):
     """A model's blocks in the world frame: outline edges extruded over z in [zmin, zmax].
 
-    edges: (M, 2, 2) outline segments; their even-odd interior is the top face.
+    edges: (M, 2, 2) outline segments; their even-odd interior is the top face, looked
+    up in `raster` ((mask, origin) of cells of RASTER_CELL) when there are many edges.
     """
 
     def __init__(self, edges, zmin, zmax, color):
@@ -65,32 +68,8 @@ class Solid(object):
         self.lower = flat.min(axis=0)
         self.upper = flat.max(axis=0)
         self.flat = self.zmax - self.zmin < FLAT_HEIGHT
-        self._raster = _fill_raster(self.edges, self.lower, self.upper) \
+        self.raster = _fill_raster(self.edges, self.lower, self.upper) \
             if len(self.edges) > RASTER_EDGES else None
-
-    def inside(self, x, y):
-        """Whether points (x, y) lie on the top face (arrays of one shape)."""
-        if self._raster is not None:
-            mask, origin = self._raster
-            col = np.floor((x - origin[0]) / RASTER_CELL).astype(np.int64)
-            row = np.floor((y - origin[1]) / RASTER_CELL).astype(np.int64)
-            good = (row >= 0) & (row < mask.shape[0]) & (col >= 0) & (col < mask.shape[1])
-            out = np.zeros(x.shape, dtype=bool)
-            out[good] = mask[row[good], col[good]]
-            return out
-        return _crossings_odd(self.edges, x, y)
-
-
-def _crossings_odd(edges, x, y):
-    """Even-odd rule: True where a ray from (x, y) towards +x crosses an odd number of edges."""
-    odd = np.zeros(x.shape, dtype=bool)
-    for (x1, y1), (x2, y2) in edges:
-        if y1 == y2:
-            continue
-        spans = (y1 <= y) != (y2 <= y)
-        cross = x1 + (y - y1) * (x2 - x1) / (y2 - y1)
-        odd ^= spans & (x < cross)
-    return odd
 
 
 def _fill_raster(edges, lower, upper):
@@ -170,6 +149,7 @@ class CameraScene(object):
         # Stage's world extent: the bounding box of everything drawn.
         self.floor_lower = corners.min(axis=0)
         self.floor_upper = corners.max(axis=0)
+        self.tables = compiled_camera.SceneTables(self.solids, RASTER_CELL)
 
 
 def camera_intrinsics(camera):
@@ -233,94 +213,16 @@ class CameraRenderer(object):
 
         robots: (RobotSpec, pose) of every robot to draw, this one included.
         """
-        near, far = self.camera.range
-        eye = np.array([pose[0], pose[1], self.camera.height])
-        rays = self.rays(pose[2])
-        count = len(rays)
-        best = np.full(count, np.inf)
-        color = np.tile(np.array(BACKGROUND), (count, 1))
-        dx, dy, dz = rays[:, 0], rays[:, 1], rays[:, 2]
-
-        def offer(t, hit, rgb):
-            take = hit & (t >= near) & (t < far) & (t < best)
-            best[take] = t[take]
-            color[take] = rgb
-
-        with np.errstate(divide='ignore', invalid='ignore'):
-            t = -eye[2] / dz
-            x, y = eye[0] + t * dx, eye[1] + t * dy
-            lower, upper = self.scene.floor_lower, self.scene.floor_upper
-            offer(t, (dz < 0) & (x >= lower[0]) & (x <= upper[0]) & (y >= lower[1])
-                  & (y <= upper[1]), FLOOR)
-            solids = list(self.scene.solids)
-            for spec, robot_pose in robots:
-                solids.extend(body_solids(spec, robot_pose))
-            for solid in solids:
-                if not _within_reach(solid, eye, far):
-                    continue
-                t = (solid.zmax - eye[2]) / dz
-                ahead = np.isfinite(t) & (t > 0) & (t < best)
-                if ahead.any():
-                    index = np.nonzero(ahead)[0]
-                    tt = t[index]
-                    hit = solid.inside(eye[0] + tt * dx[index], eye[1] + tt * dy[index])
-                    full = np.zeros(count, dtype=bool)
-                    full[index[hit]] = True
-                    offer(t, full, solid.color)
-                if not solid.flat and not _seen_only_from_above(solid, eye):
-                    self._sides(solid, eye, rays, best, offer)
-        depth = np.where(np.isfinite(best), best, np.inf).astype(np.float32)
-        rgba = np.empty((count, 4), dtype=np.uint8)
-        rgba[:, :3] = np.round(color * 255.0)
-        rgba[:, 3] = 255
+        bodies = []
+        for spec, robot_pose in robots:
+            bodies.extend(body_solids(spec, robot_pose))
+        scenes = [self.scene.tables, compiled_camera.SceneTables(bodies, RASTER_CELL)]
+        floor = tuple(self.scene.floor_lower) + tuple(self.scene.floor_upper)
+        rgba, depth = compiled_camera.render(
+            scenes, self.rays(pose[2]), (pose[0], pose[1], self.camera.height),
+            self.camera.range, floor, _bytes(FLOOR), _bytes(BACKGROUND))
         return CameraFrame(rgba.reshape(self.shape + (4,)), depth.reshape(self.shape))
 
-    @staticmethod
-    def _sides(solid, eye, rays, best, offer):
-        """Offer each pixel's hit on the solid's side faces (a ray's xy line against each
-        edge; the height at the hit must lie within the solid's z span). Only the pixels
-        whose nearest hit so far lies beyond the solid's footprint (in xy) are tested."""
-        reach = _distance_to_box(solid, eye)
-        horizontal = np.hypot(rays[:, 0], rays[:, 1])
-        with np.errstate(invalid='ignore'):
-            index = np.nonzero(best * horizontal >= reach)[0]
-        if not len(index):
-            return
-        picked = rays[index]
-        dx, dy, dz = picked[:, 0:1], picked[:, 1:2], picked[:, 2:3]
-        count = len(best)
-        for start in range(0, len(solid.edges), EDGE_CHUNK):
-            edges = solid.edges[start:start + EDGE_CHUNK]
-            ax, ay = edges[:, 0, 0][None, :], edges[:, 0, 1][None, :]
-            ex, ey = (edges[:, 1, 0] - edges[:, 0, 0])[None, :], \
-                (edges[:, 1, 1] - edges[:, 0, 1])[None, :]
-            # eye + t d = a + s e in xy: solve by Cramer's rule.
-            det = ex * dy - ey * dx
-            wx, wy = ax - eye[0], ay - eye[1]
-            with np.errstate(divide='ignore', invalid='ignore'):
-                t = (ex * wy - ey * wx) / det
-                s = (dx * wy - dy * wx) / det
-            z = eye[2] + t * dz
-            hit = (det != 0) & (s >= 0) & (s <= 1) & (t > 0) & (z >= solid.zmin) & \
-                (z <= solid.zmax)
-            nearest = np.full(count, np.inf)
-            nearest[index] = np.where(hit, t, np.inf).min(axis=1)
-            offer(nearest, np.isfinite(nearest), solid.color)
 
-
-def _distance_to_box(solid, eye):
-    """Distance in xy from the eye to the solid's bounding box (0 inside it)."""
-    nearest_x = min(max(eye[0], solid.lower[0]), solid.upper[0])
-    nearest_y = min(max(eye[1], solid.lower[1]), solid.upper[1])
-    return math.hypot(nearest_x - eye[0], nearest_y - eye[1])
-
-
-def _within_reach(solid, eye, far):
-    """False when the solid's footprint lies wholly beyond `far` of the eye (in xy)."""
-    return _distance_to_box(solid, eye) < far
-
-
-def _seen_only_from_above(solid, eye):
-    """True when the eye is above the solid and over its top: every ray that reaches a
-    side from there passes through the top first (a camera over its own robot's body)."""
-    return eye[2] > solid.zmax and bool(solid.inside(np.array([eye[0]]), np.array([eye[1]]))[0])
+def _bytes(color):
+    return tuple(int(round(c * 255.0)) for c in color)
