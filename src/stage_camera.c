@@ -28,8 +28,11 @@ struct camera_scene {
 };
 
 struct camera_view {
-    int64_t count;                /* pixels */
-    const double *rays;           /* x y z world direction per pixel */
+    int64_t width, height;        /* pixels */
+    const double *u, *v;          /* per column, per row: the pixel centre's offsets right
+                                     and down from the optical axis, in focal lengths */
+    double basis[9];              /* world forward, right and down of the camera (x y z each):
+                                     a pixel's ray is forward + u right + v down */
     double eye[3];
     double near_clip, far_clip;
     double floor_bounds[4];       /* xmin ymin xmax ymax of the white floor */
@@ -138,9 +141,11 @@ void camera_render(const struct camera_scene *scenes, int64_t scene_count,
         offset += scenes[k].solid_count;
     }
     const double ex = view->eye[0], ey = view->eye[1], ez = view->eye[2];
-    const double *fb = view->floor_bounds;
-    for (int64_t p = 0; p < view->count; ++p) {
-        const double *ray = view->rays + 3 * p;
+    const double *fb = view->floor_bounds, *b = view->basis;
+    for (int64_t p = 0; p < view->width * view->height; ++p) {
+        const double u = view->u[p % view->width], v = view->v[p / view->width];
+        const double ray[3] = {b[0] + u * b[3] + v * b[6], b[1] + u * b[4] + v * b[7],
+                               b[2] + u * b[5] + v * b[8]};
         double best = INFINITY;
         const uint8_t *color = view->background;
         if (ray[2] < 0.0) {
