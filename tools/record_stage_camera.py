@@ -27,6 +27,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -127,7 +128,6 @@ def start(command, log, env):
 
 def stop(process):
     """End a process this script started, and its children, by its group id."""
-    import signal
     if process.poll() is None:
         os.killpg(process.pid, signal.SIGINT)
         try:
