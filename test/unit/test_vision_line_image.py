@@ -80,3 +80,13 @@ def test_centroid_marked_by_a_red_dot_on_a_copy():
     assert np.array_equal(mark_centroid(image, None, 3), image)
     hsv = cv2.cvtColor(marked, cv2.COLOR_BGR2HSV)
     assert hsv[21, 10, 1] == 255
+
+
+def test_pixel_p_turns_toward_the_line_and_stops_without_one():
+    from wall_follower.vision.pixel_p import PixelP
+    follower = PixelP(0.2, 0.01, 0.75, 20 / 240.0)
+    right = line_mask(floor_with_line(320, 240, 260, 20), YELLOW)
+    command = follower.update(right)
+    assert command.linear == 0.2
+    assert command.angular == pytest.approx(-0.01 * (259.5 - 160.0))
+    assert follower.update(np.zeros((240, 320), np.uint8)) == (0.0, 0.0)

@@ -10,7 +10,8 @@ part of the line the camera no longer sees.
 Tracing walks along the line in steps of `step` [m]: the next centre is
 the mean of the line's points within `radius` [m] of the point one step
 on in the current direction (refined once), among points ahead. It stops
-where no points are found, or after `max_length` [m]. Points are first
+where no points are found, where that centre is not half a step on, or
+after `max_length` [m]. Points are first
 thinned to one per `cell` [m] square, so that the mean is not pulled
 towards the near floor, where pixels are dense.
 """
@@ -49,9 +50,10 @@ def trace(points, start, heading, step, radius, max_length, first_reach):
     length = 0.0
     while centre is not None and length < max_length:
         gap = centre - position
+        if gap.dot(direction) < step / 2.0:
+            break             # no line ahead but at the tracing point itself
         length += float(np.hypot(*gap))
-        if np.hypot(*gap) > 1e-9:
-            direction = gap / np.hypot(*gap)
+        direction = gap / np.hypot(*gap)
         position = centre
         path.append(position)
         centre = _centre_near(points, position + step * direction, position, direction, radius)
@@ -118,7 +120,7 @@ class LinePath(object):
         whether the floor at that point is in view, so that a trace that
         stops there has found the line's end.
 
-        What is remembered up to the first point in view is kept as it was
+        What is remembered up to just inside the view is kept as it was
         traced (traced again, it would be smoothed again, and bends would
         shrink); from there on the path is traced through this frame's
         points only. Returns the new path ((K, 2), odometry frame, from
@@ -134,24 +136,32 @@ class LinePath(object):
                        self.max_length, self.first_reach)[1:]
         if len(traced):
             path = np.vstack((kept, traced)) if len(kept) else np.vstack((start, traced))
-            beyond = path[-1] + self.step * _unit(path[-1] - path[-2])
-            self.end_seen = bool(end_in_view(beyond))
         else:
             path = kept
-            self.end_seen = self.end_seen and len(kept) > 0
-        self.path = path
+        # An end is found by seeing the line up to it and the floor beyond it; with nothing
+        # traced this frame (the line's last bit too short to trace, or no line in view at
+        # all: a covered lens is no end), what was found before stands.
+        ended = self.end_seen and len(path) > 1
+        if len(traced) and len(path) > 1:
+            beyond = path[-1] + self.step * _unit(path[-1] - path[-2])
+            ended = bool(end_in_view(beyond))
+        self.path, self.end_seen = path, ended
         return self.path
 
     def _kept(self, in_view, base):
-        """The remembered path from keep_behind behind the base up to its first point in
-        view (a standing start keeps nothing)."""
+        """The remembered path from keep_behind behind the base up to radius past its
+        first point in view (a standing start keeps nothing)."""
         path = self.path
         if len(path) == 0:
             return path
         shown = np.nonzero(in_view(path))[0]
         if len(shown):
-            path = path[:shown[0]]
-            self.end_seen = False
+            # Keep radius more, inside the view's edge: traced again, it would be traced
+            # from the mean of points that the edge cuts off, always ahead of where it was.
+            cut = shown[0] + 1
+            while cut < len(path) and path_length(path[shown[0]:cut + 1]) <= self.radius:
+                cut += 1
+            path = path[:cut]
         if len(path) == 0:
             return path
         nearest = int(np.argmin(np.hypot(path[:, 0] - base[0], path[:, 1] - base[1])))

@@ -32,6 +32,7 @@ LOST = 'lost'
 FINISHED = 'finished'
 
 BEND_CHORD = 0.1       # m: the chord over which a bend's curvature is measured
+CREEP = 0.02           # m/s: the least speed toward the line's end, so that it is reached
 
 
 def in_base_frame(path, base):
@@ -108,8 +109,8 @@ class LinePursuit(object):
         if self.state == FINISHED:
             return STOP
         ahead = path_ahead(in_base_frame(path, base))
-        left = path_length(ahead)
-        if end_seen and len(ahead) and left + math.hypot(*ahead[0]) <= self.stop_distance:
+        left = path_length(ahead) + (math.hypot(*ahead[0]) if len(ahead) else 0.0)
+        if end_seen and len(ahead) and left <= self.stop_distance:
             self.state = FINISHED
             return STOP
         if left < self.min_ahead and not end_seen:
@@ -148,5 +149,6 @@ class LinePursuit(object):
         if bend > 1e-9:
             speed = min(speed, self.bend_share * self.turn_rate / bend)
         if end_seen:
-            speed = min(speed, math.sqrt(2.0 * self.decel * max(0.0, left - self.stop_distance)))
+            speed = min(speed, max(CREEP, math.sqrt(2.0 * self.decel
+                                                    * max(0.0, left - self.stop_distance))))
         return Command(speed, speed * curvature)
