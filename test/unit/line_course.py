@@ -57,14 +57,6 @@ def camera(height=0.25, tilt_deg=40.0, width=320, image_height=240, hfov=62.2, v
                            level_camera_axes(math.radians(tilt_deg)), (0.0, 0.0, height), 1.5)
 
 
-def to_odom(points, base):
-    x, y, yaw = base
-    c, s = math.cos(yaw), math.sin(yaw)
-    points = np.asarray(points, float).reshape(-1, 2)
-    return np.column_stack((x + c * points[:, 0] - s * points[:, 1],
-                            y + s * points[:, 0] + c * points[:, 1]))
-
-
 def run(centreline, start, steps, projection=None, values=None, lose_after=None):
     """Drive the follower on the course; returns (poses, commands, states).
 

@@ -84,3 +84,14 @@ def test_no_line_in_sight_never_drives():
 
 def test_the_table_offers_the_projections_conventions():
     assert set(DECLARED_CONVENTIONS) == set(CONVENTIONS)
+
+
+def test_frames_of_the_base_and_the_odometry_invert_each_other():
+    from wall_follower.vision.line_pursuit import from_base_frame, in_base_frame, known_ahead
+    base = (1.0, -2.0, 2.5)
+    points = np.array([(0.3, 0.1), (-0.2, 0.5)])
+    assert in_base_frame(from_base_frame(points, base), base) == pytest.approx(points)
+    assert from_base_frame([(1.0, 0.0)], (0.0, 0.0, math.pi / 2))[0] == pytest.approx((0.0, 1.0))
+    path = from_base_frame([(0.3, 0.25), (-0.5, 0.0)], base)
+    assert not known_ahead(path, base, 0.5)
+    assert known_ahead(path, base, 0.8)

@@ -3,7 +3,7 @@ path memory, and the two controllers (the pursuit and the lab's pixel-P baseline
 import math
 
 from wall_follower.params import Parameter as P, Section, driving
-from wall_follower.params.line_mask import HSV, RULES as HSV_RULES, SLICE
+from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
 NODE = (
     driving.loop(scan_timeout=0.3, scan_timeout_meaning='stop the robot while the newest '
@@ -12,8 +12,6 @@ NODE = (
     Section('camera', (
         P('controller', 'pursuit', "pursuit: follow the line's remembered path with the base; "
           "pixel_p: the lab's follower_p.py (a baseline, it cuts bends)"),
-        P('compressed', False, 'read sensor_msgs/CompressedImage on image/compressed (the '
-          "real Waffle Pi's raspicam) instead of sensor_msgs/Image on image"),
         P('frame_convention', 'auto', "the camera frame's tf: optical (REP 103), stageros (as "
           'stageros publishes it), or auto (optical if its name says so)'),
         P('floor_frame', 'base_footprint', 'the frame whose z = 0 plane is the floor, on the '
@@ -97,4 +95,4 @@ def _known_choices(values):
 
 RULES = HSV_RULES + (_known_choices,)
 
-TABLE = NODE + HSV + SLICE + PATH + PURSUIT + PIXEL_P
+TABLE = NODE + IMAGE + HSV + SLICE + PATH + PURSUIT + PIXEL_P

@@ -2,6 +2,14 @@
 HSV bounds and the lab's slice, which the line follower takes too."""
 from wall_follower.params import Parameter as P, Section
 
+IMAGE = (
+    Section('image', (
+        P('compressed', False, 'read sensor_msgs/CompressedImage on image/compressed (the '
+          "real Waffle Pi's raspicam) instead of sensor_msgs/Image on image"),
+    )),
+)
+"""How the camera's frames come (nodes.image_input), for every node that reads them."""
+
 HSV = (
     Section('colour', (
         P('hue_low', 20, 'lowest hue of the line, OpenCV scale (0-179); above hue_high the '
@@ -44,4 +52,4 @@ NODE = (
     )),
 )
 
-TABLE = NODE + HSV + SLICE
+TABLE = NODE + IMAGE + HSV + SLICE

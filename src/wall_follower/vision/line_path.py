@@ -98,14 +98,17 @@ class LinePath(object):
     """
 
     def __init__(self, step, radius, max_length, first_reach, cell, keep_behind):
+        self.reconfigure(step, radius, max_length, first_reach, cell, keep_behind)
+        self.path = np.zeros((0, 2))
+        self.end_seen = False
+
+    def reconfigure(self, step, radius, max_length, first_reach, cell, keep_behind):
         self.step = step
         self.radius = radius
         self.max_length = max_length
         self.first_reach = first_reach
         self.cell = cell
         self.keep_behind = keep_behind
-        self.path = np.zeros((0, 2))
-        self.end_seen = False
 
     def forget(self):
         self.path = np.zeros((0, 2))

@@ -44,6 +44,23 @@ def in_base_frame(path, base):
                             -s * offsets[:, 0] + c * offsets[:, 1]))
 
 
+def from_base_frame(points, base):
+    """(N, 2) points given in the frame of the base at (x, y, yaw), in the odometry frame."""
+    x, y, yaw = base
+    c, s = math.cos(yaw), math.sin(yaw)
+    points = np.asarray(points, float).reshape(-1, 2)
+    return np.column_stack((x + c * points[:, 0] - s * points[:, 1],
+                            y + s * points[:, 0] + c * points[:, 1]))
+
+
+def known_ahead(path, base, half_width):
+    """Whether a path (odometry frame) has a point ahead of the base at (x, y, yaw) within
+    half_width [rad] of its heading."""
+    local = in_base_frame(path, base)
+    return bool(np.any((local[:, 0] > 0.0)
+                       & (np.abs(np.arctan2(local[:, 1], local[:, 0])) <= half_width)))
+
+
 def path_ahead(local):
     """The part of a path (base frame) from its point nearest the base on."""
     if len(local) == 0:
