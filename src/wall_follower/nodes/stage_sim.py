@@ -5,7 +5,9 @@
 Offers what stageros 1.8 offers, under the same relative names: publishes
 base_scan (frame base_laser_link), odom and base_pose_ground_truth (frame
 odom, empty child frame), /clock and tf odom -> base_footprint -> base_link
--> base_laser_link, once per world step; subscribes cmd_vel; serves
+-> base_laser_link, once per world step; for a robot with a camera, and only
+while image or depth has a subscriber, image (rgba8), depth (32FC1),
+camera_info and tf base_link -> camera (frame camera), once per step too; subscribes cmd_vel; serves
 reset_positions. Several robots get stageros' names: robot_0/base_scan,
 robot_0/base_link, ... Beyond stageros it publishes `stalled` (std_msgs/Bool),
 holds ~speedup headless, and subscribes cmd_pose (geometry_msgs/Pose: a
@@ -42,14 +44,15 @@ from geometry_msgs.msg import Pose, TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from roslib.packages import find_node
-from sensor_msgs.msg import LaserScan
+from sensor_msgs.msg import CameraInfo, Image, LaserScan
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, EmptyResponse
 
 from wall_follower.nodes.common import quaternion_z, yaw_of
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.stage_sim import TABLE
-from wall_follower.sim import compiled_raytrace
+from wall_follower.sim import compiled_camera, compiled_raytrace
+from wall_follower.sim.camera import camera_intrinsics, camera_mount
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choose_simulator
@@ -74,12 +77,13 @@ def stamp_of(seconds):
 class RobotTopics(object):
     """One robot's publishers and frame names, with stageros' prefix."""
 
-    def __init__(self, prefix):
+    def __init__(self, prefix, spec):
         self.prefix = prefix
         self.odom_frame = prefix + 'odom'
         self.footprint_frame = prefix + 'base_footprint'
         self.base_frame = prefix + 'base_link'
         self.laser_frame = prefix + 'base_laser_link'
+        self.camera = CameraTopics(prefix, spec) if spec.camera is not None else None
         self.scan = rospy.Publisher(prefix + 'base_scan', LaserScan, queue_size=10)
         self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=EVERY_STEP_QUEUE)
         self.truth = rospy.Publisher(prefix + 'base_pose_ground_truth', Odometry,
@@ -116,12 +120,18 @@ class RobotTopics(object):
     def transforms(self, stamp, robot):
         odom = robot.odom
         laser = robot.laser
-        chain = [(self.odom_frame, self.footprint_frame, odom.x, odom.y, 0.0, odom.yaw),
-                 (self.footprint_frame, self.base_frame, 0.0, 0.0, 0.0, 0.0)]
+        chain = [(self.odom_frame, self.footprint_frame, odom.x, odom.y, 0.0,
+                  (0.0, 0.0) + quaternion_z(odom.yaw)),
+                 (self.footprint_frame, self.base_frame, 0.0, 0.0, 0.0, (0.0, 0.0, 0.0, 1.0))]
         if laser is not None:
-            chain.append((self.base_frame, self.laser_frame, laser.x, laser.y, laser.z, laser.yaw))
+            chain.append((self.base_frame, self.laser_frame, laser.x, laser.y, laser.z,
+                          (0.0, 0.0) + quaternion_z(laser.yaw)))
+        if robot.image is not None and self.camera is not None and self.camera.wanted():
+            mount = self.camera.mount
+            chain.append((self.base_frame, self.camera.frame, mount.x, mount.y, mount.z,
+                          mount.rotation))
         transforms = []
-        for parent, child, x, y, z, yaw in chain:
+        for parent, child, x, y, z, rotation in chain:
             transform = TransformStamped()
             transform.header.stamp = stamp
             transform.header.frame_id = parent
@@ -129,9 +139,59 @@ class RobotTopics(object):
             transform.transform.translation.x = x
             transform.transform.translation.y = y
             transform.transform.translation.z = z
-            transform.transform.rotation.z, transform.transform.rotation.w = quaternion_z(yaw)
+            quaternion = transform.transform.rotation
+            quaternion.x, quaternion.y, quaternion.z, quaternion.w = rotation
             transforms.append(transform)
         return transforms
+
+
+class CameraTopics(object):
+    """A robot's camera topics, as stageros names them for one camera per robot: image,
+    depth and camera_info in frame `camera` (with the robot's prefix)."""
+
+    def __init__(self, prefix, spec):
+        self.frame = prefix + 'camera'
+        self.mount = camera_mount(spec)
+        self.image = rospy.Publisher(prefix + 'image', Image, queue_size=10)
+        self.depth = rospy.Publisher(prefix + 'depth', Image, queue_size=10)
+        self.info = rospy.Publisher(prefix + 'camera_info', CameraInfo, queue_size=10)
+        self.info_msg = self._info(spec.camera)
+
+    def wanted(self):
+        """stageros renders and publishes only while image or depth has a subscriber."""
+        return self.image.get_num_connections() > 0 or self.depth.get_num_connections() > 0
+
+    def _info(self, camera):
+        fx, fy, cx, cy = camera_intrinsics(camera)
+        msg = CameraInfo()
+        msg.header.frame_id = self.frame
+        msg.width, msg.height = camera.resolution
+        msg.D = [0.0] * 4
+        msg.K = [fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0]
+        msg.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+        msg.P = [fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
+        return msg
+
+    def publish(self, stamp, frame):
+        """One step's image, depth (each if subscribed) and camera_info."""
+        height, width = frame.depth.shape
+        if self.image.get_num_connections():
+            self.image.publish(self._image(stamp, width, height, 'rgba8', 4, frame.rgba))
+        if self.depth.get_num_connections():
+            self.depth.publish(self._image(stamp, width, height, '32FC1', 4, frame.depth))
+        self.info_msg.header.stamp = stamp
+        self.info.publish(self.info_msg)
+
+    def _image(self, stamp, width, height, encoding, bytes_per_pixel, pixels):
+        msg = Image()
+        msg.header.stamp = stamp
+        msg.header.frame_id = self.frame
+        msg.width, msg.height = width, height
+        msg.encoding = encoding
+        msg.is_bigendian = int(sys.byteorder == 'big')
+        msg.step = width * bytes_per_pixel
+        msg.data = pixels.tobytes()
+        return msg
 
 
 class StageSimNode(object):
@@ -161,7 +221,8 @@ class StageSimNode(object):
                                 grace=params['lockstep_grace'],
                                 timeout=params['lockstep_timeout'],
                                 patience=params['late_command_share'] * period)
-        self._robots = [RobotTopics(robot_prefix(index, count)) for index in range(count)]
+        self._robots = [RobotTopics(robot_prefix(index, count), robot.spec)
+                        for index, robot in enumerate(self._sim.robots)]
         self._clock = rospy.Publisher('/clock', Clock, queue_size=10)
         self._tf = tf2_ros.TransformBroadcaster()
         self._command_subs = []
@@ -230,10 +291,12 @@ class StageSimNode(object):
             if not self._pacer.wait_turn(moving):
                 return
             with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
+            with_images = any(topics.camera is not None and topics.camera.wanted()
+                              for topics in self._robots)
             if first_step is None:
                 first_step = time.time()
             with self._lock:
-                frame = self._sim.step(with_scans=with_scans)
+                frame = self._sim.step(with_scans=with_scans, with_images=with_images)
             try:
                 self._publish(frame)
             except rospy.ROSException:
@@ -259,6 +322,8 @@ class StageSimNode(object):
                 topics.truth.publish(topics.odometry_msg(stamp, robot.ground_truth))
             if topics.stalled.get_num_connections():
                 topics.stalled.publish(Bool(robot.stalled))
+            if robot.image is not None and topics.camera is not None and topics.camera.wanted():
+                topics.camera.publish(stamp, robot.image)
             if with_tf:
                 transforms.extend(topics.transforms(stamp, robot))
         if with_tf:
@@ -318,6 +383,10 @@ def main(argv=None):
         return 1
     if not compiled_raytrace.available():
         sys.stderr.write('stage_sim: error: %s\n' % compiled_raytrace.MISSING)
+        return 1
+    if any(robot.camera is not None for robot in world.robots) and \
+            not compiled_camera.available():
+        sys.stderr.write('stage_sim: error: %s\n' % compiled_camera.MISSING)
         return 1
     try:
         return run_node(world, argv)

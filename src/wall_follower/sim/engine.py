@@ -3,7 +3,8 @@
 What one `step()` does, in Stage's order (measured on real Stage 4.3 +
 stage_ros 1.8, see the stage-reference README):
 
-1. every robot's laser is raytraced at the pose it has *before* this update;
+1. every robot's laser is raytraced, and its camera (if asked for) rendered,
+   at the pose it has *before* this update;
 2. the command in force becomes the velocity (clamped to velocity_bounds), and
    odometry reports the pose before the move with that velocity as its twist
    (with localization "odom": Stage's dead reckoning of that velocity instead);
@@ -25,6 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from .camera import CameraRenderer, CameraScene
 from .grid import OccupancyGrid, footprint_cells, footprint_collides, footprint_corners, \
     footprints_overlap
 from .kinematics import clamp_velocity, diff_drive_step, normalize_angle
@@ -41,8 +43,9 @@ Scan = namedtuple('Scan', ['angle_min', 'angle_max', 'angle_increment', 'range_m
 Odometry = namedtuple('Odometry', ['x', 'y', 'yaw', 'vx', 'vy', 'wz'])
 # base_link -> base_laser_link, as stageros publishes it (z = body height + ranger z).
 LaserMount = namedtuple('LaserMount', ['x', 'y', 'z', 'yaw'])
+# image: a camera.CameraFrame, or None (no camera, or not asked for).
 RobotFrame = namedtuple('RobotFrame', ['name', 'scan', 'odom', 'ground_truth', 'stalled',
-                                       'laser'])
+                                       'laser', 'image'])
 Frame = namedtuple('Frame', ['stamp', 'robots'])
 
 # A body drawn in the grid is hit by other robots' lasers with Stage's default return.
@@ -100,6 +103,7 @@ class Simulation(object):
             robot = RobotState(spec.name, spec, start)
             robot.odom_error = spec.odom_error or _random_odom_error(self.rng)
             self.robots.append(robot)
+        self._cameras = None   # CameraRenderer per robot (None: no camera), built on first use
 
     @property
     def time(self):
@@ -135,9 +139,12 @@ class Simulation(object):
         robot.pose = (float(pose[0]), float(pose[1]), normalize_angle(float(pose[2])))
         robot.stalled = False
 
-    def step(self, with_scans=True):
-        """Advance one world update and return its Frame (scans None if not with_scans)."""
+    def step(self, with_scans=True, with_images=False):
+        """Advance one world update and return its Frame (scans None if not with_scans,
+        camera images None unless with_images)."""
         scans = [self._scan(i) if with_scans else None for i in range(len(self.robots))]
+        images = [self.camera_image(i) if with_images else None
+                  for i in range(len(self.robots))]
         odoms = []
         for robot in self.robots:
             v, w = clamp_velocity(robot.command[0], robot.command[1], robot.spec.velocity_bounds)
@@ -153,9 +160,9 @@ class Simulation(object):
             self._move(index, robot)
         self._time_us += self._dt_us
         frames = []
-        for robot, scan, odom in zip(self.robots, scans, odoms):
+        for robot, scan, odom, image in zip(self.robots, scans, odoms, images):
             frames.append(RobotFrame(robot.name, scan, odom, self._ground_truth(robot),
-                                     robot.stalled, laser_mount(robot.spec)))
+                                     robot.stalled, laser_mount(robot.spec), image))
         for robot in self.robots:
             if self._watchdog_us > 0 and self._time_us - robot.last_command_us >= self._watchdog_us:
                 robot.command = (0.0, 0.0)
@@ -192,6 +199,19 @@ class Simulation(object):
             return Odometry(x, y, yaw, 0.0, 0.0, 0.0)
         return Odometry(x, y, yaw, (x - previous[0]) / self.dt, (y - previous[1]) / self.dt,
                         normalize_angle(yaw - previous[2]) / self.dt)
+
+    def camera_image(self, index):
+        """The CameraFrame robot `index`'s camera sees now (None: it has no camera)."""
+        if self._cameras is None:
+            scene = CameraScene(self.world)
+            self._cameras = [CameraRenderer(scene, robot.spec.camera)
+                             if robot.spec.camera is not None else None
+                             for robot in self.robots]
+        renderer = self._cameras[index]
+        if renderer is None:
+            return None
+        return renderer.render(self.robots[index].pose,
+                               [(robot.spec, robot.pose) for robot in self.robots])
 
     def laser_origin(self, index):
         """World (x, y, yaw) of robot `index`'s beams (ranger pose, then sensor pose)."""

@@ -2,7 +2,8 @@
 
 Only what a 2D wall-following simulation needs is interpreted: the world's
 timing and raytrace resolution, static obstacles (bitmaps, boxes, block
-polygons) and differential-drive `position` robots carrying one ranger.
+polygons) with their colours, and differential-drive `position` robots
+carrying one ranger and at most one camera.
 Everything else is skipped and listed in `World.unknown_keywords`, so that a
 world written for real Stage still loads. Geometry follows what real Stage
 does (see Stage's blockgroup.cc / model.cc): the bounding box of a model's
@@ -19,22 +20,32 @@ from collections import OrderedDict, namedtuple
 
 import numpy as np
 
+from .colors import color_by_name
 from .kinematics import normalize_angle
 
-__all__ = ['WorldFileError', 'World', 'Obstacle', 'RobotSpec', 'RangerSpec', 'load_world',
-           'STAGE_VELOCITY_BOUNDS']
+__all__ = ['WorldFileError', 'World', 'Obstacle', 'RobotSpec', 'RangerSpec', 'CameraSpec',
+           'load_world', 'STAGE_VELOCITY_BOUNDS']
 
 # Stage's ModelPosition default bounds: +-1 m/s on x, y, z and +-90 deg/s on yaw.
 STAGE_VELOCITY_BOUNDS = (-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -math.pi / 2.0, math.pi / 2.0)
 
 # Entity types real Stage knows but this simulator does not model; they are skipped.
 _SKIPPED_MODEL_TYPES = frozenset((
-    'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'camera', 'fiducial', 'gripper',
+    'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'fiducial', 'gripper',
     'laser', 'lightindicator', 'powerpack'))
 _TOP_LEVEL_IGNORED = frozenset(('window', 'gui'))
 
 # Black pixels: Stage treats a pixel as free when its first channel is above 127.
 _BITMAP_THRESHOLD = 127
+
+# Stage 4.3's defaults (model_camera.cc, model_ranger.cc).
+_CAMERA_RESOLUTION = (32.0, 32.0)
+_CAMERA_RANGE = (0.2, 8.0)
+_CAMERA_FOV = (70.0, 40.0)
+_CAMERA_SIZE = (0.1, 0.07, 0.05)
+_RANGER_SIZE = (0.15, 0.15, 0.2)
+_RANGER_COLOR = (0.0, 0.0, 0.5)
+_MODEL_COLOR = (1.0, 0.0, 0.0)   # Stage's Model colour and unknown colour names: red
 
 
 class WorldFileError(Exception):
@@ -55,6 +66,18 @@ RangerSpec = namedtuple('RangerSpec', [
     'fov',         # rad
     'samples',
     'noise',       # (constant sigma [m], proportional factor, angle [rad]) as Stage's `noise`
+    'size',        # (length, width, height) of the ranger model's box
+    'color',       # (r, g, b) in [0, 1] of that box
+])
+
+CameraSpec = namedtuple('CameraSpec', [
+    'pose',        # (x, y, z, yaw) of the camera model in base_link
+    'size',        # (length, width, height) of the camera model's box
+    'resolution',  # (width, height) [px]
+    'range',       # (near, far) clip distances [m] along the optical axis
+    'fov',         # (horizontal, vertical) [rad]
+    'pantilt',     # (pan, tilt) [rad]; pan > 0 turns right, tilt > 0 looks down (as Stage)
+    'height',      # z of the eye above the floor: body height + pose z (as Stage draws it)
 ])
 
 RobotSpec = namedtuple('RobotSpec', [
@@ -67,6 +90,8 @@ RobotSpec = namedtuple('RobotSpec', [
     'velocity_bounds',  # (xmin, xmax, ymin, ymax, zmin, zmax, amin [rad/s], amax [rad/s])
     'ranger',      # RangerSpec or None
     'odom_error',  # (x, y, yaw) odometry scale errors for localization "odom", or None
+    'color',       # (r, g, b) in [0, 1] of the body
+    'camera',      # CameraSpec or None
 ])
 
 Obstacle = namedtuple('Obstacle', [
@@ -78,6 +103,7 @@ Obstacle = namedtuple('Obstacle', [
     'z_range',     # (zmin, zmax) global heights of the model's blocks
     'ranger_return',
     'obstacle_return',
+    'color',       # (r, g, b) in [0, 1], as the camera draws the model
 ])
 
 World = namedtuple('World', [
@@ -412,7 +438,8 @@ class _Interpreter(object):
                 name=name, pose=pose, origin=origin, edges=edges,
                 z_range=(base_z + z_range[0], base_z + z_range[1]),
                 ranger_return=self.number(resolved, 'ranger_return', 1.0),
-                obstacle_return=self.number(resolved, 'obstacle_return', 1.0) != 0.0))
+                obstacle_return=self.number(resolved, 'obstacle_return', 1.0) != 0.0,
+                color=self.color(resolved)))
         for child in resolved.children:
             sub = self.resolve(child)
             if sub.base == 'model':
@@ -486,17 +513,21 @@ class _Interpreter(object):
         if odom_error is not None:
             odom_error = (odom_error[0], odom_error[1], odom_error[3])
         ranger = None
+        camera = None
         for child in resolved.children:
             sub = self.resolve(child)
             if sub.base == 'ranger' and ranger is None:
                 ranger = self.ranger(sub, size)
+            elif sub.base == 'camera' and camera is None:
+                camera = self.camera(sub, size)
             elif sub.base != 'block':
                 self.unknown.append(child.kind)
         self.robots.append(RobotSpec(
             name=name, pose=(pose[0], pose[1], normalize_angle(pose[3])), size=size,
             origin=(origin[0], origin[1], origin[3]), drive=drive,
             localization=_prop_string(resolved.props, 'localization', 'gps'),
-            velocity_bounds=bounds, ranger=ranger, odom_error=odom_error))
+            velocity_bounds=bounds, ranger=ranger, odom_error=odom_error,
+            color=self.color(resolved), camera=camera))
         self.note_unknown_props(resolved, _POSITION_KEYS)
 
     def ranger(self, resolved, robot_size):
@@ -517,7 +548,49 @@ class _Interpreter(object):
         return RangerSpec(pose=pose, sensor_pose=sensor_pose, sensor_height=height,
                           range_min=range_min, range_max=range_max,
                           fov=self.number(sensor, 'fov', 0.1 / self.unit_angle, 'a'),
-                          samples=samples, noise=noise)
+                          samples=samples, noise=noise,
+                          size=self.numbers(resolved, 'size', 3, _RANGER_SIZE, 'lll'),
+                          color=self.color(resolved, _RANGER_COLOR))
+
+    def camera(self, resolved, robot_size):
+        """A Stage `camera` model; its defaults are Stage 4.3's ModelCamera ones."""
+        pose = self.pose(resolved)
+        width, height = self.numbers(resolved, 'resolution', 2, _CAMERA_RESOLUTION)
+        if width < 1 or height < 1 or width != int(width) or height != int(height):
+            prop = resolved.props['resolution']
+            raise WorldFileError(prop.path, prop.line, 'camera resolution must be two positive '
+                                 'whole numbers, got [%g %g]' % (width, height))
+        near, far = self.numbers(resolved, 'range', 2, _CAMERA_RANGE, 'll')
+        if not 0.0 < near < far:
+            prop = resolved.props['range']
+            raise WorldFileError(prop.path, prop.line, 'camera range needs 0 < near < far, got '
+                                 '[%g %g]' % (near, far))
+        # fov and pantilt are degrees whatever unit_angle says: Stage reads them as "ff".
+        hfov, vfov = (math.radians(v) for v in self.numbers(resolved, 'fov', 2, _CAMERA_FOV))
+        if not (0.0 < hfov < math.pi and 0.0 < vfov < math.pi):
+            prop = resolved.props['fov']
+            raise WorldFileError(prop.path, prop.line, 'camera fov must lie between 0 and 180 '
+                                 'degrees')
+        pan, tilt = (math.radians(v) for v in self.numbers(resolved, 'pantilt', 2, (0.0, 0.0)))
+        self.note_unknown_props(resolved, _CAMERA_KEYS)
+        return CameraSpec(pose=pose, size=self.numbers(resolved, 'size', 3, _CAMERA_SIZE, 'lll'),
+                          resolution=(int(width), int(height)), range=(near, far),
+                          fov=(hfov, vfov), pantilt=(pan, tilt),
+                          height=robot_size[2] + pose[2])
+
+    def color(self, resolved, default=_MODEL_COLOR):
+        """A model's `color` (a colour name) or `color_rgba`, as (r, g, b) in [0, 1]."""
+        if 'color_rgba' in resolved.props:
+            rgb = self.numbers(resolved, 'color_rgba', 3, None)
+            return tuple(min(max(value, 0.0), 1.0) for value in rgb)
+        prop = resolved.props.get('color')
+        if prop is None:
+            return default
+        name = _prop_string(resolved.props, 'color', '')
+        try:
+            return color_by_name(name)
+        except KeyError:
+            raise WorldFileError(prop.path, prop.line, 'unknown colour "%s"' % name)
 
     def note_unknown_props(self, resolved, known):
         for key in resolved.props:
@@ -531,13 +604,14 @@ _COMMON_KEYS = frozenset((
     'blob_return', 'laser_return', 'visual_return', 'boundary', 'mass', 'update_interval',
     'noblocks', 'stack_children', 'fiducial_key', 'map_resolution', 'say', 'alwayson', 'watts'))
 _MODEL_KEYS = _COMMON_KEYS | frozenset(('bitmap',))
+_CAMERA_KEYS = _COMMON_KEYS | frozenset(('resolution', 'range', 'fov', 'pantilt'))
 _POSITION_KEYS = _COMMON_KEYS | frozenset((
     'drive', 'localization', 'velocity_bounds', 'acceleration_bounds', 'localization_origin',
     'odom_error', 'wheelbase', 'velocity', 'bitmap'))
 
 
 def _is_base_type(kind):
-    return kind in ('model', 'position', 'ranger', 'sensor', 'block') or \
+    return kind in ('model', 'position', 'ranger', 'sensor', 'block', 'camera') or \
         kind in _SKIPPED_MODEL_TYPES
 
 

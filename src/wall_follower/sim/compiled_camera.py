@@ -1,0 +1,123 @@
+"""The camera's per-pixel loop, src/stage_camera.c, loaded through ctypes.
+
+catkin builds the library with the workspace and puts it on LD_LIBRARY_PATH
+when the workspace's setup file is sourced, as it does the raytrace's
+(compiled_raytrace). SceneTables and ViewTables mirror the C structs
+`camera_scene` and `camera_view` field for field and keep alive the numpy
+arrays their fields point into.
+"""
+import ctypes
+
+import numpy as np
+
+__all__ = ['LIBRARY', 'MISSING', 'available', 'SceneTables', 'render']
+
+LIBRARY = 'libwall_follower_camera.so'
+MISSING = ("the simulator's camera needs %s (built from src/stage_camera.c by catkin_make), "
+           "which is not on LD_LIBRARY_PATH: run catkin_make in the catkin workspace, then "
+           "source its devel/setup.bash" % LIBRARY)
+
+_INT = ctypes.c_int64
+_DOUBLE = ctypes.c_double
+_ADDRESS = ctypes.c_void_p
+
+
+def _address(array, dtype):
+    array = np.ascontiguousarray(array, dtype=dtype)
+    return array, array.ctypes.data
+
+
+class SceneTables(ctypes.Structure):
+    """struct camera_scene: a list of camera.Solid packed into flat arrays."""
+
+    _fields_ = [('solid_count', _INT), ('edges', _ADDRESS), ('edge_start', _ADDRESS),
+                ('zspan', _ADDRESS), ('bounds', _ADDRESS), ('colors', _ADDRESS),
+                ('sides', _ADDRESS), ('raster', _ADDRESS), ('raster_start', _ADDRESS),
+                ('raster_shape', _ADDRESS), ('raster_origin', _ADDRESS),
+                ('raster_cell', _DOUBLE)]
+
+    def __init__(self, solids, raster_cell):
+        count = len(solids)
+        edges = [solid.edges.reshape(-1, 4) for solid in solids]
+        starts = np.concatenate([[0], np.cumsum([len(e) for e in edges])]).astype(np.int64)
+        rasters, raster_start, raster_shape, raster_origin = [], [], [], []
+        offset = 0
+        for solid in solids:
+            if solid.raster is None:
+                raster_start.append(-1)
+                raster_shape.append((0, 0))
+                raster_origin.append((0.0, 0.0))
+            else:
+                mask, origin = solid.raster
+                raster_start.append(offset)
+                raster_shape.append(mask.shape)
+                raster_origin.append(origin)
+                rasters.append(mask.ravel())
+                offset += mask.size
+        arrays = [
+            (np.concatenate(edges) if edges else np.zeros((0, 4)), np.float64),
+            (starts, np.int64),
+            ([(solid.zmin, solid.zmax) for solid in solids], np.float64),
+            ([tuple(solid.lower) + tuple(solid.upper) for solid in solids], np.float64),
+            ([np.round(np.array(solid.color) * 255.0) for solid in solids], np.uint8),
+            ([not solid.flat for solid in solids], np.uint8),
+            (np.concatenate(rasters) if rasters else np.zeros(1), np.uint8),
+            (raster_start, np.int64), (raster_shape, np.int64), (raster_origin, np.float64)]
+        kept, pointers = [], []
+        for values, dtype in arrays:
+            array, pointer = _address(np.asarray(values, dtype=dtype).reshape(-1)
+                                      if len(values) else np.zeros(1, dtype), dtype)
+            kept.append(array)
+            pointers.append(pointer)
+        super(SceneTables, self).__init__(count, *(pointers + [float(raster_cell)]))
+        self.arrays = kept
+
+
+class ViewTables(ctypes.Structure):
+    """struct camera_view: the pixel rays, the eye, the clip range, the floor, and the
+    output arrays."""
+
+    _fields_ = [('count', _INT), ('rays', _ADDRESS), ('eye', _DOUBLE * 3),
+                ('near_clip', _DOUBLE), ('far_clip', _DOUBLE), ('floor_bounds', _DOUBLE * 4),
+                ('floor_color', ctypes.c_uint8 * 3), ('background', ctypes.c_uint8 * 3),
+                ('rgba', _ADDRESS), ('depth', _ADDRESS)]
+
+
+def _load():
+    try:
+        library = ctypes.CDLL(LIBRARY)
+    except OSError:
+        return None
+    function = library.camera_render
+    function.restype = None
+    function.argtypes = [ctypes.POINTER(SceneTables), _INT, ctypes.POINTER(ViewTables),
+                         _ADDRESS, _ADDRESS]
+    return function
+
+
+_CAMERA_RENDER = _load()
+
+
+def available():
+    """True when the library was found."""
+    return _CAMERA_RENDER is not None
+
+
+def render(scenes, rays, eye, clip, floor_bounds, floor_color, background):
+    """(rgba (P, 4) uint8, depth (P,) float32) of pixel rays (P, 3) from `eye` over the
+    SceneTables in `scenes`; raises RuntimeError (MISSING) without the library."""
+    if _CAMERA_RENDER is None:
+        raise RuntimeError(MISSING)
+    rays, rays_pointer = _address(rays, np.float64)
+    count = len(rays)
+    rgba = np.empty((count, 4), dtype=np.uint8)
+    depth = np.empty(count, dtype=np.float32)
+    solids = sum(scene.solid_count for scene in scenes)
+    reach = np.empty(max(solids, 1), dtype=np.float64)
+    hidden = np.empty(max(solids, 1), dtype=np.uint8)
+    view = ViewTables(count, rays_pointer, tuple(eye), clip[0], clip[1], tuple(floor_bounds),
+                      tuple(floor_color), tuple(background), rgba.ctypes.data, depth.ctypes.data)
+    packed = (SceneTables * len(scenes))(*scenes)
+    _CAMERA_RENDER(packed, len(scenes), ctypes.byref(view), reach.ctypes.data,
+                   hidden.ctypes.data)
+    return rgba, depth
