@@ -174,3 +174,19 @@ def test_with_a_tick_a_stale_scan_still_stops_the_robot():
                      tick=0.1)
     loop.run(lambda view, taken: Command(0.1, 0.0), lambda: 'end' if Clock.now >= 1.5 else None)
     assert all(c == STOP for t, c in commander.sent if t > 0.65)
+
+
+def test_another_sensor_says_what_it_knows_ahead():
+    known = []
+
+    def ahead_known(view, half_width):
+        known.append(half_width)
+        return False
+
+    scans, commander = Scans([(0.1, GOOD)]), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
+                     ahead_half_width=0.3, ahead_known=ahead_known)
+    loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= 0.5 else None)
+    assert known and known[0] == 0.3
+    assert all(c.linear == 0.0 for t, c in commander.sent)
+    assert any(c == Command(0.0, 0.2) for t, c in commander.sent)

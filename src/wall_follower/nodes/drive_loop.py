@@ -36,16 +36,22 @@ class DriveLoop(object):
     while it waits for scans. keepalive, scan_timeout: ROS seconds.
     ahead_half_width: rad either side of straight ahead. tick: None to
     answer each new scan once; else answer every tick ROS seconds, on a
-    steady schedule, with the newest usable scan.
+    steady schedule, with the newest usable scan. ahead_known(view,
+    half_width): whether the view shows what lies ahead, within half_width
+    rad of straight ahead; None for a laser's (ScanView.known_in_sector).
+    A node that drives from another sensor (the line follower's camera)
+    passes what its own sensor knows, with its own kind of view.
     """
 
     def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
-                 ahead_half_width=math.radians(30.0), tick=None):
+                 ahead_half_width=math.radians(30.0), tick=None, ahead_known=None):
         self.name = name
         self.scan = scan
         self.commander = commander
         self.tune(rate, keepalive, scan_timeout, ahead_half_width)
         self.tick = tick
+        self._ahead_known = ahead_known or (lambda view, half_width: view.known_in_sector(
+            0.0, half_width))
         self._warned = (None, None)   # (text, ROS time) of the last warning
         # ROS times, set by run(): of this pass, of the last answer (or the start), of
         # the last command sent, and of the next tick.
@@ -135,11 +141,16 @@ class DriveLoop(object):
 
     def _safe(self, command, view, now):
         """command, with no forward motion into a sector ahead that the laser cannot see."""
-        if command.linear > 0.0 and not view.known_in_sector(0.0, self.ahead_half_width):
+        if command.linear > 0.0 and not self._ahead_known(view, self.ahead_half_width):
             self._warn('no valid reading within %.0f deg ahead; not driving forward'
                        % math.degrees(self.ahead_half_width), now)
             return Command(0.0, command.angular)
         return command
+
+    def warn(self, text):
+        """Warn as the loop does (at once when new, again every WARNING_PERIOD while it
+        lasts): for what the node's answer finds wrong with its sensor's data."""
+        self._warn(text, rospy.get_time())
 
     def _warn(self, text, now):
         """Log a warning at once when it is new, and again every WARNING_PERIOD while it lasts."""

@@ -1,0 +1,96 @@
+"""The camera's floor projection and the robot's pose at a frame's time, from camera_info and tf.
+
+Nothing about the camera is assumed: its size and focal lengths come
+from camera_info, its height and tilt from the tf of the frame named in
+each image's header, in the floor frame (params.line_follower's
+floor_frame), read in the convention frame_convention names
+(vision.floor). The robot's pose at the frame's time comes from the tf of
+the floor frame in the odometry frame.
+
+tf waits are counted in wall time and polled: on simulated time, in
+lockstep, the clock stands still until the node commands again, and a
+wait counted in ROS time would never end.
+"""
+import threading
+import time
+
+import rospy
+import tf2_ros
+from sensor_msgs.msg import CameraInfo
+
+from wall_follower.nodes.common import yaw_of
+from wall_follower.vision.floor import (
+    FloorProjection, Intrinsics, camera_pose, convention_of)
+
+POLL = 0.002          # wall s between two looks at the tf buffer
+
+
+class CameraFloor(object):
+    """camera_info and tf, read for one node.
+
+    values: the node's parameters (floor_frame, odom_frame, tf_timeout,
+    frame_convention, max_distance), replaced by retune().
+    """
+
+    def __init__(self, values):
+        self.values = values
+        self._buffer = tf2_ros.Buffer(cache_time=rospy.Duration(10.0))
+        self._listener = tf2_ros.TransformListener(self._buffer)
+        self._lock = threading.Lock()
+        self._intrinsics = None
+        self._info_problem = 'no camera_info yet'
+        self._sub = rospy.Subscriber('camera_info', CameraInfo, self._on_info, queue_size=1)
+
+    def retune(self, values):
+        self.values = values
+
+    def _on_info(self, msg):
+        try:
+            intrinsics, problem = Intrinsics.from_camera_info(msg.K, msg.width, msg.height), None
+        except ValueError as error:
+            intrinsics, problem = None, 'unusable camera_info on %s: %s' % (
+                self._sub.resolved_name, error)
+        with self._lock:
+            self._intrinsics, self._info_problem = intrinsics, problem
+
+    def projection(self, frame_id, stamp):
+        """(FloorProjection, None) for a frame from the camera frame_id taken at stamp
+        (rospy.Time), or (None, what is missing)."""
+        with self._lock:
+            intrinsics, problem = self._intrinsics, self._info_problem
+        if intrinsics is None:
+            return None, problem
+        if not frame_id:
+            return None, 'the image names no camera frame'
+        transform, problem = self._lookup(self.values['floor_frame'], frame_id, rospy.Time(0))
+        if transform is None:
+            return None, problem
+        convention = convention_of(frame_id, self.values['frame_convention'])
+        t, q = transform.translation, transform.rotation
+        axes, centre = camera_pose((t.x, t.y, t.z), (q.x, q.y, q.z, q.w), convention)
+        try:
+            return FloorProjection(intrinsics, axes, centre, self.values['max_distance']), None
+        except ValueError as error:
+            return None, 'camera frame %s: %s' % (frame_id, error)
+
+    def base_pose(self, stamp):
+        """((x, y, yaw) of the floor frame in the odometry frame at stamp, None), or (None,
+        what is missing)."""
+        transform, problem = self._lookup(self.values['odom_frame'], self.values['floor_frame'],
+                                          stamp)
+        if transform is None:
+            return None, problem
+        return (transform.translation.x, transform.translation.y,
+                yaw_of(transform.rotation)), None
+
+    def _lookup(self, target, source, stamp):
+        deadline = time.monotonic() + self.values['tf_timeout']
+        while True:
+            try:
+                return self._buffer.lookup_transform(target, source, stamp).transform, None
+            except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                    tf2_ros.ExtrapolationException) as error:
+                if time.monotonic() >= deadline or rospy.is_shutdown():
+                    return None, 'no tf from %s to %s at %.3f s: %s' % (
+                        target, source, stamp.to_sec(), str(error).splitlines()[0])
+            time.sleep(POLL)

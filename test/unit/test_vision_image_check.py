@@ -1,0 +1,45 @@
+"""Every bad frame is named in words: wrong size, unknown encoding, truncated data, empty."""
+import cv2
+import numpy as np
+import pytest
+
+from wall_follower.vision.image_check import decode_compressed, pixel_bytes, raw_image_problem
+
+
+@pytest.mark.parametrize('encoding,size', [
+    ('rgb8', 3), ('bgra8', 4), ('mono8', 1), ('mono16', 2), ('rgba16', 8), ('8UC3', 3),
+    ('32FC1', 4), ('16SC2', 4), ('bayer_rggb8', 1), ('bayer_gbrg16', 2), ('yuv422', 2)])
+def test_pixel_sizes_of_known_encodings(encoding, size):
+    assert pixel_bytes(encoding) == size
+
+
+def test_a_good_frame_has_no_problem():
+    assert raw_image_problem('rgba8', 240, 320, 1280, 1280 * 240) is None
+    assert raw_image_problem('rgb8', 2, 3, 12, 24) is None          # padded rows
+
+
+@pytest.mark.parametrize('frame,words', [
+    (('rgb8', 0, 0, 0, 0), 'empty'),
+    (('rgb8', 240, 0, 0, 0), 'empty'),
+    (('jpeg-ish', 240, 320, 960, 960 * 240), 'unknown encoding'),
+    (('', 240, 320, 960, 960 * 240), 'unknown encoding'),
+    (('rgba8', 240, 320, 960, 960 * 240), 'row step'),              # wrong width for the step
+    (('rgb8', 240, 320, 960, 960 * 239), 'bytes of data'),          # truncated
+    (('rgb8', 480, 640, 1920, 960 * 240), 'bytes of data'),         # wrong size
+])
+def test_bad_frames_are_named(frame, words):
+    problem = raw_image_problem(*frame)
+    assert problem is not None and words in problem
+
+
+def test_compressed_frames_decode_or_are_named():
+    image = np.zeros((24, 32, 3), np.uint8)
+    image[:, 10:14] = (0, 255, 255)
+    for extension in ('.jpg', '.png'):
+        ok, data = cv2.imencode(extension, image)
+        decoded, problem = decode_compressed(data.tobytes())
+        assert problem is None and decoded.shape == (24, 32, 3)
+    ok, data = cv2.imencode('.png', image)
+    assert decode_compressed(b'')[1] == 'an empty compressed image'
+    assert 'cannot be decoded' in decode_compressed(data.tobytes()[:40])[1]
+    assert 'cannot be decoded' in decode_compressed(b'not an image at all')[1]
