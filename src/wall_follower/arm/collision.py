@@ -76,12 +76,24 @@ def segment_distance(p1, q1, p2, q2):
     return float(np.linalg.norm(p1 + d1 * s - p2 - d2 * t))
 
 
+def _rising_links(model):
+    """The links from the first joint that tilts on: those before it stand on the floor or
+    only turn about the vertical, at a height no joint changes (and a floor margin above
+    them must not count as contact)."""
+    frames = link_frames(model, np.zeros(len(model.names)))
+    for joint in model.joints:
+        axis = frames[joint.parent].dot(joint.origin)[:3, :3].dot(joint.axis)
+        if not np.allclose(np.cross(axis, (0.0, 0.0, 1.0)), 0.0):
+            return model.links[model.links.index(joint.child):]
+    return []
+
+
 class CollisionChecker(object):
     """Contacts of one arm (an ArmModel) at given joint positions.
 
     disabled: frozensets of link pairs not checked (the SRDF's); floor_margin,
     self_margin [m]: the least clearance counted as clear. The floor is checked
-    against the links that move (those after the first joint).
+    against the links whose height can change (see _rising_links).
     """
 
     def __init__(self, model, disabled=(), floor_margin=0.0, self_margin=0.0):
@@ -89,9 +101,7 @@ class CollisionChecker(object):
         self.floor_margin = floor_margin
         self.self_margin = self_margin
         shaped = [link for link in model.links if model.shapes.get(link)]
-        # The links before the first joint stand still: on the floor, not in it.
-        first_moving = model.links.index(model.joints[0].child)
-        self.floor_links = [link for link in model.links[first_moving:] if link in shaped]
+        self.floor_links = [link for link in _rising_links(model) if link in shaped]
         self.pairs = [(a, b) for a, b in itertools.combinations(shaped, 2)
                       if frozenset((a, b)) not in set(disabled)]
 
