@@ -119,26 +119,34 @@ class ArmController(object):
         shutdown."""
         rate = None if self.own_clock else rospy.Rate(1.0 / self.period)
         while not rospy.is_shutdown():
-            if self.own_clock:
-                time.sleep(self.period / self.speedup)
-                now = self.now + self.period
-                self._clock.publish(Clock(clock=rospy.Time.from_sec(now)))
-            else:
-                try:
-                    rate.sleep()
-                except rospy.ROSInterruptException:
-                    break
-                except rospy.ROSTimeMovedBackwardsException:
-                    rospy.logwarn('%s: ROS time moved backwards: holding the arm where it is',
-                                  rospy.get_name())
-                    with self._lock:
-                        self.now = rospy.Time.now().to_sec()
-                        self.trajectory = Trajectory.hold(self.joints.positions, self.now)
-                    continue
-                now = rospy.Time.now().to_sec()
-            self.step(now)
+            try:
+                self._tick(rate)
+            except rospy.ROSException:
+                if not rospy.is_shutdown():
+                    raise
+                break   # rospy closes the topics while it shuts down
+
+    def _tick(self, rate):
+        """One step: wait for its time (and publish it on /clock with ~publish_clock)."""
+        if self.own_clock:
+            time.sleep(self.period / self.speedup)
+            now = self.now + self.period
+            self._clock.publish(Clock(clock=rospy.Time.from_sec(now)))
+        else:
+            try:
+                rate.sleep()
+            except rospy.ROSTimeMovedBackwardsException:
+                rospy.logwarn('%s: ROS time moved backwards: holding the arm where it is',
+                              rospy.get_name())
+                with self._lock:
+                    self.now = rospy.Time.now().to_sec()
+                    self.trajectory = Trajectory.hold(self.joints.positions, self.now)
+                return
+            now = rospy.Time.now().to_sec()
+        self.step(now)
 
     def step(self, now):
+        """Move the joints to time now [s] and publish their state."""
         with self._lock:
             elapsed, self.now = now - self.now, now
             desired, velocity, _ = self.trajectory.sample(now)
