@@ -172,7 +172,8 @@ class MoveArmServer(object):
                 min(1.0, max(0.0, (state[0] - sent) / plan.move.duration))
             self.server.publish_feedback(MoveArmFeedback(progress=progress))
             if state[0] >= end and np.all(np.abs(state[1] - plan.goal) <=
-                                          values['goal_tolerance']):
+                                          values['goal_tolerance']) and \
+                    np.all(np.abs(state[2]) < values['stopped_velocity']):
                 return state
             if state[0] > end + values['settle_timeout']:
                 raise GoalFailed('the arm did not reach its goal within %.1f s of the '

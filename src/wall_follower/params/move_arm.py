@@ -15,6 +15,7 @@ TABLE = (
     Section('execution', (
         P('goal_tolerance', 0.01, 'the move is done once every joint is within this of its '
           'goal [rad] ...', 0.0001, 0.5),
+        P('stopped_velocity', 0.01, '... and slower than this [rad/s] ...', 0.0001, 1.0),
         P('settle_timeout', 2.0, '... at most this long after the trajectory\'s end [s], or '
           'the goal is aborted', 0.1, 60.0),
         P('state_timeout', 1.0, 'joint_states older than this is stale: no goal is started, '
