@@ -14,6 +14,7 @@ PARTS = {
     'find': 'find_wall: time to align, final distance and heading errors',
     'wander': 'lab exercise wander: share of the free floor visited in 5 simulated minutes',
     'mapping': 'mapping a lap with drifting odometry: map precision, recall, pose errors, CPU',
+    'arm': 'robot arm: planning time and success on random reachable points, motion time',
 }
 
 
