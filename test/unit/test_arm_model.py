@@ -60,6 +60,7 @@ URDF = text('urdf', 'cougarbot.urdf')
                   '<mesh filename="torso.stl"/></geometry>\n    </collision>'), 'only box'),
     (URDF.replace('<link name="world"/>', '<link name="world"/><link name="spare"/>'),
      'one root link'),
+    ('<robot name="x"><link name="a"/></robot>', 'no revolute joint'),
 ])
 def test_an_unusable_urdf_is_refused_saying_why(document, words):
     with pytest.raises(ModelError, match=words):

@@ -119,6 +119,8 @@ def read_urdf(text):
                 link, ', '.join(joint.name for joint in by_parent[link])))
         chain.append(by_parent[link][0])
         link = chain[-1].child
+    if not any(joint.kind != 'fixed' for joint in chain):
+        raise ModelError('the URDF\'s chain from %s has no revolute joint' % roots[0])
     shapes = dict((element.get('name'), _read_shapes(element))
                   for element in robot.findall('link'))
     return ArmModel(robot.get('name'), roots[0], chain, shapes)
