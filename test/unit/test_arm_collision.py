@@ -86,3 +86,29 @@ def test_a_line_through_a_collision_is_caught_midway():
     assert found is not None and 0.0 < found[0] < 1.0
     assert found[1][0].startswith('hand')
     assert checker().path_contacts((0.0, 0.0, 0.0, 0.0), (1.0, 0.6, 1.2, 0.8), 0.02) is None
+
+
+def test_skipping_along_the_clearance_misses_no_contact_a_dense_walk_finds():
+    """Lines between random clear poses with the hand low: the check that steps by what the
+    clearance proves finds a contact wherever one every 0.01 rad does, and finds the line
+    clear where it is."""
+    arm = model()
+    check = checker()
+    rng = np.random.RandomState(6)
+    low = np.array([arm.lower[0], 1.5, 0.3, arm.lower[3]])
+    poses = []
+    while len(poses) < 50:
+        positions = rng.uniform(low, arm.upper)
+        if not check.contacts(positions):
+            poses.append(positions)
+    blocked = 0
+    for start, goal in zip(poses[::2], poses[1::2]):
+        count = int(np.ceil(np.max(np.abs(goal - start)) / 0.01))
+        dense = [f for f in np.linspace(0.0, 1.0, count + 1)
+                 if check.contacts(start + (goal - start) * f)]
+        found = check.path_contacts(start, goal, 0.01)
+        assert (found is None) == (not dense)
+        if dense:
+            blocked += 1
+            assert found[0] <= dense[0] + 1.0 / count
+    assert 5 <= blocked <= 20

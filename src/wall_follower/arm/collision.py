@@ -18,6 +18,9 @@ from wall_follower.arm.kinematics import link_frames
 
 Capsule = collections.namedtuple('Capsule', 'link start end radius')
 
+# A clearance [m] less than minus this is a contact (rounding aside, touching is clear).
+CONTACT_TOLERANCE = 1e-9
+
 
 def lowest_point(shape, frame):
     """The lowest z [m] of a collision shape whose link is at frame (4x4)."""
@@ -104,38 +107,92 @@ class CollisionChecker(object):
         self.floor_links = [link for link in _rising_links(model) if link in shaped]
         self.pairs = [(a, b) for a, b in itertools.combinations(shaped, 2)
                       if frozenset((a, b)) not in set(disabled)]
+        self.reach = _reaches(model)
 
-    def contacts(self, positions):
-        """Sentences naming each contact at positions (model.names' order): [] if clear."""
+    def _gaps(self, positions):
+        """(clearance beyond its margin [m], link, other link or None for the floor, lowest
+        point [m] or None) of every link checked against the floor and every pair checked."""
         frames = link_frames(self.model, positions)
-        found = []
         for link in self.floor_links:
             for shape in self.model.shapes[link]:
                 low = lowest_point(shape, frames[link])
-                if low < self.floor_margin - 1e-9:
-                    found.append('%s %.3f m below the floor' % (link, -low) if low < 0.0 else
-                                 '%s %.3f m above the floor' % (link, low))
+                yield low - self.floor_margin, link, None, low
         capsules = dict((link, [capsule(link, shape, frames[link])
                                 for shape in self.model.shapes[link]])
                         for link in set(itertools.chain(*self.pairs)))
         for a, b in self.pairs:
-            for one, other in itertools.product(capsules[a], capsules[b]):
-                gap = segment_distance(one.start, one.end, other.start, other.end) - \
-                    one.radius - other.radius
-                if gap < self.self_margin:
-                    found.append('%s touches %s' % (a, b))
-                    break
-        return found
+            gap = min(segment_distance(one.start, one.end, other.start, other.end) -
+                      one.radius - other.radius
+                      for one, other in itertools.product(capsules[a], capsules[b]))
+            yield gap - self.self_margin, a, b, None
+
+    def contacts(self, positions):
+        """Sentences naming each contact at positions (model.names' order): [] if clear."""
+        return _sentences(list(self._gaps(positions)))
 
     def path_contacts(self, start, goal, step):
         """The first contact on the straight joint-space line from start to goal, as
-        (fraction of the way, [sentences]), checked every `step` rad of the joint moving most;
-        None if the whole line is clear."""
+        (fraction of the way, [sentences]); None if the whole line is clear.
+
+        From each position checked the next is as far along as its clearance proves clear
+        (no point of the arm moves further than the joints' turns times their reach, and two
+        links close in on each other at most twice as fast), but never further than `step`
+        rad of the joint moving most past where the clearance is too small to prove more.
+        """
         start, goal = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
-        count = max(1, int(math.ceil(np.max(np.abs(goal - start)) / step)))
-        for index in range(count + 1):
-            fraction = index / float(count)
-            found = self.contacts(start + (goal - start) * fraction)
+        delta = goal - start
+        widest = float(np.max(np.abs(delta)))
+        sweep = 2.0 * float(np.dot(np.abs(delta), self.reach))   # m per unit of the way
+        least = 1.0 if widest == 0.0 else min(1.0, step / widest)
+        fraction = 0.0
+        while True:
+            gaps = list(self._gaps(start + delta * fraction))
+            found = _sentences(gaps)
             if found:
                 return fraction, found
-        return None
+            if fraction >= 1.0:
+                return None
+            clearance = min([gap[0] for gap in gaps] or [math.inf])
+            fraction = min(1.0, fraction + max(least, clearance / sweep if sweep else 1.0))
+
+
+def _sentences(gaps):
+    """The contacts among _gaps' answers, in words."""
+    found = []
+    for gap, link, other, low in gaps:
+        if gap >= -CONTACT_TOLERANCE:
+            continue
+        if other is not None:
+            found.append('%s touches %s' % (link, other))
+        else:
+            found.append('%s %.3f m below the floor' % (link, -low) if low < 0.0 else
+                         '%s %.3f m above the floor' % (link, low))
+    return found
+
+
+def _reaches(model):
+    """For each joint, the farthest any point of the links it carries can be from it [m]:
+    the lengths of the joint offsets after it plus the farthest shape of a link from that
+    link's frame (a bound of how fast the arm's points move as the joint turns)."""
+    extents = {}
+    for link, shapes in model.shapes.items():
+        extents[link] = max([np.linalg.norm(shape.origin[:3, 3]) + _radius(shape)
+                             for shape in shapes] or [0.0])
+    reaches = []
+    for joint in model.joints:
+        index = model.chain.index(joint)
+        reach, farthest = 0.0, extents.get(joint.child, 0.0)
+        for later in model.chain[index + 1:]:
+            reach += np.linalg.norm(later.origin[:3, 3])
+            farthest = max(farthest, reach + extents.get(later.child, 0.0))
+        reaches.append(farthest)
+    return np.array(reaches)
+
+
+def _radius(shape):
+    """The radius of the sphere round a shape, about its origin."""
+    if shape.kind == 'sphere':
+        return shape.size[0]
+    if shape.kind == 'cylinder':
+        return math.hypot(shape.size[0], shape.size[1] / 2.0)
+    return float(np.linalg.norm(shape.size)) / 2.0
