@@ -28,7 +28,9 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-hypothesis
   python3-scipy
   python3-dynamic-reconfigure
-  libdynamic-reconfigure-config-init-mutex-dev"
+  libdynamic-reconfigure-config-init-mutex-dev
+  ros-trajectory-msgs libtrajectory-msgs-dev python3-trajectory-msgs
+  ros-robot-state-publisher joint-state-publisher joint-state-publisher-gui liburdfdom-tools"
 
 as_root() {
   if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi

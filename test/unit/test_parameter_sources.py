@@ -22,6 +22,7 @@ from wall_follower.params import ParameterError, checked, defaults, parameters
 from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
                                   odom_recorder, range_ahead, simple_move_square, slam,
                                   stage_sim, teleop_key, wall_finder, wall_following, wander)
+from wall_follower.params import arm_controller, arm_plot, move_arm
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -40,6 +41,9 @@ NODES = {
     'map_saver': (map_saver.TABLE, None),
     'course_report': (course_report.TABLE, None),
     'find_trials': (find_trials.TABLE, None),
+    'arm_controller': (arm_controller.TABLE, None),
+    'move_arm': (move_arm.TABLE, 'MoveArm'),
+    'arm_plot': (arm_plot.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',

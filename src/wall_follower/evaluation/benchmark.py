@@ -15,6 +15,7 @@ PARTS = {
     'wander': 'lab exercise wander: share of the free floor visited in 5 simulated minutes',
     'mapping': 'mapping a lap with drifting odometry: map precision, recall, pose errors, CPU',
     'camera': 'the simulator\'s camera: frames per second at 320x240 and 640x480',
+    'arm': 'robot arm: planning time and success on random reachable points, motion time',
 }
 
 

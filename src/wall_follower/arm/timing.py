@@ -1,0 +1,83 @@
+"""A straight joint-space move timed within each joint's velocity and acceleration limits.
+
+Every joint starts and stops together, at rest, on the straight line from the
+start to the goal: the path's progress s (0 to 1) follows a trapezoidal speed
+profile (accelerate, cruise, brake), as fast as the joint for which the
+limits bite hardest allows. Keeping the path straight keeps it the path the
+collision check walked.
+"""
+import math
+
+import numpy as np
+
+
+def trapezoid_duration(distance, velocity, acceleration):
+    """The least time [s] to go distance at rest to rest within velocity and acceleration."""
+    if distance <= 0.0:
+        return 0.0
+    if distance >= velocity * velocity / acceleration:
+        return distance / velocity + velocity / acceleration
+    return 2.0 * math.sqrt(distance / acceleration)
+
+
+def fastest_duration(start, goal, velocity, acceleration):
+    """The least time [s] the limits allow for the move, each joint on its own (a bound no
+    synchronized move beats)."""
+    return max(trapezoid_duration(abs(d), v, a) for d, v, a in
+               zip(np.asarray(goal) - np.asarray(start), velocity, acceleration))
+
+
+class TimedMove(object):
+    """The move from start to goal (arrays over the joints), timed within velocity [rad/s]
+    and acceleration [rad/s^2] limits (arrays over the joints)."""
+
+    def __init__(self, start, goal, velocity, acceleration):
+        self.start = np.asarray(start, dtype=float)
+        self.delta = np.asarray(goal, dtype=float) - self.start
+        moving = np.abs(self.delta) > 1e-12
+        if not moving.any():
+            self.rate = self.gain = 1.0
+            self.ramp = self.cruise = self.duration = 0.0
+            return
+        # Limits of the progress s: no joint may exceed its own.
+        self.rate = float(np.min(np.asarray(velocity)[moving] / np.abs(self.delta[moving])))
+        self.gain = float(np.min(np.asarray(acceleration)[moving] / np.abs(self.delta[moving])))
+        if self.rate * self.rate / self.gain <= 1.0:
+            self.ramp = self.rate / self.gain
+            self.cruise = 1.0 / self.rate - self.ramp
+        else:
+            self.rate = math.sqrt(self.gain)
+            self.ramp = self.rate / self.gain
+            self.cruise = 0.0
+        self.duration = 2.0 * self.ramp + self.cruise
+
+    def progress(self, time):
+        """(s, ds/dt, d2s/dt2) at time [s] since the start."""
+        t = min(max(time, 0.0), self.duration)
+        if self.duration == 0.0:
+            return 1.0, 0.0, 0.0
+        if t < self.ramp:
+            return 0.5 * self.gain * t * t, self.gain * t, self.gain
+        if t <= self.ramp + self.cruise:
+            return 0.5 * self.gain * self.ramp ** 2 + self.rate * (t - self.ramp), self.rate, 0.0
+        left = self.duration - t
+        return 1.0 - 0.5 * self.gain * left * left, self.gain * left, -self.gain
+
+    def sample(self, time):
+        """(positions, velocities, accelerations) at time [s] since the start."""
+        s, rate, gain = self.progress(time)
+        return self.start + self.delta * s, self.delta * rate, self.delta * gain
+
+    def waypoint_times(self, spacing):
+        """Times [s] from the start for trajectory points: every phase change and about every
+        spacing seconds between, the last at the end (the first after 0)."""
+        marks = sorted(set([self.ramp, self.ramp + self.cruise, self.duration]))
+        times = []
+        previous = 0.0
+        for mark in marks:
+            if mark <= previous:
+                continue
+            count = max(1, int(math.ceil((mark - previous) / spacing - 1e-9)))
+            times.extend(previous + (mark - previous) * (i + 1) / count for i in range(count))
+            previous = mark
+        return times

@@ -1,0 +1,241 @@
+"""The move_arm node: planned moves of the arm (the stand-in for experiment 7's MoveIt where
+MoveIt is not installed), the action move_arm (wall_follower/MoveArm).
+
+A goal names an SRDF group state, or a point for the origin of the tool frame (`hand`)
+in any frame tf knows. The node plans it with wall_follower.arm.planning (inverse
+kinematics nearest the joints' current positions, the collision check of the
+joint-space line, the timing within the velocity and acceleration limits of
+robot_description_planning, scaled by the goal's velocity_scaling) and sends it as one
+trajectory on arm_controller/command, the arm controller's topic (ros_control's or the
+built-in arm_controller). A goal that cannot be planned ends aborted, with success false
+and the reason, and nothing is sent. A new goal pre-empts the running one, and a cancel
+ends it: either way the arm brakes to a stop within its acceleration limits, from where
+it is. The result's position_error is measured from tf (robot_state_publisher's `hand`).
+
+Parameters: the table in wall_follower.params.move_arm, tunable live
+(`rosrun dynamic_reconfigure dynparam set /move_arm floor_margin 0.02`), in force from
+the next goal.
+"""
+import threading
+import time
+
+import actionlib
+import numpy as np
+import rospy
+import tf2_ros
+from sensor_msgs.msg import JointState
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+from wall_follower.arm.kinematics import tool_position
+from wall_follower.arm.planning import Planner, PlanningError
+from wall_follower.cfg import MoveArmConfig
+from wall_follower.msg import MoveArmAction, MoveArmFeedback, MoveArmResult
+from wall_follower.nodes.arm_description import arm_model, arm_semantics
+from wall_follower.nodes.common import init_node
+from wall_follower.nodes.parameters import NodeParameters
+from wall_follower.params.move_arm import TABLE
+
+COMMAND = 'arm_controller/command'
+
+
+class GoalFailed(Exception):
+    """A goal ended early: the result's message."""
+
+
+def rotated(q, v):
+    """Vector v (3) turned by the unit quaternion q (geometry_msgs/Quaternion)."""
+    u = np.array([q.x, q.y, q.z])
+    v = np.asarray(v, dtype=float)
+    return v + 2.0 * q.w * np.cross(u, v) + 2.0 * np.cross(u, np.cross(u, v))
+
+
+class JointStates(object):
+    """The newest joint_states of the arm, as arrays in the model's joint order."""
+
+    def __init__(self, names):
+        self.names = names
+        self._arrived = threading.Condition()
+        self.latest = None    # (stamp [s], positions, velocities, wall time of arrival)
+        rospy.Subscriber('joint_states', JointState, self._on_state, queue_size=10)
+
+    def _on_state(self, msg):
+        if not set(self.names) <= set(msg.name):
+            return
+        order = [list(msg.name).index(name) for name in self.names]
+        positions = np.array([msg.position[i] for i in order])
+        velocities = np.array([msg.velocity[i] if len(msg.velocity) == len(msg.name) else 0.0
+                               for i in order])
+        with self._arrived:
+            self.latest = (msg.header.stamp.to_sec(), positions, velocities, time.time())
+            self._arrived.notify_all()
+
+    def next(self, seen, timeout):
+        """The first state newer than seen (a latest tuple, or None), waiting at most timeout
+        wall seconds for it; None if none came."""
+        deadline = time.time() + timeout
+        with self._arrived:
+            while self.latest is None or self.latest is seen:
+                left = deadline - time.time()
+                if left <= 0.0 or rospy.is_shutdown():
+                    return None
+                self._arrived.wait(left)
+            return self.latest
+
+
+class MoveArmServer(object):
+
+    def __init__(self):
+        self.model = arm_model()
+        self.semantics, self.velocity, self.acceleration = arm_semantics(self.model)
+        self.params = NodeParameters(TABLE, MoveArmConfig)
+        self.states = JointStates(self.model.names)
+        self.command = rospy.Publisher(COMMAND, JointTrajectory, queue_size=1)
+        self.buffer = tf2_ros.Buffer()
+        self.listener = tf2_ros.TransformListener(self.buffer)
+        self.braking_until = 0.0
+        self.server = actionlib.SimpleActionServer('move_arm', MoveArmAction, self.execute,
+                                                   auto_start=False)
+        self.server.start()
+        rospy.loginfo('%s: ready; named targets %s', rospy.get_name(),
+                      ', '.join(sorted(self.semantics.states)))
+
+    def execute(self, goal):
+        values = self.params.snapshot()
+        result = MoveArmResult()
+        try:
+            result.message, result.position_error = self._move(goal, values)
+            result.success = True
+            rospy.loginfo('%s: %s (hand %.4f m from the goal)', rospy.get_name(),
+                          result.message, result.position_error)
+            self.server.set_succeeded(result, result.message)
+        except GoalFailed as failure:
+            result.message = str(failure)
+            if self.server.is_preempt_requested():
+                rospy.loginfo('%s: %s', rospy.get_name(), result.message)
+                self.server.set_preempted(result, result.message)
+            else:
+                rospy.logwarn('%s: goal failed: %s', rospy.get_name(), result.message)
+                self.server.set_aborted(result, result.message)
+
+    def _move(self, goal, values):
+        """Plan and follow one goal: (message, position error [m]); GoalFailed if it ends early."""
+        scaling = goal.velocity_scaling
+        if not 0.0 <= scaling <= 1.0:
+            raise GoalFailed('velocity_scaling %r is not within 0 to 1' % scaling)
+        state = self._settled_state(values)
+        planner = Planner(self.model, self.semantics, self.acceleration, self.velocity,
+                          values['floor_margin'], values['self_margin'],
+                          values['collision_step'])
+        try:
+            if goal.named_target:
+                plan = planner.to_state(goal.named_target, state[1], scaling)
+                target = tool_position(self.model, plan.goal)
+                what = 'named target %s' % goal.named_target
+            else:
+                target = self._in_root_frame(goal.target, values['tf_timeout'])
+                plan = planner.to_point(target, state[1], scaling)
+                what = 'point (%.3f, %.3f, %.3f) in %s' % (tuple(target) + (self.model.root,))
+        except PlanningError as error:
+            raise GoalFailed(str(error))
+        self.command.publish(self._trajectory(plan.move, values['waypoint_spacing']))
+        final = self._follow(plan, state, values)
+        error = np.linalg.norm(self._tool_in_tf(final[0], values['tf_timeout']) - target)
+        return 'reached %s in %.2f s' % (what, plan.move.duration), float(error)
+
+    def _settled_state(self, values):
+        """The newest joint state, once any braking of the last goal is over."""
+        state = self.states.next(None, values['state_timeout'])
+        while state is not None and state[0] < self.braking_until:
+            state = self.states.next(state, values['state_timeout'])
+        if state is None:
+            raise GoalFailed('no joint_states from the arm for %.1f s: is arm_controller '
+                             'running?' % values['state_timeout'])
+        return state
+
+    def _follow(self, plan, state, values):
+        """Wait, joint state by joint state, until the arm is at the plan's goal: the final
+        state; brakes and raises GoalFailed on a pre-emption, a cancel, stale joint_states or
+        a goal not reached in time."""
+        sent = state[0]
+        end = sent + plan.move.duration
+        while True:
+            newer = self.states.next(state, values['state_timeout'])
+            if newer is None:
+                self._brake(state)
+                raise GoalFailed('joint_states stopped coming: the arm was told to stop')
+            state = newer
+            if self.server.is_preempt_requested():
+                self._brake(state)
+                raise GoalFailed('pre-empted: the arm braked to a stop at %s' % ', '.join(
+                    '%s %.3f' % pair for pair in zip(self.model.names, state[1])))
+            progress = 1.0 if plan.move.duration == 0.0 else \
+                min(1.0, max(0.0, (state[0] - sent) / plan.move.duration))
+            self.server.publish_feedback(MoveArmFeedback(progress=progress))
+            if state[0] >= end and np.all(np.abs(state[1] - plan.goal) <=
+                                          values['goal_tolerance']) and \
+                    np.all(np.abs(state[2]) < values['stopped_velocity']):
+                return state
+            if state[0] > end + values['settle_timeout']:
+                raise GoalFailed('the arm did not reach its goal within %.1f s of the '
+                                 'trajectory\'s end (joints at %s)' % (
+                                     values['settle_timeout'], np.round(state[1], 3).tolist()))
+
+    def _brake(self, state):
+        """Send the arm a stop from state within its acceleration limits."""
+        positions, velocities = state[1], state[2]
+        duration = 1.5 * float(np.max(np.abs(velocities) / self.acceleration))
+        stop = JointTrajectory(joint_names=self.model.names)
+        if duration > 1e-3:
+            place = np.clip(positions + velocities * duration / 2.0, self.model.lower,
+                            self.model.upper)
+            zero = [0.0] * len(positions)
+            stop.points = [JointTrajectoryPoint(positions=place.tolist(), velocities=zero,
+                                                accelerations=zero,
+                                                time_from_start=rospy.Duration(duration))]
+        self.braking_until = state[0] + duration
+        self.command.publish(stop)
+
+    def _trajectory(self, move, spacing):
+        """The JointTrajectory of a TimedMove, from now (a zero stamp)."""
+        msg = JointTrajectory(joint_names=self.model.names)
+        for offset in move.waypoint_times(spacing):
+            positions, velocities, accelerations = move.sample(offset)
+            msg.points.append(JointTrajectoryPoint(
+                positions=positions.tolist(), velocities=velocities.tolist(),
+                accelerations=accelerations.tolist(), time_from_start=rospy.Duration(offset)))
+        return msg
+
+    def _in_root_frame(self, target, timeout):
+        """A PointStamped's point in the model's root frame (its frame empty: already in it)."""
+        point = np.array([target.point.x, target.point.y, target.point.z])
+        frame = target.header.frame_id or self.model.root
+        if frame.lstrip('/') == self.model.root:
+            return point
+        try:
+            t = self.buffer.lookup_transform(self.model.root, frame.lstrip('/'), rospy.Time(0),
+                                             rospy.Duration(timeout)).transform
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException) as error:
+            raise GoalFailed('cannot place the target: no transform from %s to %s (%s)' % (
+                frame, self.model.root, error))
+        return rotated(t.rotation, point) + np.array([t.translation.x, t.translation.y,
+                                                      t.translation.z])
+
+    def _tool_in_tf(self, stamp, timeout):
+        """Where tf has the tool frame's origin at stamp [s], in the root frame."""
+        tool = self.model.links[-1]
+        try:
+            t = self.buffer.lookup_transform(self.model.root, tool, rospy.Time.from_sec(stamp),
+                                             rospy.Duration(timeout)).transform
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException) as error:
+            raise GoalFailed('moved, but tf has no %s in %s to measure it by (%s): is '
+                             'robot_state_publisher running?' % (tool, self.model.root, error))
+        return np.array([t.translation.x, t.translation.y, t.translation.z])
+
+
+def main():
+    init_node('move_arm')
+    MoveArmServer()
+    rospy.spin()
+    return 0

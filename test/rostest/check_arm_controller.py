@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""rostest: arm_controller follows trajectories on arm_controller/command as ros_control's
+JointTrajectoryController does.
+
+In simulated time, the controller driving /clock: a trajectory is followed (the joints
+within 0.01 rad of each point at its time, with splines through points with velocities
+and straight lines through points without); a replacing trajectory takes over mid-way
+without a jump; every bad trajectory is rejected with a warning naming the problem and
+no motion, and one wholly in the past leaves the current one going on. No joint_states
+heard breaks a limit or puts a link into the floor or into another.
+"""
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from rosgraph_msgs.msg import Log
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+from arm_watch import ArmWatch
+from rosout_log import RosoutLog
+from waiting import wait_until
+from wall_follower.params import defaults
+from wall_follower.params.arm_controller import TABLE
+
+STEP = 1.0 / defaults(TABLE)['rate']    # s: the controller's step, as arm.launch runs it
+
+NAMES = ['hip', 'shoulder', 'elbow', 'wrist']
+TOLERANCE = 0.01   # rad
+
+
+def trajectory(stamp, points, names=NAMES):
+    """A JointTrajectory stamped stamp [s] (0: now) through (time, positions[, velocities[,
+    accelerations]]) points."""
+    msg = JointTrajectory(joint_names=list(names))
+    msg.header.stamp = rospy.Time.from_sec(stamp)
+    for point in points:
+        msg.points.append(JointTrajectoryPoint(
+            positions=list(point[1]), velocities=list(point[2]) if len(point) > 2 else [],
+            accelerations=list(point[3]) if len(point) > 3 else [],
+            time_from_start=rospy.Duration.from_sec(point[0])))
+    return msg
+
+
+class ArmControllerTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('check_arm_controller')
+        cls.log = RosoutLog('/arm_controller')
+        cls.watch = ArmWatch()
+        cls.command = rospy.Publisher('arm_controller/command', JointTrajectory, queue_size=10)
+        if not wait_until(lambda: cls.command.get_num_connections() > 0, 30.0):
+            raise AssertionError('arm_controller does not subscribe arm_controller/command')
+
+    def follow(self, msg, start):
+        """Publish msg, wait past its last point and check each point was met at its time."""
+        self.command.publish(msg)
+        end = start + msg.points[-1].time_from_start.to_sec()
+        self.assertTrue(self.watch.wait_for_time(end + 0.1), 'the arm\'s clock stopped')
+        for number, point in enumerate(msg.points):
+            due = start + point.time_from_start.to_sec()
+            reached = self.watch.at(due)
+            wanted = [point.positions[msg.joint_names.index(n)] for n in NAMES]
+            self.assertTrue(np.all(np.abs(reached - wanted) < TOLERANCE),
+                            'point %d due at %.2f s: joints at %s, not %s' % (
+                                number, due, reached, wanted))
+
+    def test_1_follows_a_trajectory_through_its_points_at_their_times(self):
+        start = self.watch.latest()[0] + 0.3
+        # cubic: positions and velocities; joints named in another order than the URDF's
+        names = ['elbow', 'hip', 'wrist', 'shoulder']
+        self.follow(trajectory(start, [
+            (1.0, [0.4, 0.5, 0.3, 0.4], [0.4, 0.3, 0.2, 0.3]),
+            (2.0, [0.9, 0.8, 0.5, 0.7], [0.3, 0.2, 0.1, 0.2]),
+            (3.0, [1.2, 0.6, 0.0, 0.9], [0.0, 0.0, 0.0, 0.0])], names), start)
+        # linear: positions only, from a zero stamp (now)
+        start = self.watch.latest()[0]
+        msg = trajectory(0.0, [(1.0, [0.2, 0.7, 0.8, 0.2]), (2.0, [-0.3, 0.3, 0.4, 0.0])])
+        self.command.publish(msg)
+        self.assertTrue(self.watch.wait_for_time(start + 2.3))
+        moved = [s for s in self.watch.since(start) if np.any(np.abs(s[2]) > 0)]
+        begun = moved[0][0] - STEP     # the stamp's "now": the controller's step before
+        for point in msg.points:
+            reached = self.watch.at(begun + point.time_from_start.to_sec())
+            self.assertTrue(np.all(np.abs(reached - point.positions) < TOLERANCE),
+                            '%s, not %s' % (reached, point.positions))
+
+    def test_2_a_replacing_trajectory_takes_over_mid_way(self):
+        start = self.watch.latest()[0] + 0.2
+        first = trajectory(start, [(2.0, [1.0, 1.0, 1.0, 1.0]), (4.0, [1.5, 0.5, 0.5, 0.5])])
+        initial = self.watch.latest()[1]
+        self.command.publish(first)
+        self.assertTrue(self.watch.wait_for_time(start + 1.0))
+        takeover = self.watch.latest()[0] + 0.1
+        self.follow(trajectory(takeover, [
+            (1.0, [0.0, 0.3, 0.2, 0.0], [0, 0, 0, 0], [0, 0, 0, 0]),
+            (1.5, [0.0, 0.2, 0.1, 0.0], [0, 0, 0, 0], [0, 0, 0, 0])]), takeover)
+        # the first trajectory was followed until the takeover...
+        for time in np.arange(start, takeover, 0.1):
+            expected = initial + (np.array([1.0] * 4) - initial) * (time - start) / 2.0
+            self.assertTrue(np.all(np.abs(self.watch.at(time) - expected) < TOLERANCE))
+        # ... and never after it: the arm turned back before the first's next point
+        self.assertTrue(np.all(self.watch.at(takeover + 1.5) < 0.5))
+        self.watch.assert_safe(self)
+
+    def test_3_bad_trajectories_are_rejected_with_a_warning_and_no_motion(self):
+        now = self.watch.latest()[0]
+        bad = [
+            (trajectory(0.0, [(1.0, [0, 0, 0, 0])], ['hip', 'shoulder', 'elbow', 'thumb']),
+             'unknown joint(s) thumb'),
+            (trajectory(0.0, [(1.0, [0, 0, 0])], ['hip', 'shoulder', 'elbow']),
+             'joint(s) wrist missing'),
+            (trajectory(0.0, [(1.0, [0.5, 0, 0, 0]), (1.0, [0.6, 0, 0, 0])]),
+             'time_from_start must increase'),
+            (trajectory(0.0, [(2.0, [0.5, 0, 0, 0]), (1.0, [0.6, 0, 0, 0])]),
+             'time_from_start must increase'),
+            (trajectory(0.0, [(1.0, [0, 0, 3.0, 0])]), 'elbow at 3.0000 rad is outside'),
+            (trajectory(max(now - 5.0, 0.001), [(1.0, [0.5, 0, 0, 0])]),
+             'every point is in the past'),
+        ]
+        for msg, words in bad:
+            before = self.watch.latest()
+            self.command.publish(msg)
+            self.assertTrue(wait_until(lambda: self.log.said('/arm_controller', words, Log.WARN),
+                                       30.0), 'no warning saying %r' % words)
+            self.assertTrue(self.watch.wait_for_time(before[0] + 0.5))
+            for state in self.watch.since(before[0]):
+                self.assertTrue(np.allclose(state[1], before[1], atol=1e-12), words)
+            self.log._lines[:] = []
+
+    def test_4_a_trajectory_in_the_past_leaves_the_current_one_going_on(self):
+        start = self.watch.latest()[0] + 0.2
+        current = trajectory(start, [(1.0, [0.3, 0.3, 0.3, 0.3]), (2.0, [0.6, 0.2, 0.5, 0.1])])
+        self.command.publish(current)
+        self.assertTrue(self.watch.wait_for_time(start + 0.5))
+        self.command.publish(trajectory(start - 3.0, [(1.0, [0.0, 0.0, 0.0, 0.0])]))
+        self.assertTrue(wait_until(lambda: self.log.said(
+            '/arm_controller', 'every point is in the past', Log.WARN), 30.0))
+        self.follow(current, start)
+        self.watch.assert_safe(self)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('wall_follower', 'check_arm_controller', ArmControllerTest)

@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""rostest: move_arm plans and executes moves of the arm, and refuses what it cannot do.
+
+In simulated time, the built-in controller driving /clock: moves to named targets and
+to points (given in world and in a frame that moves with the arm) put the `hand` frame,
+as tf has it, within 2 mm of the goal; an unreachable point, a point below the floor and
+a point the hand can reach only through the floor fail with a message saying which, and
+the arm does not move; a new goal pre-empts the running one and a cancel stops the arm
+short of its goal. No joint_states heard breaks a limit or puts a link into the floor or
+into another.
+"""
+import unittest
+
+import actionlib
+import numpy as np
+import rospy
+import rostest
+import tf2_ros
+from actionlib_msgs.msg import GoalStatus
+from geometry_msgs.msg import PointStamped
+
+from arm_watch import WALL_LIMIT, ArmWatch
+from waiting import wait_until
+from wall_follower.arm.kinematics import tool_position
+from wall_follower.msg import MoveArmAction, MoveArmGoal
+
+POSITION_TOLERANCE = 0.002   # m
+RESULT_LIMIT = rospy.Duration(60.0)   # simulated s
+
+
+def point_goal(x, y, z, frame='world', scaling=0.0):
+    target = PointStamped()
+    target.header.frame_id = frame
+    target.point.x, target.point.y, target.point.z = x, y, z
+    return MoveArmGoal(target=target, velocity_scaling=scaling)
+
+
+class MoveArmTest(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('check_move_arm')
+        cls.watch = ArmWatch()
+        cls.buffer = tf2_ros.Buffer()
+        cls.listener = tf2_ros.TransformListener(cls.buffer)
+        cls.client = actionlib.SimpleActionClient('move_arm', MoveArmAction)
+        if not cls.client.wait_for_server(rospy.Duration(WALL_LIMIT)):
+            raise AssertionError('no move_arm action server')
+        cls.progress = []
+
+    def hand(self):
+        """Where tf has the hand's origin in world at the newest joint state."""
+        stamp = rospy.Time.from_sec(self.watch.latest()[0])
+        t = self.buffer.lookup_transform('world', 'hand', stamp, rospy.Duration(5.0)).transform
+        return np.array([t.translation.x, t.translation.y, t.translation.z])
+
+    def move(self, goal):
+        self.client.send_goal(goal, feedback_cb=lambda f: self.progress.append(f.progress))
+        self.assertTrue(self.client.wait_for_result(RESULT_LIMIT), 'move_arm did not answer')
+        return self.client.get_state(), self.client.get_result()
+
+    def assert_reached(self, goal, where):
+        del self.progress[:]
+        state, result = self.move(goal)
+        self.assertEqual(state, GoalStatus.SUCCEEDED, result.message)
+        self.assertTrue(result.success, result.message)
+        self.assertLess(result.position_error, POSITION_TOLERANCE)
+        error = np.linalg.norm(self.hand() - where)
+        self.assertLess(error, POSITION_TOLERANCE, 'hand %.4f m from %s' % (error, where))
+        self.assertTrue(self.progress and self.progress[-1] == 1.0)
+        self.assertEqual(self.progress, sorted(self.progress))
+
+    def assert_refused(self, goal, words):
+        before = self.watch.latest()
+        state, result = self.move(goal)
+        self.assertEqual(state, GoalStatus.ABORTED)
+        self.assertFalse(result.success)
+        self.assertIn(words, result.message)
+        self.assertTrue(self.watch.wait_for_time(before[0] + 0.5))
+        for later in self.watch.since(before[0]):
+            self.assertTrue(np.allclose(later[1], before[1], atol=1e-12), result.message)
+
+    def test_1_named_targets(self):
+        model = self.watch.model
+        for name in ('ready', 'side', 'home'):
+            joints = [self.watch.semantics.states[name][joint] for joint in model.names]
+            self.assert_reached(MoveArmGoal(named_target=name), tool_position(model, joints))
+            self.assertTrue(np.allclose(self.watch.latest()[1], joints, atol=0.01))
+
+    def test_2_points(self):
+        for point in ((0.4, -0.3, 0.6), (0.5, 0.2, 0.25), (-0.3, 0.4, 0.9), (0.0, 0.6, 0.3)):
+            self.assert_reached(point_goal(*point, scaling=1.0), np.array(point))
+
+    def test_3_a_point_in_a_frame_that_moves_with_the_arm(self):
+        """The torso turns with the hip: a point in its frame is placed by tf at the goal."""
+        model = self.watch.model
+        side = [self.watch.semantics.states['side'][joint] for joint in model.names]
+        self.assert_reached(MoveArmGoal(named_target='side'), tool_position(model, side))
+        stamp = rospy.Time.from_sec(self.watch.latest()[0])
+        t = self.buffer.lookup_transform('world', 'torso', stamp, rospy.Duration(5.0))
+        yaw = 2.0 * np.arctan2(t.transform.rotation.z, t.transform.rotation.w)
+        self.assertGreater(abs(yaw), 1.0)
+        where = np.array([0.45 * np.cos(yaw), 0.45 * np.sin(yaw),
+                          t.transform.translation.z + 0.35])
+        self.assert_reached(point_goal(0.45, 0.0, 0.35, frame='torso'), where)
+
+    def test_4_unreachable_below_the_floor_and_colliding_points_fail_without_motion(self):
+        self.assert_refused(point_goal(2.0, 0.0, 0.5), 'unreachable: out of reach')
+        self.assert_refused(point_goal(0.3, 0.0, -0.05), 'below the floor')
+        self.assert_refused(point_goal(0.5, 0.0, 0.01), 'reachable only in collision')
+        self.assert_refused(MoveArmGoal(named_target='dance'), "no named target 'dance'")
+
+    def test_5_a_new_goal_pre_empts_and_a_cancel_stops(self):
+        self.assert_reached(MoveArmGoal(named_target='home'),
+                            tool_position(self.watch.model, np.zeros(4)))
+        first = point_goal(-0.5, -0.2, 0.4, scaling=0.3)
+        del self.progress[:]
+        self.client.send_goal(first, feedback_cb=lambda f: self.progress.append(f.progress))
+        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] > 0.3,
+                                   WALL_LIMIT))
+        # a second client's goal, as another user would send it
+        other = actionlib.SimpleActionClient('move_arm', MoveArmAction)
+        self.assertTrue(other.wait_for_server(rospy.Duration(WALL_LIMIT)))
+        other.send_goal(point_goal(0.4, 0.4, 0.5))
+        self.assertTrue(self.client.wait_for_result(RESULT_LIMIT))
+        self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
+        self.assertFalse(self.client.get_result().success)
+        self.assertIn('pre-empted', self.client.get_result().message)
+        self.assertTrue(other.wait_for_result(RESULT_LIMIT))
+        self.assertEqual(other.get_state(), GoalStatus.SUCCEEDED, other.get_result().message)
+        self.assertLess(np.linalg.norm(self.hand() - (0.4, 0.4, 0.5)), POSITION_TOLERANCE)
+
+        del self.progress[:]
+        far = point_goal(-0.4, 0.3, 0.2, scaling=0.3)
+        self.client.send_goal(far, feedback_cb=lambda f: self.progress.append(f.progress))
+        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] > 0.3,
+                                   WALL_LIMIT))
+        self.client.cancel_goal()
+        self.assertTrue(self.client.wait_for_result(RESULT_LIMIT))
+        self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
+        cancelled = self.watch.latest()[0]
+        self.assertTrue(self.watch.wait_for_time(cancelled + 1.5))
+        still = self.watch.since(cancelled + 1.0)
+        self.assertTrue(all(np.allclose(s[2], 0.0) for s in still), 'still moving')
+        self.assertGreater(np.linalg.norm(self.hand() - (-0.4, 0.3, 0.2)), 0.1)
+
+    def test_6_no_limit_broken_and_no_contact_in_any_joint_state(self):
+        self.watch.assert_safe(self)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('wall_follower', 'check_move_arm', MoveArmTest)
