@@ -13,9 +13,10 @@ prints them, --case K runs one), so a batch system can spread a class over
 many machines; --collect DIR then builds the report from the finished
 cases.
 
-A launch file outside any package is run with its directory as a package
-named like the directory (made for the run in a temporary overlay), so
-that its nodes can say pkg="<that directory's name>".
+A launch file given by its path, in a directory that is no package's
+root, is run with that directory as a package named like the directory
+(made for the run in a temporary overlay), so that a solution kept outside
+any catkin workspace can name its scripts pkg="<that directory's name>".
 """
 import argparse
 import json
@@ -28,6 +29,7 @@ import sys
 import tempfile
 import threading
 import time
+import uuid
 from concurrent.futures import ThreadPoolExecutor
 
 import rospkg
@@ -40,9 +42,9 @@ from wall_follower.evaluation.world_generator import (Settings, free_space_of, g
 from wall_follower.sim.laser_profiles import PROFILES
 
 DEFAULT_LASER = 'course720'
-# Simulated seconds a case may last without a lap: a start, then three laps of the
+# Simulated seconds a case may last without a lap: a start, then two laps of the
 # world's walls at the speed bound.
-LAP_ALLOWANCE = (60.0, 3.0)
+LAP_ALLOWANCE = (30.0, 2.0)
 # Wall seconds for a case's master to come up.
 MASTER_LIMIT = 30.0
 _PACKAGE_XML = """<?xml version="1.0"?>
@@ -70,7 +72,7 @@ class Solution(object):
             if not os.path.isfile(path):
                 raise ValueError('no launch file %s' % launch[0])
             self.launch = [path]
-            if _package_of(path) is None:
+            if not os.path.isfile(os.path.join(os.path.dirname(path), 'package.xml')):
                 self.overlay = os.path.dirname(path)
         elif len(launch) == 2:
             self.launch = launch
@@ -96,16 +98,6 @@ class Solution(object):
         paths = [os.path.join(scratch, 'overlay')] + [
             p for p in base.get('ROS_PACKAGE_PATH', '').split(':') if p]
         return dict(base, ROS_PACKAGE_PATH=':'.join(paths))
-
-
-def _package_of(path):
-    """The directory of the package holding path (a package.xml above it), or None."""
-    directory = os.path.dirname(path)
-    while directory and directory != os.path.dirname(directory):
-        if os.path.isfile(os.path.join(directory, 'package.xml')):
-            return directory
-        directory = os.path.dirname(directory)
-    return None
 
 
 def free_port():
@@ -169,7 +161,7 @@ class CaseRunner(object):
                 os.unlink(stale)
         port = free_port()
         base = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        group = ProcessGroup()
+        group = ProcessGroup('%d-%s' % (os.getpid(), uuid.uuid4().hex))
         with self._lock:
             if self._stopping:
                 return None
@@ -199,7 +191,8 @@ class CaseRunner(object):
         case_args = {'world': world_file, 'json': paths['json'], 'plot': paths['plot'],
                      'simulator': options.simulator, 'laser_profile': options.laser,
                      'seed': str(options.seed), 'speedup': str(options.speedup),
-                     'action_ns': options.action_ns, 'time_limit': '%.0f' % limit}
+                     'action_ns': options.action_ns, 'time_limit': '%.0f' % limit,
+                     'start_limit': str(options.start_limit)}
         grading = ['roslaunch', '-p', str(port), 'wall_follower', 'grade_case.launch'] + [
             '%s:=%s' % item for item in sorted(case_args.items())]
         with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
@@ -227,7 +220,8 @@ def case_command(solution_words, options, index):
     words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + [
         '--seed', str(options.seed), '--case', str(index), '--laser', options.laser,
         '--speedup', str(options.speedup), '--action-ns', options.action_ns,
-        '--timeout', str(options.timeout), '--simulator', options.simulator,
+        '--timeout', str(options.timeout), '--start-limit', str(options.start_limit),
+        '--simulator', options.simulator,
         '--room', str(options.room[0]), str(options.room[1]), '--out', options.out]
     return ' '.join(shlex.quote(w) for w in words)
 
@@ -253,6 +247,8 @@ def parser():
                    help='namespace of the record_odom action (default record_odom)')
     p.add_argument('--timeout', type=float, default=900.0,
                    help='wall seconds a case may take (default 900)')
+    p.add_argument('--start-limit', type=float, default=30.0,
+                   help='wall seconds the solution has to start its nodes (default 30)')
     p.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
                    help='builtin (default) or stage: real stageros in its window')
     p.add_argument('--room', type=float, nargs=2, default=list(Settings().room),

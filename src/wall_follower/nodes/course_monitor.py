@@ -330,7 +330,7 @@ class CourseMonitor(object):
         return self.result_status == GoalStatus.SUCCEEDED
 
     def connected(self, topics=NEEDED_TOPICS):
-        """Whether every one of topics (by last name) is connected; all the score needs by default."""
+        """Whether every one of topics (by last name) is connected; by default all a score needs."""
         return all(sub.get_num_connections() > 0 for sub in self._subs
                    if sub.name.rsplit('/', 1)[-1] in topics)
 

@@ -8,7 +8,8 @@ what the solution advertises (a find_wall service, the record_odom
 action) as it comes. It ends the run when the action's result
 has come (and ~after_result more simulated seconds of ground truth, to see
 where the robot truly went), or when the solution cannot finish any more:
-~time_limit simulated seconds passed, nothing commanded for ~idle_limit,
+~time_limit simulated seconds passed, nothing commanded (or the robot
+stalled against an obstacle) for ~idle_limit,
 or none of its nodes alive for ~gone_limit wall seconds (once its launch
 file has had ~start_limit wall seconds to start them). Then it writes
 the record (~json) that wall_follower.evaluation.grading grades, and the
@@ -25,6 +26,7 @@ import time
 import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
+from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus
@@ -95,19 +97,27 @@ def wait_for_simulator(monitor, limit):
     return True
 
 
-class CommandClock(object):
-    """The simulated time of the first and the latest cmd_vel."""
+class RunClock(object):
+    """Simulated times of the first and the latest cmd_vel, and since when the robot is stalled."""
 
     def __init__(self):
         self.first = None
         self.latest = None
-        self._sub = rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=100)
+        self.stalled_since = None
+        self._subs = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=100),
+                      rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=100)]
 
     def _on_command(self, _msg):
         now = rospy.get_time()
         if self.first is None:
             self.first = now
         self.latest = now
+
+    def _on_stalled(self, msg):
+        if not msg.data:
+            self.stalled_since = None
+        elif self.stalled_since is None:
+            self.stalled_since = rospy.get_time()
 
 
 class SolutionSeen(object):
@@ -122,7 +132,7 @@ class SolutionSeen(object):
         self.action_server = self.action_server or graph.action_server(state)
 
 
-def watch(monitor, graph, seen, commands, params, start):
+def watch(monitor, graph, seen, clock, params, start):
     """Why the run ended: 'result', or the reason no lap can come any more.
 
     Meanwhile notes in seen what the solution advertises. The solution's
@@ -138,8 +148,10 @@ def watch(monitor, graph, seen, commands, params, start):
         now = rospy.get_time()
         if now - start > params['time_limit']:
             return 'no lap within %.0f simulated s' % params['time_limit']
-        if commands.latest is not None and now - commands.latest > params['idle_limit']:
+        if now - (clock.latest if clock.latest is not None else start) > params['idle_limit']:
             return 'no command for %.0f simulated s: the solution hangs' % params['idle_limit']
+        if clock.stalled_since is not None and now - clock.stalled_since > params['idle_limit']:
+            return 'stuck against an obstacle for %.0f simulated s' % params['idle_limit']
         if time.monotonic() >= next_graph:
             next_graph = time.monotonic() + GRAPH_POLL
             state = graph.state()
@@ -164,7 +176,7 @@ def keep_watching(monitor, seconds, wall_limit=30.0):
         time.sleep(POLL)
 
 
-def case_record(monitor, params, seen, end_reason, start, start_pose, commands):
+def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
     """The case's ground-truth record, as grading.grade_case reads it."""
     figures = course_figures(monitor)
     goal_pose = monitor.goal_pose
@@ -190,7 +202,7 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, commands):
         'start_time': start,
         'goal_time': monitor.goal_time,
         'find_wall_time': (monitor.goal_time - start) if monitor.goal_time is not None else None,
-        'first_command_time': commands.first,
+        'first_command_time': clock.first,
         'result_time': monitor.result_time,
         'result_status': (STATUS_NAMES.get(monitor.result_status, str(monitor.result_status))
                           if monitor.result_status is not None else None),
@@ -224,7 +236,7 @@ def main():
         rospy.logerr('grade_case: cannot read world %s: %s', params['world'], err)
         return 1
     monitor = CourseMonitor(course_map, start_on_goal=True, action_ns=params['action_ns'])
-    commands = CommandClock()
+    clock = RunClock()
     graph = Graph(params['action_ns'])
     if not wait_for_simulator(monitor, SIMULATOR_LIMIT):
         rospy.logerr('grade_case: no ground truth from the simulator')
@@ -239,13 +251,13 @@ def main():
         time.sleep(0.01)
     start_pose = monitor.pose
     seen = SolutionSeen()
-    end_reason = watch(monitor, graph, seen, commands, params, start)
+    end_reason = watch(monitor, graph, seen, clock, params, start)
     rospy.loginfo('grade_case: run ended: %s; find_wall service: %s; %s action: %s', end_reason,
                   seen.find_wall_service or 'none', params['action_ns'],
                   'up' if seen.action_server else 'none')
     if end_reason == 'result':
         keep_watching(monitor, params['after_result'])
-    record = case_record(monitor, params, seen, end_reason, start, start_pose, commands)
+    record = case_record(monitor, params, seen, end_reason, start, start_pose, clock)
     with open(params['json'], 'w') as stream:
         json.dump(_json_safe(record), stream, indent=1)
     if params['plot']:

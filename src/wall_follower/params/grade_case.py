@@ -17,8 +17,9 @@ TABLE = (
           'before the run ends when none is alive [s]', 1.0, 600.0),
         P('time_limit', 400.0, 'simulated seconds the run may last before it is ended without '
           'a lap [s]', 1.0, 1e5),
-        P('idle_limit', 30.0, 'simulated seconds without any cmd_vel (after the first) before '
-          'the run is ended as stuck [s]', 1.0, 1e5),
+        P('idle_limit', 30.0, 'simulated seconds without a cmd_vel (since the start or the last '
+          'one), or stalled against an obstacle, before the run is ended as stuck [s]',
+          1.0, 1e5),
         P('gone_limit', 5.0, 'wall seconds with none of the solution\'s nodes alive before the '
           'run is ended [s]', 0.5, 600.0),
         P('after_result', 5.0, 'simulated seconds of ground truth kept after the lap is '
