@@ -282,21 +282,32 @@ def main(argv=None):
         for index in range(options.worlds):
             print(case_command(options.solution, options, index))
         return 0
-    runner = CaseRunner(solution, options)
     indices = [options.case] if options.case is not None else list(range(options.worlds))
-    names = [world_name(options.seed, index) for index in indices]
-    signal.signal(signal.SIGTERM, _interrupt)
-    pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
-    try:
-        futures = [pool.submit(runner.run, index) for index in indices]
-        records = [future.result() for future in futures]
-    except KeyboardInterrupt:
-        runner.stop_all()
+    records = run_cases(solution, options, indices)
+    if records is None:
         sys.stderr.write('grade: interrupted; every case it started has ended\n')
         return 130
-    finally:
-        pool.shutdown(wait=True)
     if options.case is not None:
         grade_report.print_table([r for r in records if r])
         return 0
-    return grade_report.collect(options.out, names)
+    return grade_report.collect(options.out, [world_name(options.seed, i) for i in indices])
+
+
+def run_cases(solution, options, indices):
+    """The records of cases indices, options.jobs at a time; None when interrupted.
+
+    SIGINT or SIGTERM ends every case still running (and every process it
+    started) before this returns.
+    """
+    runner = CaseRunner(solution, options)
+    previous = signal.signal(signal.SIGTERM, _interrupt)
+    pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
+    try:
+        futures = [pool.submit(runner.run, index) for index in indices]
+        return [future.result() for future in futures]
+    except KeyboardInterrupt:
+        runner.stop_all()
+        return None
+    finally:
+        pool.shutdown(wait=True)
+        signal.signal(signal.SIGTERM, previous)
