@@ -113,7 +113,8 @@ class GradeBroken(unittest.TestCase):
         case = self.case('early_lap')
         self.assertTrue(case['premature'], case)
         self.assertFalse(case['lap_genuine'], case)
-        self.assertIn('declared after 6.0 m', case['criteria']['lap']['reason'])
+        # 6 m by its own sum of points a second apart; a little more along the true path.
+        self.assertRegex(case['criteria']['lap']['reason'], r'declared after 6\.[0-4] m')
         self.assertTrue(case['find_wall_ok'], case)
         self.assertFalse(case['contact'], case)
 
@@ -127,6 +128,8 @@ class GradeBroken(unittest.TestCase):
 
     def test_a_crash_at_start_fails_everything_and_says_why(self):
         case = self.case('crash_at_start')
+        # Safe it is: it never moved.
+        self.assertTrue(case['criteria'].pop('safety')['passed'], case)
         self.assertFalse(any(v['passed'] for v in case['criteria'].values()), case)
         self.assertIn('no find_wall service', case['reason'])
         self.assertIn('crashed or ended', case['reason'])

@@ -8,6 +8,7 @@ the built workspace's messages, no master.
 """
 import math
 import os
+import re
 from types import SimpleNamespace
 
 import pytest
@@ -26,22 +27,22 @@ from wall_follower.nodes.grade_case import SolutionSeen, case_record
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2].
 OFF = 0.28
-CORNERS = [(1.5 - OFF, -1.2 + OFF), (1.5 - OFF, 1.2 - OFF), (-1.5 + OFF, 1.2 - OFF),
-           (-1.5 + OFF, -1.2 + OFF)]
-START = (-0.5, -1.2 + OFF)
 STEP = 0.1          # s of ground truth
 SPEED = 0.19        # m/s
 TURN = 0.49         # rad/s at the corners
 PARAMS = {'world': ROOM, 'plot': ''}
 
 
-def lap_track(laps=1.3):
-    """Ground-truth poses (x, y, yaw), one a STEP, from START round the room `laps` times."""
+def lap_track(laps=1.3, off=OFF):
+    """Ground-truth poses (x, y, yaw), one a STEP, round the room `laps` times, off metres
+    from its walls, from (-0.5, -1.2 + off) heading +x."""
     poses = []
-    x, y = START
+    x, y = -0.5, -1.2 + off
     yaw = 0.0
-    route = CORNERS * 3
-    travelled, limit = 0.0, laps * 2 * ((3.0 - 2 * OFF) + (2.4 - 2 * OFF))
+    corners = [(1.5 - off, -1.2 + off), (1.5 - off, 1.2 - off), (-1.5 + off, 1.2 - off),
+               (-1.5 + off, -1.2 + off)]
+    route = corners * 3
+    travelled, limit = 0.0, laps * 2 * ((3.0 - 2 * off) + (2.4 - 2 * off))
     for cx, cy in route:
         heading = math.atan2(cy - y, cx - x)
         while abs(math.remainder(heading - yaw, 2 * math.pi)) > 1e-9:
@@ -71,15 +72,15 @@ def truth(stamp, pose):
 GOAL_ID = GoalID(stamp=rospy.Time.from_sec(0.0), id='lap')
 
 
-def run(declare_after=None, lap_rule=True):
-    """A record of the track, with the lap declared after declare_after metres (None: by the
-    recorder's lap rule when lap_rule, else never)."""
+def run(declare_after=None, lap_rule=True, off=OFF):
+    """A record of the track off metres from the walls, with the lap declared after
+    declare_after metres (None: by the recorder's lap rule when lap_rule, else never)."""
     monitor = CourseMonitor(CourseMap(ROOM))
     goal = OdomRecordActionGoal()
     goal.goal_id = GOAL_ID
     monitor._on_goal(goal)
     travelled, last, points, end = 0.0, None, [], None
-    poses = lap_track()
+    poses = lap_track(off=off)
     for index, pose in enumerate(poses):
         stamp = index * STEP
         monitor._on_truth(truth(stamp, pose))
@@ -178,3 +179,26 @@ def test_grades_json_fields(genuine):
     for key in ('world', 'lap_genuine', 'premature', 'find_wall_ok', 'in_band', 'contact',
                 'reason'):
         assert key in genuine
+
+
+def test_following_points_at_the_longest_stretch_out_of_band():
+    case = run()
+    case['figures']['time_in_band'] = 0.9
+    case['out_of_band'] = [{'after': 12.0, 'seconds': 2.5, 'x': 0.5, 'y': -0.25,
+                            'distance': 0.16}]
+    assert grade_case(case)['criteria']['following']['reason'] == (
+        'only 90.0 % of the lap within 0.20-0.30 m of the wall (97 % needed), the longest '
+        'stretch out 2.5 s from (0.50, -0.25), at worst 0.16 m from the wall')
+
+
+def test_a_track_too_far_from_the_walls_fails_following_where_it_began():
+    graded = grade_case(run(off=0.33))
+    assert graded['in_band'] == pytest.approx(0.0, abs=0.05)
+    reason = graded['criteria']['following']['reason']
+    # One stretch, the whole lap: from where the lap began, (-0.5, -0.87), a step or two on.
+    found = re.search(r'the longest stretch out ([0-9.]+) s from \(([-0-9.]+), ([-0-9.]+)\)',
+                      reason)
+    assert found, reason
+    assert float(found.group(1)) > 50.0
+    assert float(found.group(2)) == pytest.approx(-0.5, abs=0.05)
+    assert float(found.group(3)) == pytest.approx(-0.87, abs=0.005)

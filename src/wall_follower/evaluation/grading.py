@@ -102,8 +102,17 @@ def judge_following(case):
     if case.get('result_status') != 'succeeded' or in_band is None:
         return False, 'no lap to judge the following on'
     if in_band < MIN_IN_BAND:
-        return False, 'only %.1f %% of the lap within 0.20-0.30 m of the wall (%.0f %% needed)' % (
+        reason = 'only %.1f %% of the lap within 0.20-0.30 m of the wall (%.0f %% needed)' % (
             100.0 * in_band, 100.0 * MIN_IN_BAND)
+        stretches = case.get('out_of_band') or []
+        if stretches:
+            worst = stretches[0]
+            distance = _number(worst['distance'])
+            reason += ', the longest stretch out %.1f s from (%.2f, %.2f), %s' % (
+                worst['seconds'], worst['x'], worst['y'],
+                'no wall on the right' if distance is None or math.isinf(distance)
+                else 'at worst %.2f m from the wall' % distance)
+        return False, reason
     return True, ''
 
 

@@ -46,6 +46,8 @@ GRAPH_POLL = 1.0
 SIMULATOR_LIMIT = 60.0
 # The robot "moved before the lap" when the lap began this far from the start [m, rad].
 MOVED = (0.05, math.radians(10.0))
+# The longest stretches out of band a record keeps.
+OUT_OF_BAND_KEPT = 3
 # Nodes of the grading itself, not of the solution.
 OWN_NODES = ('/simulator', '/rosout')
 STATUS_NAMES = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
@@ -193,6 +195,11 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
     if goal_pose is not None:
         true_lap = true_lap_length(monitor.trail, goal_pose[:2])
     feedback = monitor.feedback
+    with monitor.lock:
+        out_of_band = [{'after': after, 'seconds': seconds, 'x': pose[0], 'y': pose[1],
+                        'distance': distance}
+                       for after, seconds, pose, distance
+                       in monitor.score.stretches_out_of_band()[:OUT_OF_BAND_KEPT]]
     return {
         'world': params['world'],
         'solution': {'find_wall_service': seen.find_wall_service,
@@ -212,6 +219,7 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
         'recorded_spans': monitor.recorded_spans,
         'feedback_rising': all(b >= a for a, b in zip(feedback, feedback[1:])),
         'figures': figures,
+        'out_of_band': out_of_band,
         'plot': params['plot'] or None,
     }
 
