@@ -191,6 +191,7 @@ class CaseRunner(object):
         case_args = {'world': world_file, 'json': paths['json'], 'plot': paths['plot'],
                      'simulator': options.simulator, 'laser_profile': options.laser,
                      'seed': str(options.seed), 'speedup': str(options.speedup),
+                     'lockstep': 'true', 'paused': 'true',
                      'action_ns': options.action_ns, 'time_limit': '%.0f' % limit,
                      'start_limit': str(options.start_limit)}
         grading = ['roslaunch', '-p', str(port), 'wall_follower', 'grade_case.launch'] + [
