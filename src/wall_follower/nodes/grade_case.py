@@ -61,7 +61,6 @@ class Graph(object):
     def __init__(self, action_ns):
         self._master = rosgraph.Master(rospy.get_name())
         self._status = rospy.resolve_name(action_ns + '/status')
-        self._cmd_vel = rospy.resolve_name('cmd_vel')
 
     def state(self):
         try:
@@ -192,10 +191,10 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
         math.hypot(judged_pose[0] - start_pose[0], judged_pose[1] - start_pose[1]) > MOVED[0]
         or abs(math.remainder(judged_pose[2] - start_pose[2], 2 * math.pi)) > MOVED[1])
     true_lap = None
-    if goal_pose is not None:
-        true_lap = true_lap_length(monitor.trail, goal_pose[:2])
-    feedback = monitor.feedback
     with monitor.lock:
+        if goal_pose is not None:
+            true_lap = true_lap_length(list(monitor.trail), goal_pose[:2])
+        feedback = list(monitor.feedback)
         out_of_band = [{'after': after, 'seconds': seconds, 'x': pose[0], 'y': pose[1],
                         'distance': distance}
                        for after, seconds, pose, distance
