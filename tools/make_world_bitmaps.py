@@ -18,15 +18,14 @@ even), so the pixels are exact and the files reproducible:
     /usr/bin/python3 tools/make_world_bitmaps.py --check  # exit 1 if any pixel differs
 """
 import argparse
-import io
 import os
 import sys
 
 import numpy as np
 from PIL import Image
 
-METRES_PER_PIXEL = 0.02
-WALL = 0.10
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'src'))
+from wall_follower.evaluation.floorplan import png_bytes, render  # noqa: E402
 
 # name -> free-space outline, (x, y) in metres, counter-clockwise.
 OUTLINES = {
@@ -62,55 +61,6 @@ OUTLINES = {
 PILLARS = {
     'pillars': [(x, y, 0.15) for x in (-1.1, 0.0, 1.1) for y in (-1.1, 0.0, 1.1)],
 }
-
-
-def to_centimetres(value):
-    return int(round(value * 100))
-
-
-def inside(points_x, points_y, outline):
-    """Even-odd point-in-polygon test, exact on integer coordinates."""
-    result = np.zeros(points_x.shape, dtype=bool)
-    for (x0, y0), (x1, y1) in zip(outline, outline[1:] + outline[:1]):
-        if y0 == y1:
-            continue
-        spans = (y0 > points_y) != (y1 > points_y)
-        # x of the edge at points_y, compared without division:
-        # points_x < x0 + (points_y - y0) * (x1 - x0) / (y1 - y0)
-        lhs = (points_x - x0) * (y1 - y0)
-        rhs = (points_y - y0) * (x1 - x0)
-        left = np.where(y1 > y0, lhs < rhs, lhs > rhs)
-        result ^= spans & left
-    return result
-
-
-def render(outline_m, pillars_m=()):
-    """The floorplan image of one outline and its pillars, and its size [m] and centre [m]."""
-    outline = [(to_centimetres(x), to_centimetres(y)) for x, y in outline_m]
-    wall = to_centimetres(WALL)
-    pixel = to_centimetres(METRES_PER_PIXEL)
-    xs, ys = zip(*outline)
-    left, right = min(xs) - wall, max(xs) + wall
-    bottom, top = min(ys) - wall, max(ys) + wall
-    width, height = (right - left) // pixel, (top - bottom) // pixel
-    columns, rows = np.meshgrid(np.arange(width), np.arange(height))
-    # Pixel centres in centimetres; row 0 is the top (+y) edge, as in Stage.
-    centre_x = left + pixel * columns + pixel // 2
-    centre_y = top - pixel * rows - pixel // 2
-    free = inside(centre_x, centre_y, outline)
-    for x, y, radius in pillars_m:
-        cx, cy, r = to_centimetres(x), to_centimetres(y), to_centimetres(radius)
-        free &= (centre_x - cx) ** 2 + (centre_y - cy) ** 2 > r * r
-    image = Image.fromarray(np.where(free, 255, 0).astype(np.uint8), mode='L')
-    size = (width * METRES_PER_PIXEL, height * METRES_PER_PIXEL)
-    centre = ((left + right) / 200.0, (bottom + top) / 200.0)
-    return image, size, centre
-
-
-def png_bytes(image):
-    buffer = io.BytesIO()
-    image.save(buffer, format='PNG', optimize=False)
-    return buffer.getvalue()
 
 
 def main(argv=None):

@@ -23,6 +23,7 @@ from wall_follower.params import (course_report, driving, find_trials, forward_s
                                   odom_recorder, range_ahead, simple_move_square, slam,
                                   stage_sim, teleop_key, wall_finder, wall_following, wander)
 from wall_follower.params import arm_controller, arm_plot, move_arm
+from wall_follower.params import grade_case
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -44,6 +45,7 @@ NODES = {
     'arm_controller': (arm_controller.TABLE, None),
     'move_arm': (move_arm.TABLE, 'MoveArm'),
     'arm_plot': (arm_plot.TABLE, None),
+    'grade_case': (grade_case.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
@@ -53,7 +55,7 @@ EXECUTABLES.update((node, node) for node in NODES if node + '.py' not in EXECUTA
 DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 'forward_stop',
            'wander')
 #: nodes set only by their launch files' arguments, which document them: no README table
-WITHOUT_README_TABLE = {'course_report', 'find_trials'}
+WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 

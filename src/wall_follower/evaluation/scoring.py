@@ -204,6 +204,32 @@ class RunScore(object):
             'max_angular': self.max_angular,
         }
 
+    def stretches_out_of_band(self):
+        """Each stretch of the lap out of band, as (seconds into the lap, duration s, pose
+        where it began, the distance furthest from the band's middle); inf for no wall seen.
+
+        Over the poses summary() has measured, longest first: where a follower
+        lost the band, for a report to point at.
+        """
+        low, high = self.band
+        stretches = []
+        elapsed = 0.0
+        current = None
+        for index, ((distance, _), weight) in enumerate(zip(self._measured, self.weights)):
+            elapsed += weight
+            if index == 0:
+                continue
+            if low <= distance <= high:
+                current = None
+                continue
+            if current is None:
+                current = [elapsed - weight, 0.0, self.poses[index], distance]
+                stretches.append(current)
+            current[1] += weight
+            if abs(distance - self.target) > abs(current[3] - self.target):
+                current[3] = distance
+        return sorted((tuple(s) for s in stretches), key=lambda s: -s[1])
+
 
 def true_lap_length(trail, start, leave_radius=0.5, near=0.3):
     """Path length at which a ground-truth trail first comes back to its start.

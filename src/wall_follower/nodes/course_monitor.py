@@ -11,6 +11,7 @@ import threading
 import time
 import xmlrpc.client
 
+import genpy.dynamic
 import numpy as np
 import rosgraph
 import rospy
@@ -21,7 +22,6 @@ from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 
-from wall_follower.msg import OdomRecordActionFeedback, OdomRecordActionGoal, OdomRecordActionResult
 from wall_follower.nodes.common import pose_of
 from wall_follower.evaluation.scoring import RunScore, stretches_on_trail
 
@@ -83,6 +83,38 @@ def node_alive(name):
     return True
 
 
+class AnyTypeSubscriber(object):
+    """A subscription that takes the message type its publisher declares.
+
+    A course solution declares the record_odom action in a package of its
+    own, with Point or Point32 in its result: the messages are rebuilt from
+    the definition each connection carries, so the monitor reads any of
+    them by their field names.
+    """
+
+    def __init__(self, topic, callback, queue_size):
+        self._callback = callback
+        self._classes = {}
+        self._sub = rospy.Subscriber(topic, rospy.AnyMsg, self._on_message, queue_size=queue_size)
+        self.name = self._sub.name
+
+    def _on_message(self, raw):
+        header = raw._connection_header
+        key = (header['type'], header['md5sum'])
+        if key not in self._classes:
+            self._classes[key] = genpy.dynamic.generate_dynamic(
+                header['type'], header['message_definition'])[header['type']]
+        message = self._classes[key]()
+        message.deserialize(raw._buff)
+        self._callback(message)
+
+    def get_num_connections(self):
+        return self._sub.get_num_connections()
+
+    def unregister(self):
+        self._sub.unregister()
+
+
 class CourseMonitor(object):
     """Scores a run from ground truth while the nodes under test drive.
 
@@ -91,10 +123,12 @@ class CourseMonitor(object):
     The goal's send time comes from whichever of the goal, status, feedback
     or result messages is seen first (each carries the goal's stamp), and
     ground truth is kept until then, so a monitor that missed the goal
-    message itself still scores the lap from its true start.
+    message itself still scores the lap from its true start. action_ns:
+    the record_odom action's namespace; its messages may be of any
+    package's OdomRecord action (see AnyTypeSubscriber).
     """
 
-    def __init__(self, course_map, start_on_goal=True, **lap_params):
+    def __init__(self, course_map, start_on_goal=True, action_ns='record_odom', **lap_params):
         self.score = RunScore(course_map, **lap_params)
         self.start_on_goal = start_on_goal
         self.lock = threading.Lock()
@@ -107,6 +141,7 @@ class CourseMonitor(object):
         self.result_time = None
         self.result_status = None
         self.result_text = ''
+        self.result_point_type = None
         self.trail = []
         self._trail_stamps = []
         self._backlog = []
@@ -115,12 +150,10 @@ class CourseMonitor(object):
                              queue_size=QUEUE),
             rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=QUEUE),
             rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=QUEUE),
-            rospy.Subscriber('record_odom/goal', OdomRecordActionGoal, self._on_goal, queue_size=5),
-            rospy.Subscriber('record_odom/feedback', OdomRecordActionFeedback,
-                             self._on_feedback, queue_size=QUEUE),
-            rospy.Subscriber('record_odom/result', OdomRecordActionResult, self._on_result,
-                             queue_size=5),
-            rospy.Subscriber('record_odom/status', GoalStatusArray, self._on_status, queue_size=5),
+            AnyTypeSubscriber(action_ns + '/goal', self._on_goal, queue_size=5),
+            AnyTypeSubscriber(action_ns + '/feedback', self._on_feedback, queue_size=QUEUE),
+            AnyTypeSubscriber(action_ns + '/result', self._on_result, queue_size=5),
+            rospy.Subscriber(action_ns + '/status', GoalStatusArray, self._on_status, queue_size=5),
         ]
 
     @property
@@ -237,6 +270,9 @@ class CourseMonitor(object):
             self.result_time = msg.header.stamp.to_sec()
             self.result_status = msg.status.status
             self.result_text = msg.status.text
+            # Point or Point32: the course has seen both.
+            self.result_point_type = dict(zip(msg.result.__slots__,
+                                              msg.result._slot_types)).get('list_of_odoms')
             self.score.finish(self.result_time)
         if self.start_on_goal:
             self.done.set()
@@ -293,10 +329,10 @@ class CourseMonitor(object):
         """Whether record_odom's goal ended with a lap (False before its result)."""
         return self.result_status == GoalStatus.SUCCEEDED
 
-    def connected(self):
-        """Whether every topic that the score needs is connected (see NEEDED_TOPICS)."""
+    def connected(self, topics=NEEDED_TOPICS):
+        """Whether every one of topics (by last name) is connected; by default all a score needs."""
         return all(sub.get_num_connections() > 0 for sub in self._subs
-                   if sub.name.rsplit('/', 1)[-1] in NEEDED_TOPICS)
+                   if sub.name.rsplit('/', 1)[-1] in topics)
 
     def simulator(self):
         """Which simulator the run is on (simulator_of), asked of the master."""

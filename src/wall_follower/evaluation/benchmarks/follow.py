@@ -11,13 +11,19 @@ seed, so one lap is a sample, not a figure: its row is the mean over
 --simulator stage runs the same laps on real stageros (stage_ros installed),
 with its window (under xvfb-run without a display), at the world's pace and
 not in lockstep, with Stage's own laser: one lap per world.
+
+--generated N grades main.launch on N generated worlds of --seed in every
+laser profile instead, as `grade` does (see follow_generated).
 """
 import argparse
 import sys
+import tempfile
 
+from wall_follower.evaluation.benchmarks import follow_generated
 from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
                                                            laser_profile, print_table, run_launch,
                                                            shipped_world)
+from wall_follower.sim.laser_profiles import PROFILES as LASER_PROFILES
 
 PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
@@ -62,7 +68,19 @@ def main(argv=None):
                         help='laps per noisy laser profile, one per noise seed (default 5)')
     parser.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
                         help='stage: real stageros, one lap per world with its own laser')
+    parser.add_argument('--generated', type=int, metavar='N',
+                        help='grade main.launch on N generated worlds per laser profile instead')
+    parser.add_argument('--seed', type=int, default=0, help='with --generated: the worlds\' seed')
+    parser.add_argument('--jobs', type=int, default=1, help='with --generated: cases at once')
+    parser.add_argument('--room', type=float, nargs=2, default=(2.4, 4.0),
+                        help='with --generated: sides of the main rooms [m]')
+    parser.add_argument('--out', help='with --generated: directory for the cases '
+                        '(default: a new temporary one)')
     args = parser.parse_args(argv)
+    if args.generated:
+        return follow_generated.run(args.generated, args.seed, LASER_PROFILES,
+                                    args.jobs, args.out or tempfile.mkdtemp(prefix='follow-'),
+                                    args.room)
     wrapper = ()
     if args.simulator == 'stage':
         wrapper = display_wrapper()

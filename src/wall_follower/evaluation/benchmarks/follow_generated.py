@@ -1,0 +1,76 @@
+"""`benchmark follow --generated N --seed S`: this package graded on N generated worlds per laser.
+
+Each case is exactly a case of `grade wall_follower main.launch` (the same
+worlds, the same ground-truth record, the same criteria), so the grader's
+verdicts and this benchmark's never differ. Per laser profile: how many
+laps were genuine, any contact, and the distribution (median, 5th
+percentile, worst) of the time in band, the RMS error, the lap's ratio to
+the speed bound and find_wall's distance and heading errors; then every
+case under MIN_IN_BAND with its world file, to be opened and looked at.
+"""
+import os
+
+import numpy as np
+
+from wall_follower.evaluation import grader
+from wall_follower.evaluation.benchmarks.launching import fmt, print_table
+from wall_follower.evaluation.grading import MIN_IN_BAND, grade_case
+
+# find_wall's target: the middle of the 0.25-0.35 m it must leave the robot in.
+FIND_WALL_TARGET = 0.30
+# name, how to read it from a grade, which end is the worst, and its table format.
+FIGURES = (
+    ('in band %', lambda g: g['in_band'] and 100.0 * g['in_band'], min, '.1f'),
+    ('RMS cm', lambda g: g['rms_error'] and 100.0 * g['rms_error'], max, '.2f'),
+    ('lap ratio', lambda g: g['lap_time_ratio'], max, '.3f'),
+    ('find_wall error cm', lambda g: g['find_wall_distance'] is not None
+     and 100.0 * abs(g['find_wall_distance'] - FIND_WALL_TARGET), max, '.1f'),
+    ('find_wall heading deg', lambda g: g['find_wall_heading_deg'] is not None
+     and abs(g['find_wall_heading_deg']), max, '.1f'),
+)
+
+
+def distribution(values, worst):
+    """(median, 5th percentile on the bad side, worst) of the figures that exist."""
+    values = [v for v in values if v is not None and v is not False]
+    if not values:
+        return None, None, None
+    bad_side = 5.0 if worst is min else 95.0
+    return (float(np.median(values)), float(np.percentile(values, bad_side)),
+            float(worst(values)))
+
+
+def run(count, seed, profiles, jobs, out, room):
+    """Grade main.launch on count worlds of seed in each profile; prints the tables."""
+    rows, below = [], []
+    for profile in profiles:
+        options = grader.parser().parse_args(
+            ['wall_follower', 'main.launch', '--worlds', str(count), '--seed', str(seed),
+             '--laser', profile, '--jobs', str(jobs), '--room', str(room[0]), str(room[1]),
+             '--out', os.path.join(out, profile)])
+        records = grader.run_cases(grader.Solution(options.solution), options,
+                                   list(range(count)))
+        if records is None:
+            return 130
+        graded = [grade_case(record) for record in records]
+        row = [profile, '%d/%d' % (sum(g['lap_genuine'] for g in graded), len(graded)),
+               str(sum(g['contact'] for g in graded)),
+               str(sum(not g['reason'] for g in graded))]
+        for _, read, worst, spec in FIGURES:
+            median, percentile, extreme = distribution([read(g) for g in graded], worst)
+            row.append('%s / %s / %s' % (fmt(median, spec), fmt(percentile, spec),
+                                         fmt(extreme, spec)))
+        rows.append(row)
+        for record, grade in zip(records, graded):
+            if grade['in_band'] is None or grade['in_band'] < MIN_IN_BAND:
+                below.append([profile, record.get('name', '?'),
+                              fmt(grade['in_band'] and 100.0 * grade['in_band'], '.1f'),
+                              grade['reason'] or '-', str(record.get('world'))])
+    print_table(['laser', 'genuine laps', 'contact', 'all passed']
+                + ['%s (median / 5 %% / worst)' % name for name, _, _, _ in FIGURES], rows)
+    print('\ncases under %.0f %% in band (or without a lap): %d' % (100 * MIN_IN_BAND,
+                                                                    len(below)))
+    if below:
+        print_table(['laser', 'case', 'in band %', 'reason', 'world'], below)
+    print('\ncase records, plots and worlds: %s/<laser>/' % out)
+    return 0

@@ -1,0 +1,314 @@
+"""`rosrun wall_follower grade PACKAGE LAUNCH_FILE [ARG:=VALUE ...]`: a course solution graded.
+
+The solution's launch file (PACKAGE LAUNCH_FILE, or a launch file's path)
+starts the course nodes only, as the course has students start the
+simulation first: per case, the grader makes a world (world_generator,
+from --seed and the case's number), starts a master of the case's own on a
+free port, the simulator (launch/grade_case.launch, paused, in lockstep,
+with the course robot's interface: scan in --laser, odom, cmd_vel) and the
+grade_case node that scores the run from ground truth, then the solution's
+launch file. When the case has ended, every process it started is ended
+(processes.ProcessGroup). Each case is one independent command (--list
+prints them, --case K runs one), so a batch system can spread a class over
+many machines; --collect DIR then builds the report from the finished
+cases.
+
+A launch file given by its path, in a directory that is no package's
+root, is run with that directory as a package named like the directory
+(made for the run in a temporary overlay), so that a solution kept outside
+any catkin workspace can name its scripts pkg="<that directory's name>".
+"""
+import argparse
+import json
+import os
+import shlex
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import uuid
+from concurrent.futures import ThreadPoolExecutor
+
+import rospkg
+
+from wall_follower.control.motion import MAX_LINEAR
+from wall_follower.evaluation import grade_report
+from wall_follower.evaluation.processes import ProcessGroup
+from wall_follower.evaluation.world_generator import (Settings, free_space_of, generate,
+                                                      world_name, write_world)
+from wall_follower.sim.laser_profiles import PROFILES
+
+DEFAULT_LASER = 'course720'
+# Simulated seconds a case may last without a lap: a start, then two laps of the
+# world's walls at the speed bound.
+LAP_ALLOWANCE = (30.0, 2.0)
+# Wall seconds for a case's master to come up.
+MASTER_LIMIT = 30.0
+_PACKAGE_XML = """<?xml version="1.0"?>
+<package format="2">
+  <name>{name}</name>
+  <version>0.0.0</version>
+  <description>A course solution under grading (made by wall_follower's grade).</description>
+  <maintainer email="grade@localhost">grade</maintainer>
+  <license>none</license>
+  <buildtool_depend>catkin</buildtool_depend>
+</package>
+"""
+
+
+class Solution(object):
+    """How to start a solution: roslaunch's arguments, and the package path it needs."""
+
+    def __init__(self, words):
+        launch = [w for w in words if ':=' not in w]
+        self.args = [w for w in words if ':=' in w]
+        self.words = list(words)
+        self.overlay = None
+        if len(launch) == 1 and launch[0].endswith('.launch'):
+            path = os.path.abspath(launch[0])
+            if not os.path.isfile(path):
+                raise ValueError('no launch file %s' % launch[0])
+            self.launch = [path]
+            if not os.path.isfile(os.path.join(os.path.dirname(path), 'package.xml')):
+                self.overlay = os.path.dirname(path)
+        elif len(launch) == 2:
+            self.launch = launch
+        else:
+            raise ValueError('expected PACKAGE LAUNCH_FILE or a .launch path, then ARG:=VALUE '
+                             'arguments; got %s' % ' '.join(words))
+
+    def command(self):
+        return ['roslaunch', '--wait'] + self.launch + self.args
+
+    def environment(self, base, scratch):
+        """base, with the solution's directory made a package under scratch if it needs one."""
+        if self.overlay is None:
+            return dict(base)
+        name = os.path.basename(self.overlay.rstrip('/'))
+        package = os.path.join(scratch, 'overlay', name)
+        if not os.path.isdir(package):
+            os.makedirs(package)
+            with open(os.path.join(package, 'package.xml'), 'w') as out:
+                out.write(_PACKAGE_XML.format(name=name))
+            for entry in os.listdir(self.overlay):
+                os.symlink(os.path.join(self.overlay, entry), os.path.join(package, entry))
+        paths = [os.path.join(scratch, 'overlay')] + [
+            p for p in base.get('ROS_PACKAGE_PATH', '').split(':') if p]
+        return dict(base, ROS_PACKAGE_PATH=':'.join(paths))
+
+
+def free_port():
+    sock = socket.socket()
+    sock.bind(('', 0))
+    port = sock.getsockname()[1]
+    sock.close()
+    return port
+
+
+def _wait_for_port(port, limit, process):
+    """Until something listens on port; False after limit wall seconds or once process ended."""
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline and process.poll() is None:
+        try:
+            socket.create_connection(('localhost', port), timeout=1.0).close()
+            return True
+        except OSError:
+            time.sleep(0.2)
+    return False
+
+
+def case_paths(out, name):
+    cases = os.path.join(out, 'cases')
+    return {key: os.path.join(cases, name + suffix)
+            for key, suffix in (('json', '.json'), ('plot', '.png'), ('log', '.log'),
+                                ('solution_log', '.solution.log'))}
+
+
+def lap_limit(world):
+    """Simulated seconds a case in world may last without a lap (see LAP_ALLOWANCE)."""
+    space = free_space_of(world)
+    walls = len(space.wall_pixels()[0]) * space.pixel
+    return LAP_ALLOWANCE[0] + LAP_ALLOWANCE[1] * walls / MAX_LINEAR
+
+
+class CaseRunner(object):
+    """Runs cases of one grading; stop_all() ends every case still running."""
+
+    def __init__(self, solution, options):
+        self.solution = solution
+        self.options = options
+        self._running = set()
+        self._lock = threading.Lock()
+        self._stopping = False
+
+    def settings(self):
+        return Settings(room=tuple(self.options.room))
+
+    def run(self, index):
+        """Run case index; returns its record (with 'error' when it wrote none)."""
+        options = self.options
+        world = generate(options.seed, index, self.settings())
+        worlds = os.path.join(options.out, 'worlds')
+        include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds', 'burger.inc')
+        world_file = write_world(world, worlds, include, options.seed, index)
+        paths = case_paths(options.out, world.name)
+        os.makedirs(os.path.dirname(paths['json']), exist_ok=True)
+        for stale in (paths['json'], paths['plot']):
+            if os.path.exists(stale):
+                os.unlink(stale)
+        port = free_port()
+        base = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+        group = ProcessGroup('%d-%s' % (os.getpid(), uuid.uuid4().hex))
+        with self._lock:
+            if self._stopping:
+                return None
+            self._running.add(group)
+        scratch = tempfile.mkdtemp(prefix='grade-')
+        try:
+            ended = self._run_processes(group, base, port, world_file, paths, lap_limit(world),
+                                        scratch)
+        finally:
+            group.stop()
+            with self._lock:
+                self._running.discard(group)
+        record = grade_report.read_record(paths['json'])
+        if record is None:
+            record = {'world': world_file, 'error': 'the case wrote no record (%s; see %s)' % (
+                ended, paths['log'])}
+        record.update(name=world.name, world=world_file, index=index, seed=options.seed,
+                      laser=options.laser, solution_command=' '.join(self.solution.words),
+                      plot=paths['plot'] if os.path.exists(paths['plot']) else None)
+        with open(paths['json'], 'w') as stream:
+            json.dump(record, stream, indent=1)
+        return record
+
+    def _run_processes(self, group, base, port, world_file, paths, limit, scratch):
+        """Start the case's processes and wait for its end; returns how it ended, in words."""
+        options = self.options
+        case_args = {'world': world_file, 'json': paths['json'], 'plot': paths['plot'],
+                     'simulator': options.simulator, 'laser_profile': options.laser,
+                     'seed': str(options.seed), 'speedup': str(options.speedup),
+                     'lockstep': 'true', 'paused': 'true',
+                     'action_ns': options.action_ns, 'time_limit': '%.0f' % limit,
+                     'start_limit': str(options.start_limit)}
+        grading = ['roslaunch', '-p', str(port), 'wall_follower', 'grade_case.launch'] + [
+            '%s:=%s' % item for item in sorted(case_args.items())]
+        with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
+            watcher = group.start(grading, base, log)
+            if not _wait_for_port(port, MASTER_LIMIT, watcher):
+                return 'its master did not start'
+            group.start(self.solution.command(), self.solution.environment(base, scratch),
+                        solution_log)
+            try:
+                watcher.wait(timeout=options.timeout)
+            except subprocess.TimeoutExpired:
+                return 'it ran out of its %.0f wall seconds' % options.timeout
+        return 'it ended'
+
+    def stop_all(self):
+        with self._lock:
+            self._stopping = True
+            running = list(self._running)
+        for group in running:
+            group.stop()
+
+
+def case_command(solution_words, options, index):
+    """The command line of one case, for --list."""
+    words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + [
+        '--seed', str(options.seed), '--case', str(index), '--laser', options.laser,
+        '--speedup', str(options.speedup), '--action-ns', options.action_ns,
+        '--timeout', str(options.timeout), '--start-limit', str(options.start_limit),
+        '--simulator', options.simulator,
+        '--room', str(options.room[0]), str(options.room[1]), '--out', options.out]
+    return ' '.join(shlex.quote(w) for w in words)
+
+
+def parser():
+    p = argparse.ArgumentParser(
+        prog='grade', description=__doc__.split('\n\n')[0],
+        epilog='examples: grade my_course main.launch; grade ~/sub/alice.launch --worlds 20 '
+               '--jobs 2; grade my_course main.launch --list > cases.txt; '
+               'grade --collect DIR')
+    p.add_argument('solution', nargs='*',
+                   help='PACKAGE LAUNCH_FILE, or the path of a launch file, then ARG:=VALUE')
+    p.add_argument('--worlds', type=int, default=10, help='generated worlds (default 10)')
+    p.add_argument('--seed', type=int, default=0, help='seed of the generated worlds (default 0)')
+    p.add_argument('--jobs', type=int, default=1, help='cases run at once (default 1)')
+    p.add_argument('--laser', default=DEFAULT_LASER, choices=PROFILES,
+                   help='laser profile of the scan (default %s, the course robot\'s)'
+                   % DEFAULT_LASER)
+    p.add_argument('--speedup', type=float, default=0.0,
+                   help='simulated seconds per wall second at most; 0 (default): as fast as '
+                   'the solution answers (lockstep); 1 for solutions that time with time.sleep')
+    p.add_argument('--action-ns', default='record_odom',
+                   help='namespace of the record_odom action (default record_odom)')
+    p.add_argument('--timeout', type=float, default=900.0,
+                   help='wall seconds a case may take (default 900)')
+    p.add_argument('--start-limit', type=float, default=30.0,
+                   help='wall seconds the solution has to start its nodes (default 30)')
+    p.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
+                   help='builtin (default) or stage: real stageros in its window')
+    p.add_argument('--room', type=float, nargs=2, default=list(Settings().room),
+                   metavar=('SHORTEST', 'LONGEST'),
+                   help='sides of the generated main rooms [m] (default %.1f %.1f)'
+                   % Settings().room)
+    p.add_argument('--out', default='grades', help='output directory (default ./grades)')
+    p.add_argument('--list', action='store_true',
+                   help='print one command per case, to run anywhere, then --collect')
+    p.add_argument('--case', type=int, help='run only this case (0 .. worlds-1)')
+    p.add_argument('--collect', metavar='DIR',
+                   help='build DIR/grades.json and DIR/report.html from its finished cases')
+    return p
+
+
+def _interrupt(_number, _frame):
+    raise KeyboardInterrupt
+
+
+def main(argv=None):
+    options = parser().parse_args(argv)
+    if options.collect:
+        return grade_report.collect(options.collect)
+    options.out = os.path.abspath(options.out)
+    try:
+        solution = Solution(options.solution)
+    except ValueError as err:
+        sys.stderr.write('grade: %s\n' % err)
+        return 2
+    if options.list:
+        for index in range(options.worlds):
+            print(case_command(options.solution, options, index))
+        return 0
+    indices = [options.case] if options.case is not None else list(range(options.worlds))
+    records = run_cases(solution, options, indices)
+    if records is None:
+        sys.stderr.write('grade: interrupted; every case it started has ended\n')
+        return 130
+    if options.case is not None:
+        grade_report.print_table([r for r in records if r])
+        return 0
+    return grade_report.collect(options.out, [world_name(options.seed, i) for i in indices])
+
+
+def run_cases(solution, options, indices):
+    """The records of cases indices, options.jobs at a time; None when interrupted.
+
+    SIGINT or SIGTERM ends every case still running (and every process it
+    started) before this returns.
+    """
+    runner = CaseRunner(solution, options)
+    previous = signal.signal(signal.SIGTERM, _interrupt)
+    pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
+    try:
+        futures = [pool.submit(runner.run, index) for index in indices]
+        return [future.result() for future in futures]
+    except KeyboardInterrupt:
+        runner.stop_all()
+        return None
+    finally:
+        pool.shutdown(wait=True)
+        signal.signal(signal.SIGTERM, previous)

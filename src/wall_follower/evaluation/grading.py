@@ -1,0 +1,206 @@
+"""The grade of one course run, criterion by criterion, from ground-truth figures.
+
+A case record (what nodes/grade_case.py writes for one world) holds only
+what the simulator's ground truth and the world map say, and what the
+solution's record_odom action sent; nothing the solution says about its
+own position counts. Each criterion passes or fails with its reason in
+words:
+
+- find_wall: where the lap began (the record_odom goal), the wall on the
+  right is FIND_WALL_DISTANCE away and the heading within
+  FIND_WALL_HEADING of parallel to it;
+- lap: the action's result came (never: it did not), and not before the
+  robot had truly come back to where the lap began (premature: declared
+  at under LAP_SHARE of the true lap);
+- following: at least MIN_IN_BAND of the lap in the band [0.20, 0.30] m;
+- safety: no contact, and no command above the robot's limits;
+- recording: a point every second and feedback within FEEDBACK_ERROR of
+  the true distance travelled.
+"""
+import math
+from collections import OrderedDict
+
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.evaluation.scoring import taken_every
+
+FIND_WALL_DISTANCE = (0.25, 0.35)
+FIND_WALL_HEADING = math.radians(10.0)
+LAP_SHARE = 0.9
+MIN_IN_BAND = 0.97
+FEEDBACK_ERROR = 0.05
+SAMPLE_PERIOD = 1.0
+# A point is taken at an odometry message (10 Hz in Stage) by a timer of its own:
+# either can be a step late.
+SAMPLE_TOLERANCE = 0.25
+# Commands are floats sent over the wire: a hair over the limit is rounding.
+LIMIT_TOLERANCE = 1e-3
+CRITERIA = ('find_wall', 'lap', 'following', 'safety', 'recording')
+
+
+def _number(value):
+    """value as a float, None for a missing or NaN figure."""
+    if value is None:
+        return None
+    value = float(value)
+    return None if value != value else value
+
+
+def judge_find_wall(case):
+    """(passed, reason) of find_wall, from the pose where the lap began."""
+    solution = case.get('solution', {})
+    if not solution.get('find_wall_service'):
+        return False, 'no find_wall service was ever advertised'
+    figures = case.get('figures', {})
+    distance = _number(figures.get('found_distance'))
+    heading = _number(figures.get('found_heading_error_deg'))
+    where = 'when the lap began' if case.get('goal_time') is not None else \
+        'at the end (no record_odom goal was sent)'
+    if not case.get('moved_before_lap', True):
+        return False, 'the robot had not moved %s: find_wall did nothing or was never called' % (
+            where)
+    if distance is None:
+        return False, 'no wall within 30 deg of the right %s' % where
+    low, high = FIND_WALL_DISTANCE
+    if not low <= distance <= high:
+        return False, 'the wall on the right was %.2f m away %s (%.2f-%.2f m expected)' % (
+            distance, where, low, high)
+    if abs(heading) > math.degrees(FIND_WALL_HEADING):
+        return False, 'the heading was %.0f deg off parallel to the wall %s (%.0f deg at most)' % (
+            abs(heading), where, math.degrees(FIND_WALL_HEADING))
+    if case.get('goal_time') is None:
+        return False, 'the wall was found, but no record_odom goal was ever sent'
+    return True, ''
+
+
+def lap_outcome(case):
+    """'genuine', 'premature' or 'never', and the reason for the last two (or a late lap)."""
+    if case.get('result_status') != 'succeeded':
+        if case.get('result_status'):
+            return 'never', 'record_odom ended its goal without a lap (%s)' % case['result_status']
+        return 'never', 'no lap was declared (%s)' % (case.get('end_reason') or 'no reason known')
+    declared = _number(case.get('declared_distance'))
+    true_lap = _number(case.get('true_lap'))
+    if true_lap is None:
+        return 'premature', ('the lap was declared after %.1f m, but the robot never came back '
+                             'to where it began' % (declared or 0.0))
+    if declared is None or declared < LAP_SHARE * true_lap:
+        return 'premature', 'the lap was declared after %.1f m of a %.1f m lap' % (
+            declared or 0.0, true_lap)
+    if declared > (2.0 - LAP_SHARE) * true_lap:
+        return 'genuine', 'the lap was declared late: after %.1f m of a %.1f m lap' % (
+            declared, true_lap)
+    return 'genuine', ''
+
+
+def judge_lap(case):
+    outcome, reason = lap_outcome(case)
+    return outcome == 'genuine' and not reason, reason
+
+
+def judge_following(case):
+    in_band = _number(case.get('figures', {}).get('time_in_band'))
+    if case.get('result_status') != 'succeeded' or in_band is None:
+        return False, 'no lap to judge the following on'
+    if in_band < MIN_IN_BAND:
+        reason = 'only %.1f %% of the lap within 0.20-0.30 m of the wall (%.0f %% needed)' % (
+            100.0 * in_band, 100.0 * MIN_IN_BAND)
+        stretches = case.get('out_of_band') or []
+        if stretches:
+            worst = stretches[0]
+            distance = _number(worst['distance'])
+            reason += ', the longest stretch out %.1f s from (%.2f, %.2f), %s' % (
+                worst['seconds'], worst['x'], worst['y'],
+                'no wall on the right' if distance is None or math.isinf(distance)
+                else 'at worst %.2f m from the wall' % distance)
+        return False, reason
+    return True, ''
+
+
+def judge_safety(case):
+    figures = case.get('figures', {})
+    reasons = []
+    if figures.get('contact'):
+        reasons.append('the robot touched an obstacle')
+    linear = _number(figures.get('max_linear')) or 0.0
+    angular = _number(figures.get('max_angular')) or 0.0
+    if linear > MAX_LINEAR + LIMIT_TOLERANCE:
+        reasons.append('commanded %.2f m/s (limit %.2f)' % (linear, MAX_LINEAR))
+    if angular > MAX_ANGULAR + LIMIT_TOLERANCE:
+        reasons.append('commanded %.2f rad/s (limit %.2f)' % (angular, MAX_ANGULAR))
+    return not reasons, '; '.join(reasons)
+
+
+def judge_recording(case):
+    if case.get('result_status') != 'succeeded':
+        return False, 'no record_odom result to judge'
+    spans = case.get('recorded_spans') or []
+    if len(spans) < 2:
+        return False, 'the result holds %d point(s)' % len(spans)
+    # The last point closes the lap when it ends, off the once-a-second grid.
+    if not taken_every(spans[:-1], SAMPLE_PERIOD, SAMPLE_TOLERANCE):
+        gaps = [later[0] - earlier[0] for earlier, later in zip(spans[:-1], spans[1:-1])]
+        return False, 'points not taken once a second (gaps %.2f-%.2f s)' % (min(gaps), max(gaps))
+    feedback = _number(case.get('figures', {}).get('recorded_distance'))
+    truth = _number(case.get('figures', {}).get('true_distance'))
+    if feedback is None:
+        return False, 'no feedback was sent'
+    if not case.get('feedback_rising', True):
+        return False, 'the feedback went down'
+    if truth and abs(feedback - truth) > FEEDBACK_ERROR * truth:
+        return False, 'the feedback said %.2f m, the robot truly went %.2f m' % (feedback, truth)
+    return True, ''
+
+
+_JUDGES = OrderedDict([('find_wall', judge_find_wall), ('lap', judge_lap),
+                       ('following', judge_following), ('safety', judge_safety),
+                       ('recording', judge_recording)])
+
+
+def grade_case(case):
+    """A case's grade: grades.json's fields for it, with every criterion's verdict."""
+    if case.get('error'):
+        criteria = OrderedDict((name, {'passed': False, 'reason': case['error']})
+                               for name in CRITERIA)
+        outcome = 'never'
+    else:
+        criteria = OrderedDict()
+        for name, judge in _JUDGES.items():
+            passed, reason = judge(case)
+            criteria[name] = {'passed': bool(passed), 'reason': reason}
+        outcome, _ = lap_outcome(case)
+    figures = case.get('figures', {})
+    in_band = _number(figures.get('time_in_band')) if outcome != 'never' else None
+    reasons = []
+    for name, verdict in criteria.items():
+        if not verdict['passed'] and verdict['reason'] not in reasons:
+            reasons.append(verdict['reason'])
+    return OrderedDict([
+        ('world', case.get('world')),
+        ('lap_genuine', outcome == 'genuine'),
+        ('premature', outcome == 'premature'),
+        ('find_wall_ok', criteria['find_wall']['passed']),
+        ('in_band', in_band),
+        ('contact', bool(figures.get('contact'))),
+        ('reason', '; '.join(reasons)),
+        ('criteria', criteria),
+        ('rms_error', _number(figures.get('rms_error')) if outcome != 'never' else None),
+        ('lap_time_ratio', _number(figures.get('lap_time_ratio')) if outcome != 'never' else None),
+        ('max_linear', _number(figures.get('max_linear'))),
+        ('max_angular', _number(figures.get('max_angular'))),
+        ('find_wall_distance', _number(figures.get('found_distance'))),
+        ('find_wall_heading_deg', _number(figures.get('found_heading_error_deg'))),
+        ('find_wall_time', _number(case.get('find_wall_time'))),
+        ('action_result_type', case.get('solution', {}).get('result_point_type')),
+        ('plot', case.get('plot')),
+    ])
+
+
+def grades(cases):
+    """grades.json: the summary and every case's grade, cases in the order given."""
+    graded = [grade_case(case) for case in cases]
+    return OrderedDict([
+        ('summary', OrderedDict([('cases', len(graded)),
+                                 ('laps', sum(1 for g in graded if g['lap_genuine'])),
+                                 ('passed', sum(1 for g in graded if not g['reason']))])),
+        ('cases', graded),
+    ])

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""rostest: `grade` run as a user runs it, on small generated worlds.
+
+~suite package: this package's own main.launch on 3 generated worlds
+passes every criterion. ~suite broken: each deliberately broken solution
+of test/solutions fails the criteria its fault breaks, with the reason in
+words, and passes the ones it does not. Either way, once grade has
+returned, no process it started is left. The graders run on masters of
+their own; this test's master is not used.
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from concurrent.futures import ThreadPoolExecutor
+
+import rospy
+import rostest
+
+from wall_follower.evaluation.processes import TOKEN_VARIABLE
+
+SOLUTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'solutions')
+# Small worlds, and a short start limit: every case takes seconds, not minutes.
+SMALL = ['--room', '1.8', '2.4', '--seed', '5', '--start-limit', '10', '--timeout', '200']
+BROKEN = ('never_calls_find_wall', 'early_lap', 'into_wall', 'crash_at_start')
+
+
+def left_behind(pid):
+    """Ids of processes still carrying a case token of the grade whose id is pid."""
+    needle = ('%s=%d-' % (TOKEN_VARIABLE, pid)).encode()
+    found = []
+    for entry in os.listdir('/proc'):
+        if entry.isdigit():
+            try:
+                with open('/proc/%s/environ' % entry, 'rb') as stream:
+                    if needle in stream.read():
+                        found.append(int(entry))
+            except (IOError, OSError):
+                pass
+    return found
+
+
+def grade(words, out):
+    """Run grade with words into out; (its exit status, its pid, grades.json, its output)."""
+    process = subprocess.Popen(['rosrun', 'wall_follower', 'grade'] + words + ['--out', out],
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               universal_newlines=True)
+    output, _ = process.communicate()
+    try:
+        with open(os.path.join(out, 'grades.json')) as stream:
+            grades = json.load(stream)
+    except (IOError, ValueError):
+        grades = None
+    return process.returncode, process.pid, grades, output
+
+
+class GradePackage(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.out = tempfile.mkdtemp(prefix='grade_package-')
+        cls.status, cls.pid, cls.grades, cls.output = grade(
+            ['wall_follower', 'main.launch', '--worlds', '3', '--jobs', '2'] + SMALL, cls.out)
+
+    def test_every_criterion_passes(self):
+        self.assertEqual(self.status, 0, self.output)
+        self.assertEqual(self.grades['summary']['cases'], 3, self.output)
+        self.assertEqual(self.grades['summary']['laps'], 3, self.output)
+        for case in self.grades['cases']:
+            self.assertEqual(case['reason'], '', case)
+            self.assertTrue(all(v['passed'] for v in case['criteria'].values()), case)
+            self.assertFalse(case['premature'] or case['contact'], case)
+            self.assertGreaterEqual(case['in_band'], 0.97, case)
+
+    def test_report_shows_every_case_with_its_path(self):
+        with open(os.path.join(self.out, 'report.html')) as stream:
+            report = stream.read()
+        for case in self.grades['cases']:
+            self.assertTrue(os.path.isfile(case['plot']), case)
+            self.assertIn(os.path.relpath(case['plot'], self.out), report)
+
+    def test_nothing_left_running(self):
+        self.assertEqual(left_behind(self.pid), [])
+
+
+class GradeBroken(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        root = tempfile.mkdtemp(prefix='grade_broken-')
+
+        def run(name):
+            launch = os.path.join(SOLUTIONS, name, 'solution.launch')
+            return grade([launch, '--worlds', '1'] + SMALL, os.path.join(root, name))
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            cls.runs = dict(zip(BROKEN, pool.map(run, BROKEN)))
+
+    def case(self, name):
+        status, _, grades, output = self.runs[name]
+        self.assertEqual(status, 0, output)
+        self.assertEqual(len(grades['cases']), 1, output)
+        return grades['cases'][0]
+
+    def test_never_calling_find_wall_fails_find_wall(self):
+        case = self.case('never_calls_find_wall')
+        self.assertFalse(case['find_wall_ok'], case)
+        self.assertIn('never called', case['criteria']['find_wall']['reason'])
+        self.assertFalse(case['contact'], case)
+
+    def test_a_lap_declared_after_6_m_is_premature(self):
+        case = self.case('early_lap')
+        self.assertTrue(case['premature'], case)
+        self.assertFalse(case['lap_genuine'], case)
+        # 6 m by its own sum of points a second apart; a little more along the true path.
+        self.assertRegex(case['criteria']['lap']['reason'], r'declared after 6\.[0-4] m')
+        self.assertTrue(case['find_wall_ok'], case)
+        self.assertFalse(case['contact'], case)
+
+    def test_driving_into_the_wall_is_contact_and_no_lap(self):
+        case = self.case('into_wall')
+        self.assertTrue(case['contact'], case)
+        self.assertIn('touched an obstacle', case['criteria']['safety']['reason'])
+        self.assertFalse(case['lap_genuine'] or case['premature'], case)
+        self.assertIsNone(case['in_band'], case)
+        self.assertTrue(case['find_wall_ok'], case)
+
+    def test_a_crash_at_start_fails_everything_and_says_why(self):
+        case = self.case('crash_at_start')
+        # Safe it is: it never moved.
+        self.assertTrue(case['criteria'].pop('safety')['passed'], case)
+        self.assertFalse(any(v['passed'] for v in case['criteria'].values()), case)
+        self.assertIn('no find_wall service', case['reason'])
+        self.assertIn('crashed or ended', case['reason'])
+
+    def test_nothing_left_running(self):
+        for name, (_, pid, _, _) in self.runs.items():
+            self.assertEqual(left_behind(pid), [], name)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_grade')
+    suite = rospy.get_param('~suite')
+    rostest.rosrun('wall_follower', 'check_grade_' + suite,
+                   {'package': GradePackage, 'broken': GradeBroken}[suite], sys.argv)
