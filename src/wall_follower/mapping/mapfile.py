@@ -64,6 +64,11 @@ def map_problem(width, height, cells, resolution, origin):
         return 'the map has no cells (%d x %d)' % (width, height)
     if cells != width * height:
         return '%d values do not fill %d x %d cells' % (cells, width, height)
+    return _placement_problem(resolution, origin)
+
+
+def _placement_problem(resolution, origin):
+    """What makes a map's resolution [m] or origin (x, y, yaw) unusable; None if nothing."""
     if not (math.isfinite(resolution) and resolution > 0.0):
         return 'resolution %r is not a positive length' % resolution
     if len(origin) != 3 or not all(math.isfinite(value) for value in origin):
@@ -161,11 +166,9 @@ def _read_description(yaml_path):
         raise ValueError('%s: not a map_server map description (%s)' % (yaml_path, err))
     if not isinstance(image, str) or not image:
         raise ValueError('%s: image must name a file' % yaml_path)
-    if not (math.isfinite(resolution) and resolution > 0.0):
-        raise ValueError('%s: resolution %r is not a positive length' % (yaml_path, resolution))
-    if len(origin) != 3 or not all(math.isfinite(value) for value in origin):
-        raise ValueError('%s: origin %r is not three finite numbers (x, y, yaw)' % (
-            yaml_path, list(origin)))
+    problem = _placement_problem(resolution, origin)
+    if problem:
+        raise ValueError('%s: %s' % (yaml_path, problem))
     if not os.path.isabs(image):
         image = os.path.join(os.path.dirname(os.path.abspath(yaml_path)), image)
     if not os.path.isfile(image):
