@@ -118,16 +118,33 @@ static void shade(const struct camera_scene *scene, const struct camera_view *vi
 }
 
 /* Per-frame facts of a scene: each solid's distance from the eye in xy, and whether its
- * sides are hidden (the eye is above the solid and over its top: every ray reaching a
- * side passes through the top first). */
+ * sides are hidden: the eye is over the solid's top and so far above it that every ray
+ * reaching a side passes through the top first, beyond the near clip (nearer, the top
+ * is clipped away and the sides seen from inside show through, as in OpenGL).
+ * steepest: the largest |z| of a pixel ray. */
 static void prepare(const struct camera_scene *scene, const struct camera_view *view,
-                    double *reach, uint8_t *hidden_sides)
+                    double steepest, double *reach, uint8_t *hidden_sides)
 {
     for (int64_t s = 0; s < scene->solid_count; ++s) {
         reach[s] = box_distance(scene->bounds + 4 * s, view->eye[0], view->eye[1]);
-        hidden_sides[s] = view->eye[2] > scene->zspan[2 * s + 1] && reach[s] == 0.0 &&
-            inside(scene, s, view->eye[0], view->eye[1]);
+        hidden_sides[s] = view->eye[2] - scene->zspan[2 * s + 1] >= view->near_clip * steepest &&
+            reach[s] == 0.0 && inside(scene, s, view->eye[0], view->eye[1]);
     }
+}
+
+/* The largest |z| of the pixel rays: z is linear in u and v, so it is at a corner. */
+static double steepest_ray(const struct camera_view *view)
+{
+    const double *b = view->basis;
+    double most = 0.0;
+    for (int corner = 0; corner < 4; ++corner) {
+        double u = view->u[corner & 1 ? view->width - 1 : 0];
+        double v = view->v[corner & 2 ? view->height - 1 : 0];
+        double z = fabs(b[2] + u * b[5] + v * b[8]);
+        if (z > most)
+            most = z;
+    }
+    return most;
 }
 
 /* Renders `view` over `scene_count` scenes; reach and hidden_sides are scratch space
@@ -136,8 +153,9 @@ void camera_render(const struct camera_scene *scenes, int64_t scene_count,
                    const struct camera_view *view, double *reach, uint8_t *hidden_sides)
 {
     int64_t offset = 0;
+    const double steepest = steepest_ray(view);
     for (int64_t k = 0; k < scene_count; ++k) {
-        prepare(scenes + k, view, reach + offset, hidden_sides + offset);
+        prepare(scenes + k, view, steepest, reach + offset, hidden_sides + offset);
         offset += scenes[k].solid_count;
     }
     const double ex = view->eye[0], ey = view->eye[1], ez = view->eye[2];

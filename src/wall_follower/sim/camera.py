@@ -48,7 +48,8 @@ CameraMount = namedtuple('CameraMount', ['x', 'y', 'z', 'rotation'])
 
 CameraFrame = namedtuple('CameraFrame', [
     'rgba',    # (height, width, 4) uint8, rows top-down
-    'depth',   # (height, width) float32 [m] along the optical axis; -inf / +inf as stageros
+    'depth',   # (height, width) float32 [m] along the optical axis; +inf where nothing is
+               # drawn (nothing nearer than `near` is drawn, so stageros' -inf never occurs)
 ])
 
 
@@ -102,7 +103,9 @@ def _box_edges(center_x, center_y, yaw, length, width):
 
 def body_solids(spec, pose):
     """A robot's body box and its ranger's box at world pose (x, y, yaw), as Stage draws them
-    (each child model stacked on top of the body)."""
+    (each child model stacked on top of the body). The camera's own box is left out: the
+    eye sits on its base, so that only rays up into it could meet it, nearer than any
+    sensible near clip."""
     x, y, yaw = pose
     cosa, sina = math.cos(yaw), math.sin(yaw)
 
