@@ -27,22 +27,18 @@ import json
 import os
 import re
 import shutil
-import signal
-import subprocess
-import sys
 import tempfile
 import threading
-import time
 
 import numpy as np
-import rosgraph
 import rospy
 from PIL import Image as PilImage
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image
 from tf2_msgs.msg import TFMessage
 
-from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
+from real_stage_session import stage_session, start, stop
+
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORLDS = os.path.join(REPO, 'worlds')
@@ -135,22 +131,6 @@ class Catch(object):
             sub.unregister()
 
 
-def start(command, log, env):
-    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
-                            start_new_session=True)
-
-
-def stop(process):
-    """End a process this script started, and its children, by its group id."""
-    if process.poll() is None:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-
-
 def record_pose(index, pose, wrapper, log, env, out):
     world, x, y, yaw_deg, camera_z = pose
     directory = tempfile.mkdtemp(prefix='stage-camera-world-')
@@ -191,32 +171,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('--out', default=OUT)
     args = parser.parse_args()
-    wrapper = display_wrapper()
-    if wrapper is None:
-        sys.exit('record_stage_camera: Stage\'s window needs a display or xvfb-run')
-    if shutil.which('rosrun') is None or subprocess.call(
-            ['rospack', 'find', 'stage_ros'], stdout=subprocess.DEVNULL) != 0:
-        sys.exit('record_stage_camera: stage_ros not found: source real Stage\'s setup.bash')
     if not os.path.isdir(args.out):
         os.makedirs(args.out)
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port,
-               ROS_LOG_DIR=tempfile.mkdtemp(prefix='stage-camera-log-'))
-    os.environ.update(env)
-    log = open(os.path.join(env['ROS_LOG_DIR'], 'processes.log'), 'w')
-    roscore = start(['roscore', '-p', str(port)], log, env)
-    try:
-        while not rosgraph.is_master_online():
-            time.sleep(0.2)
-        rospy.init_node('record_stage_camera', disable_signals=True)
+    with stage_session('record_stage_camera') as (wrapper, log, env):
         rospy.set_param('/use_sim_time', True)
         frames = []
         for index, pose in enumerate(POSES):
             print('== pose %d: %s (%.2f, %.2f, %.1f deg), camera z %s' % ((index,) + pose))
             frames.append(record_pose(index, pose, wrapper, log, env, args.out))
-    finally:
-        stop(roscore)
-        log.close()
     document = {
         'schema': 'stage_camera/1',
         'description': 'Real Stage camera frames of the line worlds at fixed robot poses '

@@ -25,25 +25,20 @@ import datetime
 import json
 import math
 import os
-import shutil
-import signal
-import subprocess
-import sys
-import tempfile
 import threading
 import time
 
-import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
-from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
 from wall_follower.evaluation.stage_odometry import (GROUND_TRUTH_FIELDS, ODOM_FIELDS,
                                                      step_scale_errors)
 from wall_follower.sim.worldfile import load_world
+
+from real_stage_session import stage_session, start, stop
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'test', 'data',
                     'stage_reference')
@@ -141,22 +136,6 @@ class Recorder(object):
         self.wait_ticks(int(round(seconds / INTERVAL)))
 
 
-def start(command, log, env):
-    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
-                            start_new_session=True)
-
-
-def stop(process):
-    """End a process this script started, and its children, by its group id."""
-    if process.poll() is None:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-
-
 def record_run(name, world_file, wrapper, log, env):
     world = load_world(os.path.join(DATA, world_file))
     recorder = Recorder(len(world.robots))
@@ -227,31 +206,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('--out', default=os.path.join(DATA, 'stage_odometry.json'))
     args = parser.parse_args()
-    wrapper = display_wrapper()
-    if wrapper is None:
-        sys.exit('record_stage_odometry: Stage\'s window needs a display or xvfb-run')
-    if shutil.which('rosrun') is None or subprocess.call(
-            ['rospack', 'find', 'stage_ros'], stdout=subprocess.DEVNULL) != 0:
-        sys.exit('record_stage_odometry: stage_ros not found: source real Stage\'s setup.bash')
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port,
-               ROS_LOG_DIR=tempfile.mkdtemp(prefix='stage-odometry-log-'))
-    os.environ.update(env)
-    log = open(os.path.join(env['ROS_LOG_DIR'], 'processes.log'), 'w')
-    roscore = start(['roscore', '-p', str(port)], log, env)
-    try:
-        while not rosgraph.is_master_online():
-            time.sleep(0.2)
-        rospy.init_node('record_stage_odometry', disable_signals=True)
+    with stage_session('record_stage_odometry') as (wrapper, log, env):
         runs = []
         for name, world_file in RUNS:
             print('== %s: %s' % (name, world_file))
             runs.append(record_run(name, world_file, wrapper, log, env))
             summary(runs[-1])
             time.sleep(1.5)   # a new second: Stage seeds its default draw from the clock
-    finally:
-        stop(roscore)
-        log.close()
     with open(args.out, 'w') as stream:
         json.dump(document(runs), stream, separators=(',', ':'))
         stream.write('\n')

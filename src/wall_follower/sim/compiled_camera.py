@@ -10,31 +10,23 @@ import ctypes
 
 import numpy as np
 
+from wall_follower.sim.compiled_library import (ADDRESS, DOUBLE, INT, address, load_function,
+                                                missing_message)
+
 __all__ = ['LIBRARY', 'MISSING', 'available', 'SceneTables', 'render']
 
 LIBRARY = 'libwall_follower_camera.so'
-MISSING = ("the simulator's camera needs %s (built from src/stage_camera.c by catkin_make), "
-           "which is not on LD_LIBRARY_PATH: run catkin_make in the catkin workspace, then "
-           "source its devel/setup.bash" % LIBRARY)
-
-_INT = ctypes.c_int64
-_DOUBLE = ctypes.c_double
-_ADDRESS = ctypes.c_void_p
-
-
-def _address(array, dtype):
-    array = np.ascontiguousarray(array, dtype=dtype)
-    return array, array.ctypes.data
+MISSING = missing_message(LIBRARY, "the simulator's camera", 'src/stage_camera.c')
 
 
 class SceneTables(ctypes.Structure):
     """struct camera_scene: a list of camera.Solid packed into flat arrays."""
 
-    _fields_ = [('solid_count', _INT), ('edges', _ADDRESS), ('edge_start', _ADDRESS),
-                ('zspan', _ADDRESS), ('bounds', _ADDRESS), ('colors', _ADDRESS),
-                ('sides', _ADDRESS), ('raster', _ADDRESS), ('raster_start', _ADDRESS),
-                ('raster_shape', _ADDRESS), ('raster_origin', _ADDRESS),
-                ('raster_cell', _DOUBLE)]
+    _fields_ = [('solid_count', INT), ('edges', ADDRESS), ('edge_start', ADDRESS),
+                ('zspan', ADDRESS), ('bounds', ADDRESS), ('colors', ADDRESS),
+                ('sides', ADDRESS), ('raster', ADDRESS), ('raster_start', ADDRESS),
+                ('raster_shape', ADDRESS), ('raster_origin', ADDRESS),
+                ('raster_cell', DOUBLE)]
 
     def __init__(self, solids, raster_cell):
         count = len(solids)
@@ -65,8 +57,8 @@ class SceneTables(ctypes.Structure):
             (raster_start, np.int64), (raster_shape, np.int64), (raster_origin, np.float64)]
         kept, pointers = [], []
         for values, dtype in arrays:
-            array, pointer = _address(np.asarray(values, dtype=dtype).reshape(-1)
-                                      if len(values) else np.zeros(1, dtype), dtype)
+            array, pointer = address(np.asarray(values, dtype=dtype).reshape(-1)
+                                     if len(values) else np.zeros(1, dtype), dtype)
             kept.append(array)
             pointers.append(pointer)
         super(SceneTables, self).__init__(count, *(pointers + [float(raster_cell)]))
@@ -77,26 +69,16 @@ class ViewTables(ctypes.Structure):
     """struct camera_view: the pixel grid, the camera's axes, the eye, the clip range,
     the floor, and the output arrays."""
 
-    _fields_ = [('width', _INT), ('height', _INT), ('u', _ADDRESS), ('v', _ADDRESS),
-                ('basis', _DOUBLE * 9), ('eye', _DOUBLE * 3),
-                ('near_clip', _DOUBLE), ('far_clip', _DOUBLE), ('floor_bounds', _DOUBLE * 4),
+    _fields_ = [('width', INT), ('height', INT), ('u', ADDRESS), ('v', ADDRESS),
+                ('basis', DOUBLE * 9), ('eye', DOUBLE * 3),
+                ('near_clip', DOUBLE), ('far_clip', DOUBLE), ('floor_bounds', DOUBLE * 4),
                 ('floor_color', ctypes.c_uint8 * 3), ('background', ctypes.c_uint8 * 3),
-                ('rgba', _ADDRESS), ('depth', _ADDRESS)]
+                ('rgba', ADDRESS), ('depth', ADDRESS)]
 
 
-def _load():
-    try:
-        library = ctypes.CDLL(LIBRARY)
-    except OSError:
-        return None
-    function = library.camera_render
-    function.restype = None
-    function.argtypes = [ctypes.POINTER(SceneTables), _INT, ctypes.POINTER(ViewTables),
-                         _ADDRESS, _ADDRESS]
-    return function
-
-
-_CAMERA_RENDER = _load()
+_CAMERA_RENDER = load_function(LIBRARY, 'camera_render',
+                               [ctypes.POINTER(SceneTables), INT, ctypes.POINTER(ViewTables),
+                                ADDRESS, ADDRESS])
 
 
 def available():
@@ -111,8 +93,8 @@ def render(scenes, u, v, basis, eye, clip, floor_bounds, floor_color, background
     """
     if _CAMERA_RENDER is None:
         raise RuntimeError(MISSING)
-    u, u_pointer = _address(u, np.float64)
-    v, v_pointer = _address(v, np.float64)
+    u, u_pointer = address(u, np.float64)
+    v, v_pointer = address(v, np.float64)
     count = len(u) * len(v)
     rgba = np.empty((count, 4), dtype=np.uint8)
     depth = np.empty(count, dtype=np.float32)

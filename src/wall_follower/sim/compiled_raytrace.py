@@ -13,28 +13,18 @@ import ctypes
 
 import numpy as np
 
+from wall_follower.sim.compiled_library import (ADDRESS, DOUBLE, INT, address, load_function,
+                                                missing_message)
+
 __all__ = ['LIBRARY', 'MISSING', 'LibraryMissing', 'available', 'require', 'GridTables',
            'Beams', 'trace']
 
 LIBRARY = 'libwall_follower_raytrace.so'
-MISSING = ("the simulator's laser needs %s (built from src/stage_raytrace.c by catkin_make), "
-           "which is not on LD_LIBRARY_PATH: run catkin_make in the catkin workspace, then "
-           "source its devel/setup.bash" % LIBRARY)
-
-_INT = ctypes.c_int64
-_DOUBLE = ctypes.c_double
-# A pointer field, set from a numpy array's address (cheaper per scan than a typed pointer).
-_ADDRESS = ctypes.c_void_p
+MISSING = missing_message(LIBRARY, "the simulator's laser", 'src/stage_raytrace.c')
 
 
 class LibraryMissing(RuntimeError):
     """The raytrace library is not where the dynamic loader looks; MISSING says how to build it."""
-
-
-def _address(array, dtype):
-    """`array` as the C-contiguous `dtype` array a field points into, and its address."""
-    array = np.ascontiguousarray(array, dtype=dtype)
-    return array, array.ctypes.data
 
 
 class GridTables(ctypes.Structure):
@@ -46,16 +36,16 @@ class GridTables(ctypes.Structure):
     cell by cell. Outside them nothing is visible and no region populated.
     """
 
-    _fields_ = [('visible', _ADDRESS), ('returns', _ADDRESS),
-                ('width', _INT), ('height', _INT), ('cx0', _INT), ('cy0', _INT),
-                ('populated', _ADDRESS),
-                ('region_cols', _INT), ('region_rows', _INT), ('rx0', _INT), ('ry0', _INT),
-                ('ppm', _DOUBLE)]
+    _fields_ = [('visible', ADDRESS), ('returns', ADDRESS),
+                ('width', INT), ('height', INT), ('cx0', INT), ('cy0', INT),
+                ('populated', ADDRESS),
+                ('region_cols', INT), ('region_rows', INT), ('rx0', INT), ('ry0', INT),
+                ('ppm', DOUBLE)]
 
     def __init__(self, visible, returns, cell_origin, populated, region_origin, ppm):
-        visible, visible_pointer = _address(visible, np.uint8)
-        returns, returns_pointer = _address(returns, np.float64)
-        populated, populated_pointer = _address(populated, np.uint8)
+        visible, visible_pointer = address(visible, np.uint8)
+        returns, returns_pointer = address(returns, np.float64)
+        populated, populated_pointer = address(populated, np.uint8)
         if returns.shape != visible.shape:
             raise ValueError('returns %s and visible %s differ in shape'
                              % (returns.shape, visible.shape))
@@ -76,23 +66,23 @@ class Beams(ctypes.Structure):
     the whole cells to range_max (`ppm` cells a metre) along x and y.
     """
 
-    _fields_ = [('count', _INT),
-                ('cosa', _ADDRESS), ('sina', _ADDRESS), ('tana', _ADDRESS),
-                ('ax', _ADDRESS), ('ay', _ADDRESS),
-                ('range_max', _DOUBLE),
-                ('ranges', _ADDRESS), ('intensities', _ADDRESS)]
+    _fields_ = [('count', INT),
+                ('cosa', ADDRESS), ('sina', ADDRESS), ('tana', ADDRESS),
+                ('ax', ADDRESS), ('ay', ADDRESS),
+                ('range_max', DOUBLE),
+                ('ranges', ADDRESS), ('intensities', ADDRESS)]
 
     def __init__(self, angles, range_max, ppm):
         angle = np.array(angles, dtype=np.float64)
         angle[angle == 0.0] = 1e-12
         reach = ppm * float(range_max)
-        cos, cos_pointer = _address(np.cos(angle), np.float64)
-        sin, sin_pointer = _address(np.sin(angle), np.float64)
-        tan, tan_pointer = _address(sin / cos, np.float64)
-        ax, ax_pointer = _address(np.abs(reach * cos).astype(np.int64), np.int64)
-        ay, ay_pointer = _address(np.abs(reach * sin).astype(np.int64), np.int64)
-        ranges, ranges_pointer = _address(np.empty(len(angle)), np.float64)
-        intensities, intensities_pointer = _address(np.empty(len(angle)), np.float64)
+        cos, cos_pointer = address(np.cos(angle), np.float64)
+        sin, sin_pointer = address(np.sin(angle), np.float64)
+        tan, tan_pointer = address(sin / cos, np.float64)
+        ax, ax_pointer = address(np.abs(reach * cos).astype(np.int64), np.int64)
+        ay, ay_pointer = address(np.abs(reach * sin).astype(np.int64), np.int64)
+        ranges, ranges_pointer = address(np.empty(len(angle)), np.float64)
+        intensities, intensities_pointer = address(np.empty(len(angle)), np.float64)
         super(Beams, self).__init__(len(angle), cos_pointer, sin_pointer, tan_pointer,
                                     ax_pointer, ay_pointer, float(range_max),
                                     ranges_pointer, intensities_pointer)
@@ -100,18 +90,8 @@ class Beams(ctypes.Structure):
         self.readings = (ranges, intensities)
 
 
-def _load():
-    try:
-        library = ctypes.CDLL(LIBRARY)
-    except OSError:
-        return None
-    function = library.stage_raytrace
-    function.restype = None
-    function.argtypes = [ctypes.POINTER(GridTables), ctypes.POINTER(Beams), _DOUBLE, _DOUBLE]
-    return function
-
-
-_STAGE_RAYTRACE = _load()
+_STAGE_RAYTRACE = load_function(LIBRARY, 'stage_raytrace',
+                                [ctypes.POINTER(GridTables), ctypes.POINTER(Beams), DOUBLE, DOUBLE])
 
 
 def available():
