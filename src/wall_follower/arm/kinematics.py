@@ -119,13 +119,13 @@ def arm_solutions(dimensions, point, hip_now):
     return solutions
 
 
-def inverse(model, dimensions, point, current, wrist=None):
+def inverse(model, dimensions, point, current):
     """Joint positions (model.names' order) that put the tool origin on point, within the
     limits, nearest first: ordered by the time the slowest joint needs to get there from
-    current at its speed limit. The last joint is wrist (default: its current position).
+    current at its speed limit. The last joint stays at its current position.
     Returns (solutions, reason): reason says why there is none."""
     current = np.asarray(current, dtype=float)
-    wrist = current[3] if wrist is None else wrist
+    wrist = current[3]
     triples = arm_solutions(dimensions, point, current[0])
     if not triples:
         reach = dimensions.upper + dimensions.lower

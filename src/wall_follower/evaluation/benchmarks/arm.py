@@ -20,9 +20,13 @@ import subprocess
 import tempfile
 import time
 
+import actionlib
 import numpy as np
 import rospkg
+import rospy
 import yaml
+from geometry_msgs.msg import PointStamped
+from sensor_msgs.msg import JointState
 
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.kinematics import tool_position
@@ -32,6 +36,7 @@ from wall_follower.arm.planning import Planner, PlanningError
 from wall_follower.arm.timing import fastest_duration
 from wall_follower.evaluation.benchmarks.launching import (fmt, free_port, launch_command,
                                                            print_table)
+from wall_follower.msg import MoveArmAction, MoveArmGoal
 
 
 def package_files():
@@ -96,14 +101,8 @@ def execution_trials(count, seed, speedup, timeout):
 
 
 def _execute(model, checker, velocity, acceleration, rng, count, timeout):
-    import actionlib
-    import rospy
-    from geometry_msgs.msg import PointStamped
-    from wall_follower.msg import MoveArmAction, MoveArmGoal
-
     rospy.init_node('benchmark_arm', anonymous=True, disable_signals=True)
     states = []
-    from sensor_msgs.msg import JointState
     rospy.Subscriber('joint_states', JointState, lambda msg: states.append(
         (msg.header.stamp.to_sec(), np.array(msg.position), np.array(msg.velocity))),
         queue_size=1000)
