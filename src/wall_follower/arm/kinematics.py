@@ -83,15 +83,6 @@ def planar_dimensions(model):
     return Planar(heights[0], heights[1] - heights[0], heights[2] - heights[1])
 
 
-def planar_tool_position(dimensions, positions):
-    """tool_position for a closed-form arm, without matrices (the benchmark's hot loop)."""
-    hip, shoulder, elbow = positions[0], positions[1], positions[2]
-    reach = dimensions.upper * math.sin(shoulder) + dimensions.lower * math.sin(shoulder + elbow)
-    height = dimensions.height + dimensions.upper * math.cos(shoulder) + \
-        dimensions.lower * math.cos(shoulder + elbow)
-    return np.array([reach * math.cos(hip), reach * math.sin(hip), height])
-
-
 def arm_solutions(dimensions, point, hip_now):
     """Every (first, second, third) joint triple that puts the tool origin on point,
     limits not yet applied; [] if the point is out of reach. On the vertical axis the first
