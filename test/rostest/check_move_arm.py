@@ -104,11 +104,13 @@ class MoveArmTest(unittest.TestCase):
                           t.transform.translation.z + 0.35])
         self.assert_reached(point_goal(0.45, 0.0, 0.35, frame='torso'), where)
 
-    def test_4_unreachable_below_the_floor_and_colliding_points_fail_without_motion(self):
+    def test_4_unreachable_below_the_floor_colliding_and_bad_goals_fail_without_motion(self):
         self.assert_refused(point_goal(2.0, 0.0, 0.5), 'unreachable: out of reach')
         self.assert_refused(point_goal(0.3, 0.0, -0.05), 'below the floor')
         self.assert_refused(point_goal(0.5, 0.0, 0.01), 'reachable only in collision')
         self.assert_refused(MoveArmGoal(named_target='dance'), "no named target 'dance'")
+        self.assert_refused(MoveArmGoal(named_target='ready', velocity_scaling=1.5),
+                            'velocity_scaling 1.5 is not within 0 to 1')
 
     def test_5_a_new_goal_pre_empts_and_a_cancel_stops(self):
         self.assert_reached(MoveArmGoal(named_target='home'),

@@ -8,11 +8,21 @@ import pytest
 
 from arm_files import model
 from wall_follower.arm.kinematics import (arm_solutions, inverse, link_frames,
-                                          planar_dimensions, planar_tool_position, tool_position)
+                                          planar_dimensions, tool_position)
 
 # From the URDF: base 0.05 high, torso 0.5 (to the shoulder), upper and lower arm 0.4 each.
 SHOULDER_HEIGHT = 0.55
 UPPER = LOWER = 0.4
+
+
+def planar_tool_position(dimensions, positions):
+    """The hand origin by the planar arm's trigonometry, with no matrices (an oracle for
+    tool_position and the triples of arm_solutions)."""
+    hip, shoulder, elbow = positions[0], positions[1], positions[2]
+    reach = dimensions.upper * math.sin(shoulder) + dimensions.lower * math.sin(shoulder + elbow)
+    height = dimensions.height + dimensions.upper * math.cos(shoulder) + \
+        dimensions.lower * math.cos(shoulder + elbow)
+    return np.array([reach * math.cos(hip), reach * math.sin(hip), height])
 
 
 @pytest.mark.parametrize('positions, hand', [

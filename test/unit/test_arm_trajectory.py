@@ -7,7 +7,7 @@ import pytest
 
 from arm_files import limits, model
 from wall_follower.arm.spline import CUBIC, LINEAR, QUINTIC, Segment
-from wall_follower.arm.timing import TimedMove, fastest_duration, trapezoid_duration
+from wall_follower.arm.timing import TimedMove, fastest_duration, stopping, trapezoid_duration
 from wall_follower.arm.trajectory import (Command, Rejected, Trajectory, TrajectoryPoint,
                                           accept)
 from wall_follower.sim.arm_joints import ArmJoints
@@ -102,6 +102,21 @@ def test_waypoints_fall_on_the_phase_changes_and_the_end():
 def test_a_move_to_where_the_arm_is_takes_no_time():
     move = TimedMove([0.1, 0.2], [0.1, 0.2], [1.0, 1.0], [1.0, 1.0])
     assert move.duration == 0.0 and np.allclose(move.sample(0.0)[0], [0.1, 0.2])
+
+
+def test_a_stop_spanned_as_one_point_brakes_within_the_acceleration_limits():
+    positions, velocities = np.array([0.2, -0.4, 1.0, 0.0]), np.array([0.9, -0.5, 1.1, 0.0])
+    acceleration = np.array([2.0, 2.0, 2.5, 3.0])
+    place, duration = stopping(positions, velocities, acceleration)
+    zero = np.zeros(4)
+    segment = Segment(0.0, duration, (positions, velocities, zero), (place, zero, zero))
+    samples = [segment.sample(t) for t in np.linspace(0.0, duration, 201)]
+    peak = np.max([np.abs(s[2]) for s in samples], axis=0)
+    assert (peak <= acceleration + 1e-9).all()
+    assert np.isclose(peak / acceleration, 1.0).any()       # as short as the limits allow
+    for (p, v, _), (q, _, _) in zip(samples, samples[1:]):
+        assert (np.sign(q - p) * np.sign(velocities) >= 0).all()   # no turning back
+    assert np.allclose(samples[-1][0], place) and np.allclose(samples[-1][1], 0.0)
 
 
 # --- the controller's rules ------------------------------------------------------------

@@ -83,15 +83,6 @@ def planar_dimensions(model):
     return Planar(heights[0], heights[1] - heights[0], heights[2] - heights[1])
 
 
-def planar_tool_position(dimensions, positions):
-    """tool_position for a closed-form arm, without matrices (the benchmark's hot loop)."""
-    hip, shoulder, elbow = positions[0], positions[1], positions[2]
-    reach = dimensions.upper * math.sin(shoulder) + dimensions.lower * math.sin(shoulder + elbow)
-    height = dimensions.height + dimensions.upper * math.cos(shoulder) + \
-        dimensions.lower * math.cos(shoulder + elbow)
-    return np.array([reach * math.cos(hip), reach * math.sin(hip), height])
-
-
 def arm_solutions(dimensions, point, hip_now):
     """Every (first, second, third) joint triple that puts the tool origin on point,
     limits not yet applied; [] if the point is out of reach. On the vertical axis the first
@@ -119,13 +110,13 @@ def arm_solutions(dimensions, point, hip_now):
     return solutions
 
 
-def inverse(model, dimensions, point, current, wrist=None):
+def inverse(model, dimensions, point, current):
     """Joint positions (model.names' order) that put the tool origin on point, within the
     limits, nearest first: ordered by the time the slowest joint needs to get there from
-    current at its speed limit. The last joint is wrist (default: its current position).
+    current at its speed limit. The last joint stays at its current position.
     Returns (solutions, reason): reason says why there is none."""
     current = np.asarray(current, dtype=float)
-    wrist = current[3] if wrist is None else wrist
+    wrist = current[3]
     triples = arm_solutions(dimensions, point, current[0])
     if not triples:
         reach = dimensions.upper + dimensions.lower

@@ -20,6 +20,20 @@ def trapezoid_duration(distance, velocity, acceleration):
     return 2.0 * math.sqrt(distance / acceleration)
 
 
+def stopping(positions, velocities, acceleration):
+    """Where a moving arm stops, and when [s], braking within its acceleration limits.
+
+    One quintic from (positions, velocities, no acceleration) to (the place, at rest), as
+    a trajectory controller spans a single point given with zero velocity and
+    acceleration: it travels velocities * duration / 2, and its braking peaks at
+    1.5 * velocities / duration, the acceleration limit of the joint that needs longest.
+    """
+    positions = np.asarray(positions, dtype=float)
+    velocities = np.asarray(velocities, dtype=float)
+    duration = 1.5 * float(np.max(np.abs(velocities) / np.asarray(acceleration, dtype=float)))
+    return positions + velocities * duration / 2.0, duration
+
+
 def fastest_duration(start, goal, velocity, acceleration):
     """The least time [s] the limits allow for the move, each joint on its own (a bound no
     synchronized move beats)."""

@@ -28,6 +28,7 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.planning import Planner, PlanningError
+from wall_follower.arm.timing import stopping
 from wall_follower.cfg import MoveArmConfig
 from wall_follower.msg import MoveArmAction, MoveArmFeedback, MoveArmResult
 from wall_follower.nodes.arm_description import arm_model, arm_semantics
@@ -182,13 +183,11 @@ class MoveArmServer(object):
 
     def _brake(self, state):
         """Send the arm a stop from state within its acceleration limits."""
-        positions, velocities = state[1], state[2]
-        duration = 1.5 * float(np.max(np.abs(velocities) / self.acceleration))
+        place, duration = stopping(state[1], state[2], self.acceleration)
         stop = JointTrajectory(joint_names=self.model.names)
         if duration > 1e-3:
-            place = np.clip(positions + velocities * duration / 2.0, self.model.lower,
-                            self.model.upper)
-            zero = [0.0] * len(positions)
+            place = np.clip(place, self.model.lower, self.model.upper)
+            zero = [0.0] * len(place)
             stop.points = [JointTrajectoryPoint(positions=place.tolist(), velocities=zero,
                                                 accelerations=zero,
                                                 time_from_start=rospy.Duration(duration))]

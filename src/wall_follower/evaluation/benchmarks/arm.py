@@ -6,11 +6,12 @@ and joint limits): each point is where the hand origin is at random joint positi
 within the limits and clear of the floor and of the arm itself, planned from other such
 random positions. Execution runs arm.launch on a private master in simulated time (the
 built-in controller driving /clock), sends move_arm a number of those points, and
-measures from joint_states how long each move took from its first motion to its arrival,
-against the least time any joint needs for its own part of the move within its velocity
-and acceleration limits (a bound no move that starts and stops all joints together can
-beat; planned moves follow the straight joint-space line at the pace of the joint for
-which the limits bite hardest).
+measures from joint_states how long each move took, from the last state at rest before
+it to the first at rest after it (up to two steps of joint_states, 20 ms each, more than
+the motion), against the least time any joint needs for its own part of the move within
+its velocity and acceleration limits (a bound no move that starts and stops all joints
+together can beat; planned moves follow the straight joint-space line at the pace of the
+joint for which the limits bite hardest).
 """
 import argparse
 import os
@@ -19,9 +20,13 @@ import subprocess
 import tempfile
 import time
 
+import actionlib
 import numpy as np
 import rospkg
+import rospy
 import yaml
+from geometry_msgs.msg import PointStamped
+from sensor_msgs.msg import JointState
 
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.kinematics import tool_position
@@ -31,6 +36,7 @@ from wall_follower.arm.planning import Planner, PlanningError
 from wall_follower.arm.timing import fastest_duration
 from wall_follower.evaluation.benchmarks.launching import (fmt, free_port, launch_command,
                                                            print_table)
+from wall_follower.msg import MoveArmAction, MoveArmGoal
 
 
 def package_files():
@@ -95,14 +101,8 @@ def execution_trials(count, seed, speedup, timeout):
 
 
 def _execute(model, checker, velocity, acceleration, rng, count, timeout):
-    import actionlib
-    import rospy
-    from geometry_msgs.msg import PointStamped
-    from wall_follower.msg import MoveArmAction, MoveArmGoal
-
     rospy.init_node('benchmark_arm', anonymous=True, disable_signals=True)
     states = []
-    from sensor_msgs.msg import JointState
     rospy.Subscriber('joint_states', JointState, lambda msg: states.append(
         (msg.header.stamp.to_sec(), np.array(msg.position), np.array(msg.velocity))),
         queue_size=1000)
@@ -125,8 +125,10 @@ def _execute(model, checker, velocity, acceleration, rng, count, timeout):
             trials.append((float('nan'), float('nan'), float('nan')))
             continue
         run = states[before - 1:]
-        moving = [s for s in run if np.any(np.abs(s[2]) > 1e-9)]
-        moved = moving[-1][0] - moving[0][0] + (run[1][0] - run[0][0]) if moving else 0.0
+        moving = [i for i, s in enumerate(run) if np.any(np.abs(s[2]) > 1e-9)]
+        # from the last state at rest before the motion to the first at rest after it
+        moved = run[min(moving[-1] + 1, len(run) - 1)][0] - run[max(moving[0] - 1, 0)][0] \
+            if moving else 0.0
         trials.append((moved, fastest_duration(run[0][1], run[-1][1], velocity, acceleration),
                        result.position_error))
     rospy.signal_shutdown('benchmark done')
