@@ -153,6 +153,11 @@ class DriveLoop(object):
             return command
         return Command(0.0, command.angular)
 
+    def warn(self, text):
+        """Log a warning, named as the loop's: at once when it is new, and again every
+        WARNING_PERIOD while it lasts; for answer() to say why it stops the robot."""
+        self._warn(text, self._now)
+
     def _warn(self, text, now):
         """Log a warning at once when it is new, and again every WARNING_PERIOD while it lasts."""
         last_text, last_time = self._warned
