@@ -1,5 +1,6 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
+import os
 import threading
 from collections import namedtuple
 
@@ -67,7 +68,9 @@ def init_node(name):
     main thread wherever the signal caught it. A hook that publishes (every
     driving node's last stop) then deadlocks on a publisher lock whenever
     the signal lands while the main thread is publishing, and the node
-    never exits. Here the handler only wakes a thread that shuts rospy down.
+    never exits. Here the handler only wakes a thread that shuts rospy down,
+    by a byte written to a pipe: it takes no lock, so a second signal that
+    lands while the first is being answered cannot block on one.
 
     The handler is in force before rospy.init_node starts, which can take
     seconds (registering with the master, reading /use_sim_time): a signal
@@ -75,15 +78,19 @@ def init_node(name):
     nothing. (Before this call, nodes.signals answers.)
     """
     caught = []
-    wake = threading.Event()
+    wake_read, wake_write = os.pipe()
+    os.set_blocking(wake_write, False)   # a pipe full of signals already holds a wake-up
 
     def shut_down():
-        wake.wait()
-        rospy.signal_shutdown('signal %d' % caught[0])
+        number = os.read(wake_read, 1)[0]
+        rospy.signal_shutdown('signal %d' % number)
 
     def on_signal(number):
         caught.append(number)
-        wake.set()
+        try:
+            os.write(wake_write, bytes([number]))
+        except BlockingIOError:
+            pass
 
     threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
     signals.answer_with(on_signal)
