@@ -2,6 +2,7 @@
 import math
 import os
 import threading
+import time
 from collections import namedtuple
 
 import rospy
@@ -11,6 +12,10 @@ from sensor_msgs.msg import LaserScan
 from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
 from wall_follower.nodes import signals
+
+
+FLUSH_WAIT = 0.5    # wall s a node's last stop may take to leave, at most
+FLUSH_POLL = 0.005  # wall s between two looks
 
 
 def to_twist(command):
@@ -57,8 +62,31 @@ class VelocityCommander(object):
 
     def _halt(self):
         with self._lock:
+            written = self._written()
             self._publish(STOP)
             self._halted = True
+        self._wait_written(written)
+
+    def _written(self):
+        """connection id -> (messages written to it, whether it is open), from the
+        publisher's bus statistics (what `rosnode info` shows)."""
+        return dict((c[0], (c[2], c[3])) for c in self._pub.impl.get_stats()[2])
+
+    def _wait_written(self, before):
+        """Wait, at most FLUSH_WAIT wall s, until the stop is written to every subscriber
+        connected before it.
+
+        rospy writes a queued message from a thread of each connection, and
+        closes the connections right after the shutdown hooks: a stop still
+        queued then is never sent, and the robot's last command stays a move.
+        """
+        deadline = time.monotonic() + FLUSH_WAIT
+        while time.monotonic() < deadline:
+            now = self._written()
+            if all(key not in now or now[key][0] > count or not now[key][1]
+                   for key, (count, _) in before.items()):
+                return
+            time.sleep(FLUSH_POLL)
 
 
 def init_node(name):
