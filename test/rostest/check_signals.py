@@ -46,6 +46,7 @@ from waiting import wait_until
 
 EXIT_LIMIT = 2.0      # wall s from SIGINT to the node's exit
 DELIVERY_LIMIT = 2.0  # wall s for its last command to reach this node
+LATE_LIMIT = 10.0     # wall s more that a node past EXIT_LIMIT is given, to tell late from hung
 PERIOD = 0.1          # wall s between two scans and two odometry messages
 MOMENTS = (0.5, 1.0, 1.5, 2.0, 3.0, 4.5)   # wall s from start to SIGINT
 WAVES = 3
@@ -207,13 +208,20 @@ class Run(object):
         still running."""
         os.close(self.terminal)
         if self.ended is None:
-            self.process.kill()
-            self.process.wait()
             if self.signalled is None:
+                self.process.kill()
+                self.process.wait()
                 return '%s: not signalled in %.0f s, still ignoring SIGINT' % (
                     self.label, WAVE_LIMIT)
-            return '%s: still running %.1f s after SIGINT; it wrote:\n%s' % (
-                self.label, EXIT_LIMIT, self.written())
+            try:   # late, or not ending at all? Say which.
+                self.process.wait(LATE_LIMIT)
+                ended = 'ended only %.1f s after SIGINT' % (time.monotonic() - self.signalled)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+                ended = 'still running %.0f s after SIGINT' % (EXIT_LIMIT + LATE_LIMIT)
+            return '%s: %s (limit %.1f s); it wrote:\n%s' % (
+                self.label, ended, EXIT_LIMIT, self.written())
         if self.registered_first:
             return '%s: caught SIGINT only after registering with the master' % self.label
         if self.signalled is None or self.ended < self.signalled:
