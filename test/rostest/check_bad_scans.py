@@ -39,6 +39,8 @@ NAMED = {
     'range_max below range_min': 'range_max (0.12) is not above its range_min (3.5)',
     'ranges not matching the angles': 'ranges do not match its angles',
     'nothing valid ahead': 'no valid reading within 30 deg ahead',
+    'one valid beam': 'only 1 of its 360 readings is usable (359 NaN)',
+    'one valid beam ahead': 'beams within 30 deg ahead read valid (10% needed)',
 }
 
 

@@ -46,9 +46,11 @@ from waiting import wait_until
 
 EXIT_LIMIT = 2.0      # wall s from SIGINT to the node's exit
 DELIVERY_LIMIT = 2.0  # wall s for its last command to reach this node
+LATE_LIMIT = 10.0     # wall s more that a node past EXIT_LIMIT is given, to tell late from hung
 PERIOD = 0.1          # wall s between two scans and two odometry messages
 MOMENTS = (0.5, 1.0, 1.5, 2.0, 3.0, 4.5)   # wall s from start to SIGINT
 WAVES = 3
+WAVE_LIMIT = 30.0     # wall s for every node of a wave to be signalled and to end
 ROOM = 1.2            # m from the robot to each wall of the room in the scans
 
 # script -> (arguments, whether it drives)
@@ -165,26 +167,37 @@ class Run(object):
     def step(self, now):
         """Signal the node when its moment has come; note when it has ended.
 
-        The moments count from the node's first line: what comes before (the exec,
-        the interpreter's start, seconds on a loaded machine) is no part of the
-        package. With SIGINT inherited as default, that is when Python ignores
-        SIGPIPE (this process's children start with it restored); with SIGINT
-        ignored, when the node catches SIGINT, which it must do before it
-        registers with the master (a signal ignored until then is lost for good).
+        The moments count from the node's Python start, when it ignores SIGPIPE
+        (this process's children start with it restored): what comes before (the
+        exec, seconds on a loaded machine) is no part of the package. A node
+        started with SIGINT ignored must catch it before it registers with the
+        master; one still importing, that has not caught it yet, is signalled
+        as soon as it has (its interpreter's start was slow).
         """
-        masks = signal_masks(self.process.pid) if self.started is None else None
-        if masks is not None:
-            ignored, caught = masks
-            if self.inherited == signal.SIG_IGN and has(caught, signal.SIGINT):
-                self.started, self.registered_first = now, registered(self.name)
-            elif self.inherited == signal.SIG_DFL and has(ignored, signal.SIGPIPE):
+        if self.started is None:
+            masks = signal_masks(self.process.pid)
+            if masks is not None and has(masks[0], signal.SIGPIPE):
                 self.started = now
         if self.signalled is None and self.started is not None and \
-                now - self.started >= self.moment:
+                now - self.started >= self.moment and self._ready_for_signal():
             self.process.send_signal(signal.SIGINT)
             self.signalled = now
         if self.ended is None and self.process.poll() is not None:
             self.ended = now
+
+    def _ready_for_signal(self):
+        """False while a node started with SIGINT ignored still imports, not catching it;
+        notes a node registered with the master while it still ignores SIGINT. (The
+        master first: a node registers only after it catches SIGINT, so this order
+        cannot see the two the wrong way round.)"""
+        if self.inherited != signal.SIG_IGN:
+            return True
+        registered_now = registered(self.name)
+        masks = signal_masks(self.process.pid)
+        if masks is None or has(masks[1], signal.SIGINT):
+            return True
+        self.registered_first = registered_now
+        return registered_now
 
     def done(self, now):
         return self.ended is not None or (self.signalled is not None
@@ -195,10 +208,20 @@ class Run(object):
         still running."""
         os.close(self.terminal)
         if self.ended is None:
-            self.process.kill()
-            self.process.wait()
-            return '%s: still running %.1f s after SIGINT; it wrote:\n%s' % (
-                self.label, EXIT_LIMIT, self.written())
+            if self.signalled is None:
+                self.process.kill()
+                self.process.wait()
+                return '%s: not signalled in %.0f s, still ignoring SIGINT' % (
+                    self.label, WAVE_LIMIT)
+            try:   # late, or not ending at all? Say which.
+                self.process.wait(LATE_LIMIT)
+                ended = 'ended only %.1f s after SIGINT' % (time.monotonic() - self.signalled)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+                ended = 'still running %.0f s after SIGINT' % (EXIT_LIMIT + LATE_LIMIT)
+            return '%s: %s (limit %.1f s); it wrote:\n%s' % (
+                self.label, ended, EXIT_LIMIT, self.written())
         if self.registered_first:
             return '%s: caught SIGINT only after registering with the master' % self.label
         if self.signalled is None or self.ended < self.signalled:
@@ -228,7 +251,9 @@ class Signals(unittest.TestCase):
             runs = [Run(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
                         (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
                     for index, script in enumerate(scripts)]
-            while not all(run.done(time.monotonic()) for run in runs):
+            deadline = time.monotonic() + WAVE_LIMIT
+            while not all(run.done(time.monotonic()) for run in runs) and \
+                    time.monotonic() < deadline:
                 for run in runs:
                     run.step(time.monotonic())
                 time.sleep(0.02)

@@ -30,6 +30,19 @@ def spoiled(scan, **fields):
     return copy
 
 
+def one_valid_beam(ranges=None):
+    """An LDS-01-convention scan (360 beams, beam 0 ahead) whose only valid reading is
+    3.0 m at 29 deg left, the others NaN or, given, ranges (a list of 360)."""
+    scan = LaserScan()
+    scan.header.frame_id = 'base_scan'
+    scan.angle_min, scan.angle_increment = 0.0, 2.0 * math.pi / 360
+    scan.angle_max = scan.angle_increment * 359
+    scan.range_min, scan.range_max = 0.12, 3.5
+    scan.ranges = list(ranges) if ranges is not None else [math.nan] * 360
+    scan.ranges[29] = 3.0
+    return scan
+
+
 def unusable_scans():
     """name -> a scan that no node may drive on, one for each way a laser fails."""
     good = wall_on_the_right()
@@ -39,6 +52,9 @@ def unusable_scans():
         angle = good.angle_min + good.angle_increment * index
         if abs(angle) <= math.radians(35.0):
             blind_ahead[index] = 0.0
+    one_ahead = list(blind_ahead)
+    one_ahead[min(range(count), key=lambda index: abs(
+        good.angle_min + good.angle_increment * index - math.radians(29.0)))] = 3.0
     return {
         'all NaN': spoiled(good, ranges=[math.nan] * count),
         'all 0.0': spoiled(good, ranges=[0.0] * count),
@@ -49,4 +65,6 @@ def unusable_scans():
         'range_max below range_min': spoiled(good, range_min=3.5, range_max=0.12),
         'ranges not matching the angles': spoiled(good, ranges=good.ranges[::2]),
         'nothing valid ahead': spoiled(good, ranges=blind_ahead),
+        'one valid beam': one_valid_beam(),
+        'one valid beam ahead': spoiled(good, ranges=one_ahead),
     }

@@ -45,6 +45,9 @@ class Msg(object):
 GOOD = Msg([1.0] * 360)
 DEAD = Msg([0.0] * 360)
 BLIND_AHEAD = Msg([0.0] * 31 + [1.0] * 299 + [0.0] * 30)
+# Beam 0 ahead: the sector within 30 deg ahead is beams 330..359 and 0..30 (61 beams).
+ONE_BEAM_AHEAD = Msg([1.0] + [0.0] * 30 + [1.0] * 299 + [0.0] * 30)
+DROPOUTS_AHEAD = Msg([1.0 if i % 4 else 0.0 for i in range(360)])
 
 
 class Scans(object):
@@ -128,6 +131,20 @@ def test_no_forward_motion_into_a_sector_with_no_valid_reading():
     answered = [c for t, c in sent if c != STOP]
     assert answered and all(c == Command(0.0, 0.2) for c in answered)
     assert Clock.warnings == ['no valid reading within 30 deg ahead; not driving forward']
+
+
+def test_no_forward_motion_when_a_beam_or_two_of_the_sector_ahead_read_valid():
+    outcome, sent, _ = run([(0.1, ONE_BEAM_AHEAD)], until=0.5)
+    answered = [c for t, c in sent if c != STOP]
+    assert answered and all(c == Command(0.0, 0.2) for c in answered)
+    assert Clock.warnings == ['only 1 of the 61 beams within 30 deg ahead read valid '
+                              '(10% needed); not driving forward']
+
+
+def test_dropouts_scattered_across_the_sector_ahead_do_not_stop_the_robot():
+    outcome, sent, _ = run([(0.1, DROPOUTS_AHEAD)], until=0.5)
+    assert any(c == Command(0.1, 0.2) for t, c in sent)
+    assert Clock.warnings == []
 
 
 def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():

@@ -89,7 +89,7 @@ def test_no_returns_written_as_range_max_or_more_prove_free_space(no_return):
     check = check_scan(scan_of(LDS01, [no_return] * 360))
     assert check.problem is None
     assert check.view.free.all() and not check.view.valid.any()
-    assert check.view.known_in_sector(0.0, math.radians(30.0))
+    assert check.view.known_share_in_sector(0.0, math.radians(30.0)) == (61, 61)
 
 
 def test_dropouts_prove_nothing_ahead():
@@ -97,8 +97,21 @@ def test_dropouts_prove_nothing_ahead():
     ranges[:31] = 0.0
     ranges[-30:] = math.nan   # LDS-01: beam 0 ahead, so +-30 deg is beams 330..30
     view = check_scan(scan_of(LDS01, ranges)).view
-    assert not view.known_in_sector(0.0, math.radians(30.0))
-    assert view.known_in_sector(0.0, math.radians(32.0))
+    assert view.known_share_in_sector(0.0, math.radians(30.0)) == (0, 61)
+    assert view.known_share_in_sector(0.0, math.radians(32.0)) == (4, 65)
+
+
+def test_a_scan_with_a_beam_or_two_usable_out_of_hundreds_is_unusable():
+    ranges = [math.nan] * 360
+    ranges[29] = 3.0    # LDS-01: 29 deg left
+    check = check_scan(scan_of(LDS01, ranges))
+    assert check == (None, 'only 1 of its 360 readings is usable (359 NaN)')
+
+
+def test_a_scan_that_sees_only_a_near_wall_in_a_large_hall_is_usable():
+    ranges = [0.0] * 360     # LDS-01: nothing within its reach...
+    ranges[80:100] = [0.5] * 20   # ...but a wall on the left
+    assert check_scan(scan_of(LDS01, ranges)).problem is None
 
 
 finite_or_not = st.floats(allow_nan=True, allow_infinity=True, width=32)

@@ -3,6 +3,9 @@
 Needs ROS's Python modules but no master: rospy's Publisher and shutdown
 hooks are replaced by the test's.
 """
+import threading
+import time
+
 import pytest
 import rospy
 
@@ -11,16 +14,29 @@ from wall_follower.nodes.common import VelocityCommander
 
 
 class Publisher(object):
-    """rospy's, which raises once rospy has closed the topic after the shutdown hooks."""
+    """rospy's, which raises once rospy has closed the topic after the shutdown hooks, and
+    writes each message to its one subscriber from a thread of the connection's, WRITE_DELAY
+    after it is published."""
+
+    WRITE_DELAY = 0.1
 
     def __init__(self, *args, **kwargs):
         self.sent = []
         self.closed = False
+        self.written = 0
+        self.impl = self
 
     def publish(self, twist):
         if self.closed:
             raise rospy.ROSException('publish() to a closed topic')
         self.sent.append((twist.linear.x, twist.angular.z))
+        threading.Timer(self.WRITE_DELAY, self._write).start()
+
+    def _write(self):
+        self.written += 1
+
+    def get_stats(self):
+        return ('/cmd_vel', 0, [(0, 0, self.written, True)])
 
 
 @pytest.fixture
@@ -46,6 +62,15 @@ def test_shutdown_sends_one_stop_and_nothing_after_it(commander):
     assert commander.send(Command(0.1, 0.2)) == Command(0.0, 0.0)
     commander.stop()
     assert commander._pub.sent == [(0.1, 0.2), (0.0, 0.0)]
+
+
+def test_the_shutdown_hook_returns_once_the_stop_is_written(commander):
+    """rospy closes the connections right after the hooks: a stop still queued is lost."""
+    commander.send(Command(0.1, 0.2))
+    time.sleep(2 * Publisher.WRITE_DELAY)
+    for hook in commander.hooks:
+        hook()
+    assert commander._pub.written == 2
 
 
 def test_limits_given_or_changed_are_the_clamp(commander):

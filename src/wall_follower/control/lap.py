@@ -25,31 +25,13 @@ start line keeps its coordinates, which now mark another place.
 """
 import math
 
+from wall_follower.control.odom_check import JumpDetector
 from wall_follower.control.scan import wrap_angle
 from wall_follower.params import defaults
 from wall_follower.params.odom_recorder import TABLE
 
 # The defaults of the keyword arguments below: the odom_recorder node's.
 _DEFAULT = defaults(TABLE)
-
-# How far a quaternion's norm may be from 1 (float32 rounding, say) for its yaw to be trusted.
-QUATERNION_TOLERANCE = 0.01
-
-
-def odometry_problem(x, y, qx, qy, qz, qw):
-    """What makes an odometry pose unusable, in a few words; None when it is usable.
-
-    The yaw is read from the orientation as from a unit quaternion; one
-    that is far from unit length (a zero one, say) holds no trustworthy
-    heading, and a position that is not finite would poison the path length.
-    """
-    if not (math.isfinite(x) and math.isfinite(y)):
-        return 'position (%r, %r) is not finite' % (x, y)
-    norm = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw)
-    if not abs(norm - 1.0) <= QUATERNION_TOLERANCE:
-        return 'orientation (%r, %r, %r, %r) is not a unit quaternion (norm %r)' % (
-            qx, qy, qz, qw, norm)
-    return None
 
 
 class PathLength(object):
@@ -68,32 +50,6 @@ class PathLength(object):
     def jump_to(self, x, y):
         """Go on from (x, y) without counting the way there."""
         self._last = (x, y)
-
-
-class JumpDetector(object):
-    """Tells a jump of the odometry (a reset, a teleport) from travel.
-
-    max_speed: the fastest (m/s) the robot can really move, with a margin.
-    allowance: metres allowed on top of max_speed times the time between two
-        poses, for jitter in the odometry's stamps.
-    """
-
-    def __init__(self, max_speed=_DEFAULT['max_speed'], allowance=_DEFAULT['jump_allowance']):
-        if not max_speed > 0.0 or not allowance >= 0.0:
-            raise ValueError('max_speed must be positive and allowance not negative, '
-                             'got %r and %r' % (max_speed, allowance))
-        self.max_speed = float(max_speed)
-        self.allowance = float(allowance)
-        self._last = None
-
-    def jump(self, stamp, x, y):
-        """Feed the next pose; the distance (m) it jumped from the last one, or None."""
-        last, self._last = self._last, (stamp, x, y)
-        if last is None:
-            return None
-        distance = math.hypot(x - last[1], y - last[2])
-        reach = self.max_speed * max(0.0, stamp - last[0]) + self.allowance
-        return distance if distance > reach else None
 
 
 class PeriodicSampler(object):

@@ -59,9 +59,11 @@ class ScanView(object):
         offset = np.abs(wrap_angle(self.angles - center))
         return offset <= half_width + self.half_step
 
-    def known_in_sector(self, center, half_width):
-        """True when some beam within half_width of center is a hit or proves free space."""
-        return bool((self.in_sector(center, half_width) & self.known).any())
+    def known_share_in_sector(self, center, half_width):
+        """(known, beams): how many of the beams within half_width of center are a hit or
+        prove free space, and how many beams lie there."""
+        sector = self.in_sector(center, half_width)
+        return int((sector & self.known).sum()), int(sector.sum())
 
     def points(self, center=0.0, half_width=math.pi):
         """Valid hits in a sector as an (N, 2) array of x, y in the laser frame."""

@@ -10,7 +10,8 @@ reason it names.
 The rule for single readings (DESIGN.md, "Laser conventions"): a hit lies
 inside [range_min, range_max); a no-return written as range_max or +inf
 proves free space up to range_max; 0.0, NaN, -inf, negative and
-below-range_min readings prove nothing.
+below-range_min readings prove nothing. A scan is usable when at least
+MIN_KNOWN_SHARE of its readings are hits or proven no-returns.
 """
 import math
 from collections import namedtuple
@@ -24,6 +25,12 @@ ScanCheck = namedtuple('ScanCheck', ['view', 'problem'])
 # whether angle_max is the last beam's angle or the end of the sweep.
 COUNT_SLACK = 1.5
 
+# A scan with fewer usable readings than this share of its beams is unusable:
+# a laser that returns a beam or two out of hundreds is failing, not seeing.
+# An LDS-01 that drops a beam in a hundred, or sees only the walls within its
+# reach in a large hall, keeps far more than this.
+MIN_KNOWN_SHARE = 0.02
+
 
 def check_scan(msg):
     """A ScanCheck of a sensor_msgs/LaserScan (or anything with its fields)."""
@@ -31,9 +38,14 @@ def check_scan(msg):
     if problem is not None:
         return ScanCheck(None, problem)
     view = ScanView.from_msg(msg)
-    if not view.known.any():
+    known = int(view.known.sum())
+    if not known:
         return ScanCheck(None, 'none of its %d readings is usable (%s)'
                          % (view.ranges.size, unusable_kinds(view)))
+    if known < MIN_KNOWN_SHARE * view.ranges.size:
+        return ScanCheck(None, 'only %d of its %d readings %s usable (%s)'
+                         % (known, view.ranges.size, 'is' if known == 1 else 'are',
+                            unusable_kinds(view)))
     return ScanCheck(view, None)
 
 
@@ -58,7 +70,7 @@ def malformation(msg):
 
 
 def unusable_kinds(view):
-    """A short list of what the readings of a scan with no usable one are."""
+    """A short list of what the unusable readings of a scan are."""
     ranges = view.ranges
     kinds = (('NaN', ranges != ranges),
              ('0.0', ranges == 0.0),

@@ -1,6 +1,8 @@
 """ROS plumbing shared by every node that reads the laser or drives the robot."""
 import math
+import os
 import threading
+import time
 from collections import namedtuple
 
 import rospy
@@ -10,6 +12,10 @@ from sensor_msgs.msg import LaserScan
 from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
 from wall_follower.nodes import signals
+
+
+FLUSH_WAIT = 0.5    # wall s a node's last stop may take to leave, at most
+FLUSH_POLL = 0.005  # wall s between two looks
 
 
 def to_twist(command):
@@ -56,8 +62,31 @@ class VelocityCommander(object):
 
     def _halt(self):
         with self._lock:
+            written = self._written()
             self._publish(STOP)
             self._halted = True
+        self._wait_written(written)
+
+    def _written(self):
+        """connection id -> (messages written to it, whether it is open), from the
+        publisher's bus statistics (what `rosnode info` shows)."""
+        return dict((c[0], (c[2], c[3])) for c in self._pub.impl.get_stats()[2])
+
+    def _wait_written(self, before):
+        """Wait, at most FLUSH_WAIT wall s, until the stop is written to every subscriber
+        connected before it.
+
+        rospy writes a queued message from a thread of each connection, and
+        closes the connections right after the shutdown hooks: a stop still
+        queued then is never sent, and the robot's last command stays a move.
+        """
+        deadline = time.monotonic() + FLUSH_WAIT
+        while time.monotonic() < deadline:
+            now = self._written()
+            if all(key not in now or now[key][0] > count or not now[key][1]
+                   for key, (count, _) in before.items()):
+                return
+            time.sleep(FLUSH_POLL)
 
 
 def init_node(name):
@@ -67,7 +96,9 @@ def init_node(name):
     main thread wherever the signal caught it. A hook that publishes (every
     driving node's last stop) then deadlocks on a publisher lock whenever
     the signal lands while the main thread is publishing, and the node
-    never exits. Here the handler only wakes a thread that shuts rospy down.
+    never exits. Here the handler only wakes a thread that shuts rospy down,
+    by a byte written to a pipe: it takes no lock, so a second signal that
+    lands while the first is being answered cannot block on one.
 
     The handler is in force before rospy.init_node starts, which can take
     seconds (registering with the master, reading /use_sim_time): a signal
@@ -75,15 +106,19 @@ def init_node(name):
     nothing. (Before this call, nodes.signals answers.)
     """
     caught = []
-    wake = threading.Event()
+    wake_read, wake_write = os.pipe()
+    os.set_blocking(wake_write, False)   # a pipe full of signals already holds a wake-up
 
     def shut_down():
-        wake.wait()
-        rospy.signal_shutdown('signal %d' % caught[0])
+        number = os.read(wake_read, 1)[0]
+        rospy.signal_shutdown('signal %d' % number)
 
     def on_signal(number):
         caught.append(number)
-        wake.set()
+        try:
+            os.write(wake_write, bytes([number]))
+        except BlockingIOError:
+            pass
 
     threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
     signals.answer_with(on_signal)

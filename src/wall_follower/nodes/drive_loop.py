@@ -7,11 +7,12 @@ stale decision. Between scans the last command is sent again after
 not stop it mid-turn. The robot is stopped, with a throttled warning that
 says why, whenever the newest scan is older than `scan_timeout` or
 unusable (check_scan), and it goes on by itself once usable scans return.
-No command drives forward while the sector within `ahead_half_width` of
-straight ahead holds no valid reading (neither a hit nor a proven
-no-return): a laser that sees nothing there may be blind, not looking at
-free space. A clock that jumps back (a simulator restarted, a bag looped)
-drops the scan held and lets the node reset what it timed on the old clock.
+No command drives forward while fewer than `ahead_min_known` of the beams
+within `ahead_half_width` of straight ahead are valid readings (a hit or a
+proven no-return): a laser that sees nothing there, or a beam or two of
+the sector, may be blind, not looking at free space. A clock that jumps
+back (a simulator restarted, a bag looped) drops the scan held and lets
+the node reset what it timed on the old clock.
 
 A node whose commands change between scans (keyboard teleop) can ask for a
 steady beat instead: `tick` answers on a fixed ROS-time schedule with the
@@ -22,6 +23,7 @@ import math
 import rospy
 
 from wall_follower.control.motion import STOP, Command
+from wall_follower.params.driving import AHEAD_MIN_KNOWN
 
 FINISHED_NO_SCAN = 'no scan'
 WARNING_PERIOD = 5.0   # ROS s between repeats of one warning
@@ -34,35 +36,37 @@ class DriveLoop(object):
     scan: a LatestScan; commander: a VelocityCommander; name: the prefix
     of every log line. rate: how often (Hz) the loop looks at the clock
     while it waits for scans. keepalive, scan_timeout: ROS seconds.
-    ahead_half_width: rad either side of straight ahead. tick: None to
+    ahead_half_width: rad either side of straight ahead; ahead_min_known: the
+    share of its beams that must be valid to drive forward. tick: None to
     answer each new scan once; else answer every tick ROS seconds, on a
     steady schedule, with the newest usable scan. ahead_known(view,
     half_width): whether the view shows what lies ahead, within half_width
-    rad of straight ahead; None for a laser's (ScanView.known_in_sector).
-    A node that drives from another sensor (the line follower's camera)
-    passes what its own sensor knows, with its own kind of view.
+    rad of straight ahead; None for a laser's (the share of valid beams
+    above). A node that drives from another sensor (the line follower's
+    camera) passes what its own sensor knows, with its own kind of view.
     """
 
     def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
-                 ahead_half_width=math.radians(30.0), tick=None, ahead_known=None):
+                 ahead_half_width=math.radians(30.0), ahead_min_known=AHEAD_MIN_KNOWN, tick=None,
+                 ahead_known=None):
         self.name = name
         self.scan = scan
         self.commander = commander
-        self.tune(rate, keepalive, scan_timeout, ahead_half_width)
+        self.tune(rate, keepalive, scan_timeout, ahead_half_width, ahead_min_known)
         self.tick = tick
-        self._ahead_known = ahead_known or (lambda view, half_width: view.known_in_sector(
-            0.0, half_width))
+        self._ahead_known = ahead_known
         self._warned = (None, None)   # (text, ROS time) of the last warning
         # ROS times, set by run(): of this pass, of the last answer (or the start), of
         # the last command sent, and of the next tick.
         self._now = self._started = self._sent = self._due_at = None
 
-    def tune(self, rate, keepalive, scan_timeout, ahead_half_width):
+    def tune(self, rate, keepalive, scan_timeout, ahead_half_width, ahead_min_known):
         """Take new settings (as in the constructor); call it between two scans, from answer()."""
         self.period = 1.0 / rate
         self.keepalive = keepalive
         self.scan_timeout = scan_timeout
         self.ahead_half_width = ahead_half_width
+        self.ahead_min_known = ahead_min_known
 
     def run(self, answer, finished=lambda: None, patience=None, on_clock_reset=None):
         """Drive until shutdown or finished() returns something other than None.
@@ -140,17 +144,34 @@ class DriveLoop(object):
         return due + self.tick if now < due + self.tick else now + self.tick
 
     def _safe(self, command, view, now):
-        """command, with no forward motion into a sector ahead that the laser cannot see."""
-        if command.linear > 0.0 and not self._ahead_known(view, self.ahead_half_width):
-            self._warn('no valid reading within %.0f deg ahead; not driving forward'
-                       % math.degrees(self.ahead_half_width), now)
-            return Command(0.0, command.angular)
-        return command
+        """command, with no forward motion into a sector ahead that the sensor cannot see."""
+        if command.linear <= 0.0:
+            return command
+        problem = self._unseen_ahead(view)
+        if problem is None:
+            return command
+        self._warn(problem + '; not driving forward', now)
+        return Command(0.0, command.angular)
+
+    def _unseen_ahead(self, view):
+        """Why the view does not show enough of what lies ahead to drive into; None if it does."""
+        half_width = math.degrees(self.ahead_half_width)
+        if self._ahead_known is not None:
+            if self._ahead_known(view, self.ahead_half_width):
+                return None
+            return 'nothing seen within %.0f deg ahead' % half_width
+        known, beams = view.known_share_in_sector(0.0, self.ahead_half_width)
+        if known == 0:
+            return 'no valid reading within %.0f deg ahead' % half_width
+        if known < self.ahead_min_known * beams:
+            return ('only %d of the %d beams within %.0f deg ahead read valid (%.0f%% needed)'
+                    % (known, beams, half_width, 100.0 * self.ahead_min_known))
+        return None
 
     def warn(self, text):
-        """Warn as the loop does (at once when new, again every WARNING_PERIOD while it
-        lasts): for what the node's answer finds wrong with its sensor's data."""
-        self._warn(text, rospy.get_time())
+        """Log a warning, named as the loop's: at once when it is new, and again every
+        WARNING_PERIOD while it lasts; for answer() to say why it stops the robot."""
+        self._warn(text, self._now)
 
     def _warn(self, text, now):
         """Log a warning at once when it is new, and again every WARNING_PERIOD while it lasts."""

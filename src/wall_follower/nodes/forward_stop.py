@@ -5,6 +5,8 @@ through the DriveLoop every driving node shares: its phases are timed on
 the scans' stamps, the command is re-sent all through a phase (Stage's
 0.2 s watchdog would otherwise end a forward phase at once), and a forward
 phase stands while something is nearer straight ahead than ~stop_distance.
+Scan stamps that go back (a laser's clock reset, a bag looped) are warned
+of and start the cycle afresh.
 Its parameters (params/forward_stop.py) are tuned live: a change is
 applied at the next scan, and new periods start a new cycle there.
 """
@@ -26,6 +28,7 @@ class ForwardStopNode(object):
         self.loop = drive_loop('forward_stop', values)
         self.behaviour = ForwardStop(**pick(values, FORWARD_STOP))
         self.state = None
+        self.taken = None   # stamp of the last scan answered [s]
 
     def run(self):
         self.loop.run(self._answer, on_clock_reset=self.behaviour.restart)
@@ -35,6 +38,11 @@ class ForwardStopNode(object):
         values = take_retuned(self.params, self.loop)
         if values is not None:
             self.behaviour.reconfigure(**pick(values, FORWARD_STOP))
+        if self.taken is not None and taken < self.taken:
+            rospy.logwarn('forward_stop: scan stamps went back from %.2f s to %.2f s; the '
+                          'cycle starts afresh', self.taken, taken)
+            self.behaviour.restart()
+        self.taken = taken
         command = self.behaviour.update(view, taken)
         state = self.behaviour.state
         if state != self.state:

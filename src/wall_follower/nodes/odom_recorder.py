@@ -33,7 +33,8 @@ from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
 from wall_follower.cfg import OdomRecorderConfig
-from wall_follower.control.lap import LapRecorder, odometry_problem
+from wall_follower.control.lap import LapRecorder
+from wall_follower.control.odom_check import odometry_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
 from wall_follower.nodes.common import init_node, pose_message, pose_of
 from wall_follower.nodes.parameters import NodeParameters

@@ -130,14 +130,16 @@ def drive_loop(name, values, tick=None):
     those of params.driving's sections); tick as DriveLoop's."""
     commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
     return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
-                     values['scan_timeout'], values['ahead_half_width'], tick=tick)
+                     values['scan_timeout'], values['ahead_half_width'],
+                     values['ahead_min_known'], tick=tick)
 
 
 def tune_drive_loop(loop, values):
     """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout,
-    ahead_half_width, max_linear, max_angular) in force; in the loop's own thread."""
+    ahead_half_width, ahead_min_known, max_linear, max_angular) in force; in the loop's own
+    thread."""
     loop.tune(values['rate'], values['keepalive'], values['scan_timeout'],
-              values['ahead_half_width'])
+              values['ahead_half_width'], values['ahead_min_known'])
     loop.commander.max_linear = values['max_linear']
     loop.commander.max_angular = values['max_angular']
 

@@ -3,7 +3,9 @@
 The lab's experiment 2 (exercises.range_ahead). Scans come through the
 LatestScan reader and check_scan validator that every node uses; a stale or
 unusable scan is reported as such rather than read. Lines are logged (to the
-screen and /rosout) at most once per ~period of ROS time. Its parameters
+screen and /rosout) at most once per ~period of ROS time: a warning when it
+is new, then again at that period while it lasts (with no scan coming, once
+per ~scan_timeout). Its parameters
 (params/range_ahead.py) are tuned live, from the next pass on.
 """
 import math
@@ -24,7 +26,7 @@ def main():
     params = NodeParameters(TABLE, RangeAheadConfig)
     values = params.snapshot()
     scan = LatestScan('scan')
-    seen, printed, warned = None, -math.inf, rospy.get_time()
+    seen, printed, warned, problem = None, -math.inf, rospy.get_time(), None
     while not rospy.is_shutdown():
         values = params.take_update() or values
         reading = scan.latest(values['scan_timeout'])
@@ -36,8 +38,10 @@ def main():
             printed = now
             rospy.loginfo(describe(range_ahead(reading.view, values['half_width']),
                                    values['half_width'], reading.view.range_max))
-        elif reading.view is None and (fresh or now - warned >= values['scan_timeout']):
-            warned = now
+        elif reading.view is None and (reading.problem != problem or (
+                now - warned >= values['period']
+                and (fresh or now - warned >= values['scan_timeout']))):
+            warned, problem = now, reading.problem
             rospy.logwarn('range_ahead: %s', reading.problem)
         scan.wait_for_newer(seen, WAIT)
     return 0

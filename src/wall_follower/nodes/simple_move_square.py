@@ -8,7 +8,10 @@ sector ahead that it cannot see, even here where the laser does not steer.
 Each scan is answered from the odometry of the same moment, waited for
 briefly when it has not come yet (in lockstep simulation the scan may come
 first), and the robot stands while odometry lags the scan by more than
-~odom_timeout. Its parameters (params/simple_move_square.py) are tuned
+~odom_timeout, while it cannot be trusted (control.odom_check: not finite,
+no unit quaternion), and for good once it has jumped further than
+~max_speed allows or its time went back: the square was laid out in a
+frame that no longer holds. Its parameters (params/simple_move_square.py) are tuned
 live: a change is applied at the next scan, to the square already laid out.
 """
 import math
@@ -20,10 +23,11 @@ from nav_msgs.msg import Odometry
 
 from wall_follower.cfg import SimpleMoveSquareConfig
 from wall_follower.control.motion import STOP
+from wall_follower.control.odom_check import OdomCheck
 from wall_follower.exercises.move_square import SquareDriver
 from wall_follower.nodes.common import init_node, pose_of
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
-from wall_follower.params import pick
+from wall_follower.params import names, odometry, pick
 from wall_follower.params.simple_move_square import SQUARE, TABLE
 
 
@@ -33,26 +37,32 @@ SAME_MOMENT = 1e-3
 
 
 class LatestOdom(object):
-    """The newest odometry pose and its stamp, and a wait for one as new as a given time."""
+    """The newest odometry pose, its stamp and what is wrong with it (OdomCheck), and a wait
+    for one as new as a given time. max_speed, jump_allowance: as OdomCheck's."""
 
-    def __init__(self, topic='odom'):
-        self._latest = (None, None)    # (pose, stamp in s), replaced as one
+    def __init__(self, topic, max_speed, jump_allowance):
+        self._latest = (None, None, None)    # (pose, stamp in s, problem), replaced as one
         self._arrived = threading.Condition()
+        self.check = OdomCheck(max_speed, jump_allowance)
         self._sub = rospy.Subscriber(topic, Odometry, self._on_odom, queue_size=1)
         self.name = self._sub.resolved_name
 
     def _on_odom(self, msg):
         stamp = msg.header.stamp if not msg.header.stamp.is_zero() else rospy.Time.now()
+        p, q = msg.pose.pose.position, msg.pose.pose.orientation
         with self._arrived:
-            self._latest = (pose_of(msg), stamp.to_sec())
+            problem = self.check.problem(stamp.to_sec(), p.x, p.y, q.x, q.y, q.z, q.w)
+            self._latest = (pose_of(msg), stamp.to_sec(), problem)
             self._arrived.notify_all()
 
     def forget(self):
-        self._latest = (None, None)
+        with self._arrived:
+            self._latest = (None, None, None)
+            self.check.reset()
 
     def at(self, when, wait):
-        """(pose, stamp) of the newest odometry, after waiting up to wait wall s for one
-        stamped at when or later."""
+        """(pose, stamp, problem) of the newest odometry, after waiting up to wait wall s for
+        one stamped at when or later."""
         deadline = time.monotonic() + wait
         with self._arrived:
             while (self._latest[1] is None or self._latest[1] < when - SAME_MOMENT) \
@@ -64,13 +74,14 @@ class LatestOdom(object):
 class SimpleMoveSquareNode(object):
 
     def __init__(self):
-        self.params = NodeParameters(TABLE, SimpleMoveSquareConfig)
+        self.params = NodeParameters(TABLE, SimpleMoveSquareConfig,
+                                     read_at_start=names((odometry.JUMPS,)))
         values = self.params.snapshot()
         self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
         # max_linear and max_angular are the square's speeds and the clamp alike.
         self.loop = drive_loop('simple_move_square', values)
         self.driver = SquareDriver(**pick(values, SQUARE))
-        self.odom = LatestOdom('odom')
+        self.odom = LatestOdom('odom', values['max_speed'], values['jump_allowance'])
         self._started = False
 
     def run(self):
@@ -86,10 +97,19 @@ class SimpleMoveSquareNode(object):
         if values is not None:
             self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
             self.driver.reconfigure(**pick(values, SQUARE))
-        pose, stamp = self.odom.at(taken, self.odom_wait)
+        pose, stamp, problem = self.odom.at(taken, self.odom_wait)
         if pose is None or taken - stamp > self.odom_timeout:
             rospy.logwarn_throttle(5.0, 'simple_move_square: no odometry on %s within %.1f s of '
                                    'the scan; standing' % (self.odom.name, self.odom_timeout))
+            return STOP
+        broken = self.odom.check.broken
+        if broken is not None:
+            self.loop.warn('odometry on %s cannot be trusted: %s; the square is given up, '
+                           'standing' % (self.odom.name, broken))
+            return STOP
+        if problem is not None:
+            self.loop.warn('odometry on %s cannot be trusted: %s; standing'
+                           % (self.odom.name, problem))
             return STOP
         if not self._started:
             self.driver.start(pose)

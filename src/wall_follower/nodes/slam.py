@@ -9,6 +9,14 @@ odom_frame that puts the robot where scan matching found it. Every scan is
 processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
 
+What it cannot trust it says, with a warning, and does not draw: a scan
+that control.scan_check finds malformed or unusable, odometry that
+control.odom_check finds not finite or with no unit quaternion (a scan
+that only such odometry could place is skipped). Odometry whose time went
+back (a simulator restarted, a bag looped) starts its history afresh, and
+one that jumped further than the robot can drive is warned of: the map is
+drawn on at the jumped pose only after the warning.
+
 Parameters: the table in wall_follower.params.slam. A mapping run is long
 and tuned while it runs (`rosrun dynamic_reconfigure dynparam set /slam
 map_update_interval 1.0`, or rqt_reconfigure): a change applies at the next
@@ -29,6 +37,8 @@ from sensor_msgs.msg import LaserScan
 import numpy as np
 
 from wall_follower.cfg import SlamConfig
+from wall_follower.control.odom_check import OdomCheck, odometry_problem
+from wall_follower.control.scan_check import check_scan
 from wall_follower.mapping.slam import Mapper
 from wall_follower.mapping.poses import wrap
 from wall_follower.nodes.common import init_node, pose_message, pose_of, quaternion_z, yaw_of
@@ -64,6 +74,8 @@ class SlamNode(object):
         self.mapper = Mapper(**pick(self.p, MAPPER))   # ValueError on a grid that cannot be
         self.laser_known = False         # the laser's mount is read at the first scan
         self.odom_stamps, self.odom_poses = [], []
+        self.odom_check = OdomCheck()
+        self.odom_problem = None         # what was wrong with the newest odometry, if anything
         self.odom_arrived = threading.Condition()
         self.buffer = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.buffer)
@@ -77,9 +89,21 @@ class SlamNode(object):
         rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
 
     def on_odom(self, msg):
+        p, q = msg.pose.pose.position, msg.pose.pose.orientation
+        stamp = msg.header.stamp.to_sec()
         with self.odom_arrived:
-            stamp = msg.header.stamp.to_sec()
-            if self.odom_stamps and stamp < self.odom_stamps[-1]:
+            self.odom_problem = odometry_problem(p.x, p.y, q.x, q.y, q.z, q.w)
+            if self.odom_problem is not None:
+                rospy.logwarn_throttle(5.0, 'slam: odometry on %s cannot be trusted: %s; skipped'
+                                       % (rospy.resolve_name('odom'), self.odom_problem))
+                return
+            went_back = bool(self.odom_stamps) and stamp < self.odom_stamps[-1]
+            problem = self.odom_check.problem(stamp, p.x, p.y, q.x, q.y, q.z, q.w)
+            if problem is not None:
+                rospy.logwarn('slam: odometry on %s: %s; %s', rospy.resolve_name('odom'), problem,
+                              'its history is dropped' if went_back else
+                              'the map is drawn on from the new pose')
+            if went_back:
                 self.odom_stamps, self.odom_poses = [], []   # time went back: a new run
             self.odom_stamps.append(stamp)
             self.odom_poses.append(pose_of(msg))
@@ -124,9 +148,10 @@ class SlamNode(object):
 
     def on_scan(self, msg):
         self._retune()
-        if msg.angle_increment == 0.0 or msg.range_max <= msg.range_min:
-            rospy.logwarn_throttle(5.0, 'slam: malformed scan (angle_increment %g, range %g..%g)'
-                                   ' skipped', msg.angle_increment, msg.range_min, msg.range_max)
+        problem = check_scan(msg).problem
+        if problem is not None:
+            rospy.logwarn_throttle(5.0, 'slam: the scan on %s is unusable: %s; skipped'
+                                   % (rospy.resolve_name('scan'), problem))
             return
         if not self.laser_known:
             mount = self._laser_mount(msg.header.frame_id)
@@ -139,8 +164,11 @@ class SlamNode(object):
                               math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
         odom = self.odometry_at(msg.header.stamp.to_sec())
         if odom is None:
-            rospy.logwarn_throttle(5.0, 'slam: no odometry at the scan of %.3f s; scan skipped',
-                                   msg.header.stamp.to_sec())
+            with self.odom_arrived:
+                problem = self.odom_problem
+            rospy.logwarn_throttle(5.0, 'slam: no odometry at the scan of %.3f s%s; scan skipped'
+                                   % (msg.header.stamp.to_sec(), '' if problem is None else
+                                      ' (the odometry cannot be trusted: %s)' % problem))
             return
         angles = msg.angle_min + msg.angle_increment * np.arange(len(msg.ranges))
         started = time.process_time()

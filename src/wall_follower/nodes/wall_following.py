@@ -56,6 +56,8 @@ class WallFollowingNode(object):
         rospy.loginfo('wall_following: waiting for the %s service', name)
         try:
             rospy.wait_for_service(name, timeout=self.node['service_wait'])
+        except rospy.ROSInterruptException:
+            return False    # shut down while waiting
         except rospy.ROSException:
             rospy.logerr('wall_following: no %s service after %.0f s; is wall_finder running?',
                          name, self.node['service_wait'])

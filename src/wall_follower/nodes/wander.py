@@ -2,10 +2,12 @@
 
 Answered once per scan through the DriveLoop every driving node shares:
 clamped to ~max_linear and ~max_angular, stopped while the laser is stale
-or unusable, never forward into a sector ahead that it cannot see. Its
+or unusable, never forward into a sector ahead that it cannot see. It
+warns while it turns because nothing ahead reads valid. Its
 parameters (params/wander.py) are tuned live: a change is applied at the
 next scan.
 """
+import math
 
 import rospy
 
@@ -36,11 +38,15 @@ class WanderNode(object):
             self.wanderer.reconfigure(**pick(values, WANDER))
         before = self.wanderer.state
         command = self.wanderer.update(view)
-        if self.wanderer.state != before:
+        half_width = self.wanderer.p['cone_half_width']
+        nearest = nearest_in_cone(view, half_width)
+        turning = 'left' if command.angular > 0 else 'right'
+        if self.wanderer.state == TURN and nearest == 0.0:
+            self.loop.warn('no valid reading within %.0f deg ahead; turning %s until there is'
+                           % (math.degrees(half_width), turning))
+        elif self.wanderer.state != before:
             if self.wanderer.state == TURN:
-                rospy.logdebug('wander: %.2f m ahead; turning %s', nearest_in_cone(
-                    view, self.wanderer.p['cone_half_width']),
-                    'left' if command.angular > 0 else 'right')
+                rospy.logdebug('wander: %.2f m ahead; turning %s', nearest, turning)
             else:
                 rospy.logdebug('wander: clear ahead; forward')
         return command

@@ -14,6 +14,10 @@ from wall_follower.params import Parameter as P, Section
 MAX_LINEAR = 0.19
 MAX_ANGULAR = 0.49
 
+AHEAD_MIN_KNOWN = 0.1
+"""The default of ahead_min_known: one beam in ten of the sector ahead (a one-beam view of
+the way ahead is not enough; a scan that is mostly dropouts or beyond reach there still is)."""
+
 STALE_SCAN_STOPS = 'stop the robot while the newest scan is older than this [s]'
 """What scan_timeout means to a node that drives for as long as it runs."""
 
@@ -30,8 +34,13 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
         P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
           'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
         P('scan_timeout', scan_timeout, scan_timeout_meaning, 0.05, 10.0),
-        P('ahead_half_width', 0.5236, 'never drive forward while no beam within this angle '
-          'either side of straight ahead reads a hit or a proven no-return [rad]', 0.0, math.pi),
+        P('ahead_half_width', 0.5236, 'never drive forward while too few beams within this '
+          'angle either side of straight ahead read a hit or a proven no-return [rad]',
+          0.0, math.pi),
+        P('ahead_min_known', AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width '
+          'that must read a hit or a proven no-return for the robot to drive forward (0: one '
+          'beam will do); low enough for an LDS-01 that drops beams or sees nothing beyond its '
+          'reach there', 0.0, 1.0),
     ))
 
 

@@ -1,7 +1,7 @@
 """Parameters of the odom_recorder node (the record_odom action): the node's own, then the lap's."""
 import math
 
-from wall_follower.params import Parameter as P, Section
+from wall_follower.params import Parameter as P, Section, odometry
 
 NODE = (
     Section('node', (
@@ -27,15 +27,10 @@ RECORDING = (
         P('max_heading_error', math.radians(60.0), '... heading within this of the start '
           'heading [rad]', 0.0, math.pi),
     )),
-    Section('jumps', (
-        P('max_speed', 0.5, 'odometry that moves further than this speed allows between two '
-          'poses [m/s] ...', 0.01, 10.0),
-        P('jump_allowance', 0.1, '... plus this [m] has jumped (a reset) and is not counted as '
-          'travel', 0.0, 10.0),
-    )),
+    odometry.JUMPS,
 )
 """How a recording is kept (wall_follower.control.lap.LapRecorder): when a lap counts as
-closed (LapDetector) and what is a jump rather than travel (JumpDetector). From the next
+closed (LapDetector) and what is a jump, not counted as travel (JumpDetector). From the next
 goal too."""
 
 TABLE = NODE + RECORDING

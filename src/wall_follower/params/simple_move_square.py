@@ -1,7 +1,7 @@
 """Parameters of the simple_move_square node: the node's own, then the square's."""
 import math
 
-from wall_follower.params import Parameter as P, Section, driving
+from wall_follower.params import Parameter as P, Section, driving, odometry
 
 NODE = (
     driving.loop(scan_timeout=0.5),
@@ -11,6 +11,7 @@ NODE = (
         P('odom_wait', 0.05, 'how long to wait for odometry as new as the scan [wall s]',
           0.0, 1.0),
     )),
+    odometry.JUMPS,
 )
 """The node's own parameters (wall_follower.nodes.simple_move_square)."""
 
