@@ -16,7 +16,11 @@ scans, whichever comes first.
 A scan is matched every time, but drawn into the map only once the robot
 has moved `linear_update` or turned `angular_update` since the last one
 drawn (and always the first), as gmapping does: a robot standing still
-would otherwise make every wall certain from one viewpoint.
+would otherwise make every wall certain from one viewpoint. A scan whose
+match is not trusted (see matcher.py) is not drawn at all: the robot's pose
+goes on from the odometry's prediction, but a scan drawn there, where the
+map says it does not fit, would draw its walls beside the true ones, and
+those beyond the true walls would stay, since no later beam reaches them.
 """
 import math
 
@@ -79,7 +83,8 @@ class Mapper(object):
         self.fine = LogOddsGrid(config['match_resolution'], *box, hit=config['hit_logodds'],
                                 miss=config['miss_logodds'])
         self.field = DistanceField(self.fine, _field_reach(config))
-        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config))
+        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config),
+                                   min_explained=config['match_min_explained'])
         self.laser = tuple(laser)
         self.pose = None          # robot in the map frame
         self.odom = None          # robot in the odometry frame at the same scan
@@ -105,6 +110,7 @@ class Mapper(object):
         self.field.set_reach(_field_reach(config))
         self.matcher.window = _window(config)
         self.matcher.reaches = _reaches(config)
+        self.matcher.min_explained = config['match_min_explained']
 
     @property
     def started(self):
@@ -147,7 +153,8 @@ class Mapper(object):
             pose = self.last_match.pose
         self.pose, self.odom = pose, odom_pose
         self.scans += 1
-        if self._due(pose):
+        trusted = self.last_match is None or self.last_match.ok
+        if trusted and self._due(pose):
             self._draw(pose, base_ends, hit)
         return pose
 
