@@ -17,7 +17,7 @@ from wall_follower.evaluation.geometry import cast_rays
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher
 from wall_follower.mapping.poses import between, compose
-from wall_follower.mapping.slam import Mapper, scan_points
+from wall_follower.mapping.slam import Mapper, joined_walls, scan_points
 
 # The room's free space, counter-clockwise, and the pillar (centre, half side) [m].
 OCTAGON = [(-0.62, -1.5), (0.62, -1.5), (1.5, -0.62), (1.5, 0.62), (0.62, 1.5),
@@ -175,3 +175,37 @@ def test_beyond_the_window_only_a_match_that_explains_what_the_prediction_cannot
     assert slipped.ok and math.hypot(*slipped.pose[:2]) < 0.03, slipped.reason
     near = matcher.match(points, (-0.04, 0.0, 0.0))    # the prediction explains the scan
     assert not near.ok and near.pose == (-0.04, 0.0, 0.0) and 'window' in near.reason
+
+
+def test_joined_walls_fill_the_gap_between_neighbouring_hits_on_one_surface_only():
+    ends = np.array([(1.0, 0.0), (1.0, 0.08), (1.0, 0.16), (3.0, 0.5), (3.0, 0.55)])
+    hit = np.array([True, True, True, True, False])
+    points = joined_walls(ends, hit, 0.1, 0.005)
+    assert np.allclose(points[:, 0], 1.0)                    # not across to the far wall
+    assert points[:, 1].min() > 0.0 and points[:, 1].max() < 0.16
+    along = np.sort(np.concatenate((points[:, 1], ends[:3, 1])))   # with the beams' ends
+    assert np.diff(along).max() <= 0.005 + 1e-12
+    assert len(joined_walls(ends, hit, 0.0, 0.005)) == 0
+
+
+def test_scans_matched_to_a_map_of_one_scan_land_within_a_degree_on_slanted_walls():
+    """The first scans after the map starts are matched to one scan's walls: dotted lines,
+    a cell per beam, sparser the more a wall slants away. A fit could settle with the
+    scan's points between the dots, a degree or more off, and was trusted."""
+    start = (-0.3, -1.0, 0.0)
+    mapper = Mapper(start_patience=0)
+    mapper.add_scan(_scan(start), BEAMS, RANGE[0], RANGE[1], start)
+    rng = np.random.RandomState(1)
+    wrong = []
+    for _ in range(60):
+        true = (start[0] + rng.uniform(-0.4, 0.4), start[1] + rng.uniform(0.0, 0.3),
+                start[2] + rng.uniform(-1.5, 1.5))
+        offset = (rng.uniform(-0.14, 0.14), rng.uniform(-0.14, 0.14),
+                  math.radians(rng.uniform(-9.0, 9.0)))
+        ends, hit = scan_points(_scan(true), BEAMS, RANGE[0], RANGE[1], RANGE[1])
+        match = mapper.matcher.match(ends[hit], compose(true, offset))
+        error = between(true, match.pose)
+        if match.ok and (math.hypot(error[0], error[1]) > 0.03
+                         or abs(math.degrees(error[2])) > 1.0):
+            wrong.append((offset, error))
+    assert not wrong, wrong

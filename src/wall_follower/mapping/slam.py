@@ -6,6 +6,10 @@ in the map is predicted from the last one by the odometry's motion since,
 and scan matching corrects that prediction. map -> odom is then whatever
 puts the odometry's pose of the robot where matching found it.
 
+The fine grid scans are matched against also draws each wall between the
+ends of neighbouring beams that hit it (see joined_walls), so that its
+walls are lines rather than dots.
+
 The map starts from a scan taken at rest: the odometry may be read a step
 apart from the scan (Stage's "odom" localization reports the pose after
 the move its laser has not seen yet), and while the robot moves that would
@@ -33,7 +37,7 @@ from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher
 from .poses import between, compose, inverse
 
-__all__ = ['Mapper', 'scan_points']
+__all__ = ['Mapper', 'scan_points', 'joined_walls']
 
 # Odometry that moved less than this between two scans is at rest [m, rad].
 AT_REST = 1e-4
@@ -59,6 +63,25 @@ def scan_points(ranges, angles, range_min, range_max, max_range):
     used = angles[hit | free]
     ends = np.column_stack((length * np.cos(used), length * np.sin(used)))
     return ends, hit[hit | free]
+
+
+def joined_walls(ends, hit, max_gap, spacing):
+    """Points every `spacing` or less along the line between the ends (N, 2) of
+    neighbouring beams that both hit and lie at most max_gap apart.
+
+    Such a pair saw one surface: its beams' ends alone draw it as a dotted
+    line, a cell per beam, and a scan matched to dots can settle with its
+    points in the gaps, a degree or more off on a wall seen at a slant.
+    """
+    a, b = ends[:-1], ends[1:]
+    gap = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
+    pair = hit[:-1] & hit[1:] & (gap <= max_gap) & (gap > spacing)
+    if max_gap <= spacing or not pair.any():
+        return np.zeros((0, 2))
+    steps = int(math.ceil(max_gap / spacing))
+    t = np.arange(1, steps)[None, :, None] / float(steps)
+    a, b = a[pair][:, None, :], b[pair][:, None, :]
+    return (a + t * (b - a)).reshape(-1, 2)
 
 
 def _transform(pose, points):
@@ -178,7 +201,9 @@ class Mapper(object):
         origin = compose(pose, self.laser)[:2]
         ends = _transform(pose, base_ends)
         self.grid.integrate(origin, ends, hit)
-        self.fine.integrate(origin, ends, hit)
+        drawn = self.fine.integrate(origin, ends, hit)
+        self.fine.mark_hits(joined_walls(ends, hit, self.config['match_join_gap'],
+                                         self.fine.resolution / 2.0), skip=drawn)
         self.field.update()
         self._drawn_at = pose
         self.drawn += 1

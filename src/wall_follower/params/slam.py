@@ -64,6 +64,8 @@ MAPPER = (
           'prediction [m] ...', 0.0, 5.0),
         P('search_window_angular', math.radians(10.0), '... and turn it this much [rad]; beyond '
           'either, the prediction is kept (unless only the match explains the scan)', 0.0, math.pi),
+        P('match_join_gap', 0.1, 'the hits of neighbouring beams this close are joined by a '
+          'wall in the fine grid scans are matched against; 0: never [m]', 0.0, 1.0),
         P('match_min_explained', 0.8, 'a match is trusted only if this share of the scan '
           "points on the map's seen part lie within match_reach of a wall; a scan not trusted "
           'is not drawn', 0.0, 1.0),
