@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """rostest: one lap of mapping.launch with drifting odometry, judged from ground truth.
 
-The saved map must match the world (precision >= 95 %, recall >= 90 %, see
+The saved map must match the world (precision >= 99 %, recall >= 99 %, see
 wall_follower/evaluation/map_scoring.py), and once the robot has stopped
 after the lap, the mapper's pose (tf map -> base_footprint) must be within
-3 cm and 1 degree of the true pose, while the raw odometry is off by more.
+3 cm and 1 degree of the true pose, while the raw odometry was off by more
+somewhere on the lap (a scale error alone closes the lap again, as in the
+octagon).
 The simulator starts paused and is let go once this check listens and the
 mapper is connected to every topic of the simulator it reads (scan, tf,
 clock): a mapper that misses the first steps starts its map on a scan taken
@@ -57,6 +59,7 @@ class Mapping(unittest.TestCase):
         cls.guard = DriveGuard()
         cls.truth = []   # (stamp, pose)
         cls.odom = None
+        cls.odom_stamped = {}   # stamp -> odometry pose
         cls.lock = threading.Lock()
         rospy.Subscriber('base_pose_ground_truth', Odometry, cls.on_truth, queue_size=100)
         rospy.Subscriber('odom', Odometry, cls.on_odom, queue_size=10)
@@ -74,6 +77,8 @@ class Mapping(unittest.TestCase):
         with cls.lock:
             cls.final_stamp, cls.final_truth = cls.truth[-1] if cls.truth else (0.0, None)
             cls.final_odom = cls.odom
+            cls.lap = [(pose, cls.odom_stamped[stamp]) for stamp, pose in cls.truth
+                       if stamp in cls.odom_stamped]
         cls.mapper_pose = None
         cls.wait_for(lambda: cls.mapper_pose_at(cls.final_stamp), deadline)
 
@@ -130,6 +135,7 @@ class Mapping(unittest.TestCase):
     def on_odom(cls, msg):
         with cls.lock:
             cls.odom = pose_of(msg)
+            cls.odom_stamped[msg.header.stamp.to_sec()] = cls.odom
 
     @classmethod
     def stopped(cls):
@@ -144,8 +150,8 @@ class Mapping(unittest.TestCase):
     def test_drove_within_limits_without_contact(self):
         self.guard.assert_safe(self)
 
-    def errors(self, pose):
-        truth = between(self.start, self.final_truth)
+    def errors(self, pose, true_pose=None):
+        truth = between(self.start, true_pose or self.final_truth)
         return (math.hypot(pose[0] - truth[0], pose[1] - truth[1]),
                 abs(math.degrees(wrap(pose[2] - truth[2]))))
 
@@ -156,20 +162,25 @@ class Mapping(unittest.TestCase):
         quality = map_quality(load_map(self.map_file + '.yaml'), self.world, self.start, path,
                               self.max_range)
         rospy.loginfo('map: %s', quality)
-        self.assertGreaterEqual(quality.precision, 0.95, quality)
-        self.assertGreaterEqual(quality.recall, 0.90, quality)
+        self.assertGreaterEqual(quality.precision, 0.99, quality)
+        self.assertGreaterEqual(quality.recall, 0.99, quality)
 
     def test_mapper_pose_is_true_and_odometry_is_not(self):
         self.assertTrue(self.still, 'the robot never stopped after the lap')
         self.assertIsNotNone(self.mapper_pose, 'no tf map -> base_footprint')
         mapper = self.errors(self.mapper_pose)
         odom = self.errors(self.final_odom)
-        rospy.loginfo('final pose error: mapper %.1f cm %.2f deg, odometry %.1f cm %.2f deg',
-                      100 * mapper[0], mapper[1], 100 * odom[0], odom[1])
+        self.assertTrue(self.lap, 'no odometry stamped as the ground truth')
+        drift = max((self.errors(o, t) for t, o in self.lap),
+                    key=lambda e: e[0] + math.radians(e[1]))
+        rospy.loginfo('final pose error: mapper %.1f cm %.2f deg, odometry %.1f cm %.2f deg '
+                      '(on the lap at worst %.1f cm %.2f deg)', 100 * mapper[0], mapper[1],
+                      100 * odom[0], odom[1], 100 * drift[0], drift[1])
         self.assertLess(mapper[0], 0.03)
         self.assertLess(mapper[1], 1.0)
-        self.assertTrue(odom[0] > 0.03 or odom[1] > 1.0, 'odometry did not drift: %s' % (odom,))
-        self.assertGreater(odom[0] + math.radians(odom[1]), mapper[0] + math.radians(mapper[1]))
+        self.assertTrue(drift[0] > 0.03 or drift[1] > 1.0, 'odometry did not drift: %s' % (drift,))
+        self.assertGreater(drift[0] + math.radians(drift[1]),
+                           mapper[0] + math.radians(mapper[1]))
 
 
 if __name__ == '__main__':

@@ -104,6 +104,14 @@ class LogOddsGrid(object):
         seen[hit_cells] = True
         return hit_cells
 
+    def mark_hits(self, points, skip=()):
+        """A hit for each cell holding one of the map-frame points (N, 2), once per cell,
+        except the flat indices in skip (the cells this scan has already hit)."""
+        cells = np.setdiff1d(np.unique(self._flat(points)), skip)
+        flat = self.logodds.reshape(-1)
+        flat[cells] = np.clip(flat[cells] + self.hit, self.bounds[0], self.bounds[1])
+        self.observed.reshape(-1)[cells] = True
+
     def occupancy(self):
         """nav_msgs/OccupancyGrid values: -1 never observed, else round(100 p)."""
         values = np.rint(100.0 * probability(self.logodds)).astype(np.int8)

@@ -13,6 +13,18 @@ wall, turning mostly slides its points along it), and a narrow last pass
 keeps stray points from tilting the fit. The field comes from a fine grid, not the published
 one, so that walls stay where the beams ended rather than at the centres of
 coarse cells.
+
+A match is trusted only if it explains the scan: of the scan's points that
+fall on the part of the map already seen, at least `min_explained` must lie
+within the last reach of a wall. It must also stay within the search window
+of the prediction, unless the prediction does not explain the scan and the
+match does: the odometry slipped, and keeping its prediction would leave
+the robot lost for good. A point on a cell never seen is new, and tells
+nothing; one in a cell the map has seen free contradicts the pose. A scan
+placed wrong, by odometry that slipped beyond the window or by a fit
+caught on the wrong walls, puts many of its points into the room's free
+space, and would draw walls where there are none (beyond the true ones,
+where no later beam ever clears them).
 """
 import math
 
@@ -74,13 +86,16 @@ class DistanceField(object):
 
 
 class Match(object):
-    """A matcher's answer: the pose, whether it is trusted, and the RMS distance of the
-    scan's points within the last reach from the walls there [m]."""
+    """A matcher's answer: the pose, whether it is trusted, the RMS distance of the
+    scan's points within the last reach from the walls there [m], the share of its
+    points on the seen part of the map that lie that near a wall there, and why it
+    is not trusted."""
 
-    __slots__ = ('pose', 'ok', 'misfit', 'reason')
+    __slots__ = ('pose', 'ok', 'misfit', 'explained', 'reason')
 
-    def __init__(self, pose, ok, misfit, reason=''):
+    def __init__(self, pose, ok, misfit, explained=float('nan'), reason=''):
         self.pose, self.ok, self.misfit, self.reason = pose, ok, misfit, reason
+        self.explained = explained
 
 
 class ScanMatcher(object):
@@ -88,42 +103,69 @@ class ScanMatcher(object):
 
     window: (metres, radians) the match may move from the odometry's
     prediction; a match that goes farther is not trusted and the prediction
-    is kept. reaches: the passes, each weighing only points this near a
+    is kept, unless the prediction does not explain the scan and the match
+    does. reaches: the passes, each weighing only points this near a
     wall [m], at most the field's reach. min_points: fewer hits than this
-    are not matched.
+    are not matched, and a match with fewer on the seen part of the map is
+    not trusted. min_explained: the share of those a trusted match puts
+    within the last reach of a wall.
     """
 
-    def __init__(self, field, window, reaches=None, iterations=12, min_points=20, damping=1e-3):
+    def __init__(self, field, window, reaches=None, iterations=12, min_points=20, damping=1e-3,
+                 min_explained=0.8):
         self.field = field
         self.window = window
         self.reaches = tuple(reaches) if reaches else (field.reach,)
         self.iterations = iterations
         self.min_points = min_points
         self.damping = damping
+        self.min_explained = min_explained
 
     def match(self, points, guess):
         """Best pose (x, y, yaw) of the robot for base-frame hit points (N, 2), from guess."""
         points = np.asarray(points, dtype=float).reshape(-1, 2)
         if len(points) < self.min_points:
-            return Match(tuple(guess), False, float('nan'), 'only %d hits' % len(points))
+            return Match(tuple(guess), False, float('nan'), reason='only %d hits' % len(points))
         pose = np.array(guess, dtype=float)
         px, py = points[:, 0], points[:, 1]
         step_limit = np.array([self.field.grid.resolution * 2.0] * 2 + [math.radians(2.0)])
         for reach in self.reaches:
             pose = self._descend(pose, px, py, reach, step_limit)
+        pose[2] = math.atan2(math.sin(pose[2]), math.cos(pose[2]))
+        moved = math.hypot(pose[0] - guess[0], pose[1] - guess[1])
+        turned = abs(math.atan2(math.sin(pose[2] - guess[2]), math.cos(pose[2] - guess[2])))
+        misfit, explained, seen = self._fit(pose, px, py)
+        pose = tuple(float(p) for p in pose)
+        if moved > self.window[0] or turned > self.window[1]:
+            kept = self._fit(guess, px, py)
+            if not (seen >= self.min_points and explained >= self.min_explained
+                    > kept[1]):
+                return Match(tuple(guess), False, kept[0], kept[1],
+                             'moved %.3f m, %.1f deg from odometry: beyond the search window'
+                             % (moved, math.degrees(turned)))
+        if seen < self.min_points:
+            return Match(tuple(guess), False, misfit, explained,
+                         'only %d points on the part of the map seen so far' % seen)
+        if explained < self.min_explained:
+            return Match(tuple(guess), False, misfit, explained,
+                         'explains %.0f %% of the points on the map seen so far, under %.0f %%'
+                         % (100.0 * explained, 100.0 * self.min_explained))
+        return Match(pose, True, misfit, explained)
+
+    def _fit(self, pose, px, py):
+        """How well the points fit at pose: (misfit, explained, count of points on seen
+        cells), as Match has them."""
         c, s = math.cos(pose[2]), math.sin(pose[2])
         world = np.column_stack((pose[0] + c * px - s * py, pose[1] + s * px + c * py))
         residual = self.field.sample(world)[0]
         near = residual < self.reaches[-1]
         misfit = float(np.sqrt(np.mean(residual[near] ** 2))) if near.any() else float('nan')
-        pose[2] = math.atan2(math.sin(pose[2]), math.cos(pose[2]))
-        moved = math.hypot(pose[0] - guess[0], pose[1] - guess[1])
-        turned = abs(math.atan2(math.sin(pose[2] - guess[2]), math.cos(pose[2] - guess[2])))
-        if moved > self.window[0] or turned > self.window[1]:
-            return Match(tuple(guess), False, misfit,
-                         'moved %.3f m, %.1f deg from odometry: beyond the search window'
-                         % (moved, math.degrees(turned)))
-        return Match(tuple(float(p) for p in pose), True, misfit)
+        rows, cols, inside = self.field.grid.cells(world)
+        seen = np.zeros(len(world), dtype=bool)
+        seen[inside] = self.field.grid.observed[rows[inside], cols[inside]]
+        count = int(seen.sum())
+        explained = float(near[seen].mean()) if count else float('nan')
+        return misfit, explained, count
 
     def _descend(self, pose, px, py, reach, step_limit):
         """Gauss-Newton steps from pose, weighing the points within reach of a wall."""

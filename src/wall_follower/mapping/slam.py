@@ -6,6 +6,10 @@ in the map is predicted from the last one by the odometry's motion since,
 and scan matching corrects that prediction. map -> odom is then whatever
 puts the odometry's pose of the robot where matching found it.
 
+The fine grid scans are matched against also draws each wall between the
+ends of neighbouring beams that hit it (see joined_walls), so that its
+walls are lines rather than dots.
+
 The map starts from a scan taken at rest: the odometry may be read a step
 apart from the scan (Stage's "odom" localization reports the pose after
 the move its laser has not seen yet), and while the robot moves that would
@@ -16,7 +20,11 @@ scans, whichever comes first.
 A scan is matched every time, but drawn into the map only once the robot
 has moved `linear_update` or turned `angular_update` since the last one
 drawn (and always the first), as gmapping does: a robot standing still
-would otherwise make every wall certain from one viewpoint.
+would otherwise make every wall certain from one viewpoint. A scan whose
+match is not trusted (see matcher.py) is not drawn at all: the robot's pose
+goes on from the odometry's prediction, but a scan drawn there, where the
+map says it does not fit, would draw its walls beside the true ones, and
+those beyond the true walls would stay, since no later beam reaches them.
 """
 import math
 
@@ -29,7 +37,7 @@ from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher
 from .poses import between, compose, inverse
 
-__all__ = ['Mapper', 'scan_points']
+__all__ = ['Mapper', 'scan_points', 'joined_walls']
 
 # Odometry that moved less than this between two scans is at rest [m, rad].
 AT_REST = 1e-4
@@ -57,6 +65,25 @@ def scan_points(ranges, angles, range_min, range_max, max_range):
     return ends, hit[hit | free]
 
 
+def joined_walls(ends, hit, max_gap, spacing):
+    """Points every `spacing` or less along the line between the ends (N, 2) of
+    neighbouring beams that both hit and lie at most max_gap apart.
+
+    Such a pair saw one surface: its beams' ends alone draw it as a dotted
+    line, a cell per beam, and a scan matched to dots can settle with its
+    points in the gaps, a degree or more off on a wall seen at a slant.
+    """
+    a, b = ends[:-1], ends[1:]
+    gap = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
+    pair = hit[:-1] & hit[1:] & (gap <= max_gap) & (gap > spacing)
+    if max_gap <= spacing or not pair.any():
+        return np.zeros((0, 2))
+    steps = int(math.ceil(max_gap / spacing))
+    t = np.arange(1, steps)[None, :, None] / float(steps)
+    a, b = a[pair][:, None, :], b[pair][:, None, :]
+    return (a + t * (b - a)).reshape(-1, 2)
+
+
 def _transform(pose, points):
     c, s = math.cos(pose[2]), math.sin(pose[2])
     return np.column_stack((pose[0] + c * points[:, 0] - s * points[:, 1],
@@ -79,7 +106,8 @@ class Mapper(object):
         self.fine = LogOddsGrid(config['match_resolution'], *box, hit=config['hit_logodds'],
                                 miss=config['miss_logodds'])
         self.field = DistanceField(self.fine, _field_reach(config))
-        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config))
+        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config),
+                                   min_explained=config['match_min_explained'])
         self.laser = tuple(laser)
         self.pose = None          # robot in the map frame
         self.odom = None          # robot in the odometry frame at the same scan
@@ -105,6 +133,7 @@ class Mapper(object):
         self.field.set_reach(_field_reach(config))
         self.matcher.window = _window(config)
         self.matcher.reaches = _reaches(config)
+        self.matcher.min_explained = config['match_min_explained']
 
     @property
     def started(self):
@@ -147,7 +176,8 @@ class Mapper(object):
             pose = self.last_match.pose
         self.pose, self.odom = pose, odom_pose
         self.scans += 1
-        if self._due(pose):
+        trusted = self.last_match is None or self.last_match.ok
+        if trusted and self._due(pose):
             self._draw(pose, base_ends, hit)
         return pose
 
@@ -171,7 +201,9 @@ class Mapper(object):
         origin = compose(pose, self.laser)[:2]
         ends = _transform(pose, base_ends)
         self.grid.integrate(origin, ends, hit)
-        self.fine.integrate(origin, ends, hit)
+        drawn = self.fine.integrate(origin, ends, hit)
+        self.fine.mark_hits(joined_walls(ends, hit, self.config['match_join_gap'],
+                                         self.fine.resolution / 2.0), skip=drawn)
         self.field.update()
         self._drawn_at = pose
         self.drawn += 1

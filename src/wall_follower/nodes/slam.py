@@ -181,8 +181,10 @@ class SlamNode(object):
         match = self.mapper.last_match
         if match is not None and not match.ok:
             self.rejected += 1
-            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used',
-                                   match.reason)
+            rospy.logdebug('slam: scan of %.3f s not drawn: its match is not trusted (%s)',
+                           msg.header.stamp.to_sec(), match.reason)
+            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used, '
+                                   'scan not drawn', match.reason)
         try:
             self._send_transform(msg.header.stamp)
             if self.last_published is None or (msg.header.stamp - self.last_published).to_sec() \

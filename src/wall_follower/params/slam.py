@@ -63,7 +63,12 @@ MAPPER = (
         P('search_window_linear', 0.15, "a match may move the robot this far from odometry's "
           'prediction [m] ...', 0.0, 5.0),
         P('search_window_angular', math.radians(10.0), '... and turn it this much [rad]; beyond '
-          'either, the prediction is kept', 0.0, math.pi),
+          'either, the prediction is kept (unless only the match explains the scan)', 0.0, math.pi),
+        P('match_join_gap', 0.1, 'the hits of neighbouring beams this close are joined by a '
+          'wall in the fine grid scans are matched against; 0: never [m]', 0.0, 1.0),
+        P('match_min_explained', 0.8, 'a match is trusted only if this share of the scan '
+          "points on the map's seen part lie within match_reach of a wall; a scan not trusted "
+          'is not drawn', 0.0, 1.0),
     )),
 )
 """The mapper's parameters (wall_follower.mapping.slam.Mapper)."""

@@ -36,6 +36,8 @@ WORLD_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 
                          os.pardir, os.pardir, 'worlds')
 # Simulated seconds the robot stands after the lap, before the map is saved.
 STAND = 1.0
+# The course's worlds, and rooms of angled walls with a pillar (octagon, 60/120-degree corners).
+MAPPING_WORLDS = WORLDS + ('octagon', 'parallelogram')
 
 
 def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
@@ -102,7 +104,7 @@ def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark mapping', description=__doc__)
-    parser.add_argument('--worlds', nargs='+', default=list(WORLDS),
+    parser.add_argument('--worlds', nargs='+', default=list(MAPPING_WORLDS),
                         type=shipped_world('_odom'))
     parser.add_argument('--maps', default='',
                         help='keep the maps (with scan matching) here as WORLD_odom.pgm/.yaml')
