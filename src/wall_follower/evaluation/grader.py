@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import shlex
+import shutil
 import signal
 import socket
 import subprocess
@@ -175,6 +176,7 @@ class CaseRunner(object):
                                         scratch)
         finally:
             group.stop()
+            shutil.rmtree(scratch, ignore_errors=True)
             with self._lock:
                 self._running.discard(group)
         record = grade_report.read_record(paths['json'])
