@@ -171,3 +171,17 @@ def test_points_are_taken_every_period_if_their_time_spans_allow_it():
     assert taken_every([(0.0, 0.0), (1.0005, 1.0005)], 1.0, 1e-3)
     assert not taken_every([(0.0, 0.2), (1.3, 1.3)], 1.0, 1e-3)
     assert not taken_every([(0.0, 0.0), (1.0, 1.0), (2.2, 2.2)], 1.0, 1e-3)
+
+
+def test_points_on_a_trail_that_goes_round_twice_are_placed_on_their_own_pass():
+    # Round a pillar twice, 100 poses a turn; the second turn runs 1 cm
+    # inside the first, so its poses lie nearer some points of the first
+    # turn than the first turn's own poses do (the recorder's odometry lags).
+    angles = np.linspace(0.0, 2 * math.pi, 100, endpoint=False)
+    first = np.column_stack((np.cos(angles), np.sin(angles)))
+    second = 0.99 * first
+    trail = np.concatenate((first, second))
+    # Points taken every 10 poses of the first turn, each a hair toward the centre.
+    points = [tuple(0.995 * first[i]) + (0.0,) for i in range(0, 100, 10)]
+    stretches = stretches_on_trail(trail, points)
+    assert [s[0] for s in stretches] == list(range(0, 100, 10))

@@ -22,6 +22,7 @@ import argparse
 import json
 import os
 import shlex
+import shutil
 import signal
 import socket
 import subprocess
@@ -36,6 +37,7 @@ import rospkg
 
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.evaluation import grade_report
+from wall_follower.evaluation.benchmarks.launching import display_wrapper
 from wall_follower.evaluation.processes import ProcessGroup
 from wall_follower.evaluation.world_generator import (Settings, free_space_of, generate,
                                                       world_name, write_world)
@@ -140,6 +142,8 @@ class CaseRunner(object):
     def __init__(self, solution, options):
         self.solution = solution
         self.options = options
+        # Real stageros runs paced only in its window (see sim/simulator_choice.py).
+        self.wrapper = (display_wrapper() or []) if options.simulator == 'stage' else []
         self._running = set()
         self._lock = threading.Lock()
         self._stopping = False
@@ -172,6 +176,7 @@ class CaseRunner(object):
                                         scratch)
         finally:
             group.stop()
+            shutil.rmtree(scratch, ignore_errors=True)
             with self._lock:
                 self._running.discard(group)
         record = grade_report.read_record(paths['json'])
@@ -194,7 +199,8 @@ class CaseRunner(object):
                      'lockstep': 'true', 'paused': 'true',
                      'action_ns': options.action_ns, 'time_limit': '%.0f' % limit,
                      'start_limit': str(options.start_limit)}
-        grading = ['roslaunch', '-p', str(port), 'wall_follower', 'grade_case.launch'] + [
+        grading = self.wrapper + ['roslaunch', '-p', str(port), 'wall_follower',
+                                  'grade_case.launch'] + [
             '%s:=%s' % item for item in sorted(case_args.items())]
         with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
             watcher = group.start(grading, base, log)
@@ -283,6 +289,9 @@ def main(argv=None):
         for index in range(options.worlds):
             print(case_command(options.solution, options, index))
         return 0
+    if options.simulator == 'stage' and display_wrapper() is None:
+        sys.stderr.write('grade: real Stage needs a display: no DISPLAY and no xvfb-run\n')
+        return 2
     indices = [options.case] if options.case is not None else list(range(options.worlds))
     records = run_cases(solution, options, indices)
     if records is None:

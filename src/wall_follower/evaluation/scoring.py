@@ -25,6 +25,9 @@ TARGET = 0.25
 # +-30 deg of the robot's right.
 RIGHT_SECTOR = math.radians(30.0)
 _SECTOR_BEAMS = 61
+# How much further than the nearest pass of a trail another pass may be and
+# still be the one where a recorded point was taken [m]: a few steps of travel.
+PASS_TOLERANCE = 0.05
 
 
 class CourseMap(object):
@@ -262,7 +265,8 @@ def stretches_on_trail(trail, points):
     the previous point's: searching forward keeps a point near the start
     from matching the lap's end, where the trail passes again. Timing the
     points this way, rather than by the messages around them, holds however
-    late a loaded machine lets the recorder start or answer. Where the
+    late a loaded machine lets the recorder start or answer; where the trail
+    passes a point more than once, the first pass counts. Where the
     robot stood still, the trail holds one pose many times over, and a
     point taken there may have been taken at any of them; elsewhere
     first == last.
@@ -275,7 +279,13 @@ def stretches_on_trail(trail, points):
     for point in points:
         rest = xy[start:]
         distance = np.hypot(rest[:, 0] - point[0], rest[:, 1] - point[1])
-        nearest = int(np.argmin(distance))
+        # The first pass within PASS_TOLERANCE of the nearest: a trail that goes
+        # round a pillar again and again passes each point many times.
+        close = distance <= distance.min() + PASS_TOLERANCE
+        first = int(np.argmax(close))
+        leaves = np.flatnonzero(~close[first:])
+        end = first + (int(leaves[0]) if leaves.size else len(close) - first)
+        nearest = first + int(np.argmin(distance[first:end]))
         after = np.flatnonzero(np.any(rest[nearest:] != rest[nearest], axis=1))
         same = int(after[0]) if after.size else len(rest) - nearest
         start += nearest

@@ -177,6 +177,19 @@ def keep_watching(monitor, seconds, wall_limit=30.0):
         time.sleep(POLL)
 
 
+def freeze(monitor):
+    """Stop the world and stop listening, so that the record is of one moment.
+
+    Scoring a long run takes seconds, in which a world in lockstep would
+    go on for minutes of simulated time, and a result could still come.
+    """
+    try:
+        rospy.ServiceProxy('pause_physics', Empty)()
+    except (rospy.ServiceException, rospy.ROSException):
+        rospy.loginfo('grade_case: no pause_physics service: the world runs on')
+    monitor.close()
+
+
 def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
     """The case's ground-truth record, as grading.grade_case reads it."""
     figures = course_figures(monitor)
@@ -264,11 +277,11 @@ def main():
                   'up' if seen.action_server else 'none')
     if end_reason == 'result':
         keep_watching(monitor, params['after_result'])
+    freeze(monitor)
     record = case_record(monitor, params, seen, end_reason, start, start_pose, clock)
     with open(params['json'], 'w') as stream:
         json.dump(_json_safe(record), stream, indent=1)
     if params['plot']:
         plot_course(course_map, monitor.trail, monitor.result, params['plot'],
                     title=params['world'].rsplit('/', 1)[-1])
-    monitor.close()
     return 0
