@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""rostest: line_follower keeps the base on a line world's line, scored from ground truth.
+
+The base's distance to the course's centreline (evaluation.line_track,
+the centreline the world's bitmap is drawn from) at every ground-truth
+pose. On a closed line, one full lap (progress along the centreline, from
+where the robot starts, up to the line's length): RMS and worst distance
+within ~max_rms and ~max_error, at a mean speed of at least ~min_speed,
+or, on a course whose bends forbid that within the turn-rate limit
+(line_scoring.speed_bound), at least ~bound_share of the bound. On
+an open line: the robot stops for good within ~end_distance of the line's
+end, on the line all the way, and does not move again for ~still
+simulated seconds. The drive guard holds every command to the limits.
+Figures go to ~json when given (the benchmark reads them).
+"""
+import json
+import sys
+
+import numpy as np
+import rospy
+import rostest
+
+from paused_world import GroundTruthRun
+from waiting import wait_until
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.evaluation.line_scoring import cross_track, progress, speed_bound
+from wall_follower.evaluation.line_track import load_centreline
+from wall_follower.sim.stage_interface import world_path
+
+STILL = 1e-4      # m: a pose within this of the last one has not moved
+
+
+class LineFollow(GroundTruthRun):
+
+    def test_follows_the_line(self):
+        self.line = load_centreline(world_path(rospy.get_param('~world')))
+        self.wall_limit = rospy.get_param('~wall_limit', 60.0)
+        if self.line.closed:
+            figures = self._lap()
+        else:
+            figures = self._to_the_end()
+        figures['world'] = rospy.get_param('~world')
+        figures['max_linear'] = self.guard.max_linear
+        figures['max_angular'] = self.guard.max_angular
+        rospy.loginfo('line_follow: %s', figures)
+        if rospy.get_param('~json', ''):
+            with open(rospy.get_param('~json'), 'w') as out:
+                json.dump(figures, out)
+        self.guard.assert_safe(self)
+        self.assertLessEqual(figures['rms'], rospy.get_param('~max_rms', 0.015), figures)
+        self.assertLessEqual(figures['max'], rospy.get_param('~max_error', 0.05), figures)
+        if self.line.closed:
+            bound = speed_bound(self.line, MAX_LINEAR, MAX_ANGULAR)
+            self.assertGreaterEqual(figures['mean_speed'], min(
+                rospy.get_param('~min_speed', 0.15),
+                rospy.get_param('~bound_share', 0.85) * bound), figures)
+
+    def _poses(self):
+        with self.lock:
+            return np.array(self.truth)
+
+    def _lap(self):
+        def lapped():
+            poses = self._poses()
+            return len(poses) > 1 and progress(self.line, poses[:, 1:3])[-1] >= self.line.length
+        self.assertTrue(wait_until(lapped, self.wall_limit), 'no full lap: %.2f of %.2f m' % (
+            progress(self.line, self._poses()[:, 1:3])[-1] if len(self._poses()) > 1 else 0.0,
+            self.line.length))
+        poses = self._poses()
+        end = int(np.argmax(progress(self.line, poses[:, 1:3]) >= self.line.length))
+        lap = poses[:end + 1]
+        figures = self._scored(lap)
+        figures['lap_time'] = lap[-1, 0] - lap[0, 0]
+        figures['mean_speed'] = self.line.length / figures['lap_time']
+        return figures
+
+    def _to_the_end(self):
+        still = rospy.get_param('~still', 3.0)
+
+        def stopped_for_good():
+            poses = self._poses()
+            if len(poses) < 2:
+                return False
+            moved = np.hypot(*np.diff(poses[:, 1:3], axis=0).T) > STILL
+            last_move = poses[np.nonzero(moved)[0][-1] + 1, 0] if moved.any() else poses[0, 0]
+            return moved.any() and poses[-1, 0] - last_move >= still
+        self.assertTrue(wait_until(stopped_for_good, self.wall_limit),
+                        'the robot did not stop for %.1f s' % still)
+        poses = self._poses()
+        moved = np.hypot(*np.diff(poses[:, 1:3], axis=0).T) > STILL
+        stop = np.nonzero(moved)[0][-1] + 1
+        figures = self._scored(poses[:stop + 1])
+        figures['end_distance'] = self.line.distance_to_end(*poses[stop, 1:3])
+        figures['stopped_for'] = poses[-1, 0] - poses[stop, 0]
+        self.assertLessEqual(figures['end_distance'], rospy.get_param('~end_distance', 0.35),
+                             figures)
+        return figures
+
+    def _scored(self, poses):
+        rms, worst = cross_track(self.line, poses[:, 1:3])
+        path = float(np.hypot(*np.diff(poses[:, 1:3], axis=0).T).sum())
+        return {'rms': rms, 'max': worst, 'time': float(poses[-1, 0] - poses[0, 0]),
+                'path_length': path}
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_line_follow')
+    rostest.rosrun('wall_follower', 'check_line_follow', LineFollow, sys.argv)
