@@ -28,8 +28,11 @@ struct camera_scene {
 };
 
 struct camera_view {
-    int64_t count;                /* pixels */
-    const double *rays;           /* x y z world direction per pixel */
+    int64_t width, height;        /* pixels */
+    const double *u, *v;          /* per column, per row: the pixel centre's offsets right
+                                     and down from the optical axis, in focal lengths */
+    double basis[9];              /* world forward, right and down of the camera (x y z each):
+                                     a pixel's ray is forward + u right + v down */
     double eye[3];
     double near_clip, far_clip;
     double floor_bounds[4];       /* xmin ymin xmax ymax of the white floor */
@@ -115,16 +118,33 @@ static void shade(const struct camera_scene *scene, const struct camera_view *vi
 }
 
 /* Per-frame facts of a scene: each solid's distance from the eye in xy, and whether its
- * sides are hidden (the eye is above the solid and over its top: every ray reaching a
- * side passes through the top first). */
+ * sides are hidden: the eye is over the solid's top and so far above it that every ray
+ * reaching a side passes through the top first, beyond the near clip (nearer, the top
+ * is clipped away and the sides seen from inside show through, as in OpenGL).
+ * steepest: the largest |z| of a pixel ray. */
 static void prepare(const struct camera_scene *scene, const struct camera_view *view,
-                    double *reach, uint8_t *hidden_sides)
+                    double steepest, double *reach, uint8_t *hidden_sides)
 {
     for (int64_t s = 0; s < scene->solid_count; ++s) {
         reach[s] = box_distance(scene->bounds + 4 * s, view->eye[0], view->eye[1]);
-        hidden_sides[s] = view->eye[2] > scene->zspan[2 * s + 1] && reach[s] == 0.0 &&
-            inside(scene, s, view->eye[0], view->eye[1]);
+        hidden_sides[s] = view->eye[2] - scene->zspan[2 * s + 1] >= view->near_clip * steepest &&
+            reach[s] == 0.0 && inside(scene, s, view->eye[0], view->eye[1]);
     }
+}
+
+/* The largest |z| of the pixel rays: z is linear in u and v, so it is at a corner. */
+static double steepest_ray(const struct camera_view *view)
+{
+    const double *b = view->basis;
+    double most = 0.0;
+    for (int corner = 0; corner < 4; ++corner) {
+        double u = view->u[corner & 1 ? view->width - 1 : 0];
+        double v = view->v[corner & 2 ? view->height - 1 : 0];
+        double z = fabs(b[2] + u * b[5] + v * b[8]);
+        if (z > most)
+            most = z;
+    }
+    return most;
 }
 
 /* Renders `view` over `scene_count` scenes; reach and hidden_sides are scratch space
@@ -133,14 +153,17 @@ void camera_render(const struct camera_scene *scenes, int64_t scene_count,
                    const struct camera_view *view, double *reach, uint8_t *hidden_sides)
 {
     int64_t offset = 0;
+    const double steepest = steepest_ray(view);
     for (int64_t k = 0; k < scene_count; ++k) {
-        prepare(scenes + k, view, reach + offset, hidden_sides + offset);
+        prepare(scenes + k, view, steepest, reach + offset, hidden_sides + offset);
         offset += scenes[k].solid_count;
     }
     const double ex = view->eye[0], ey = view->eye[1], ez = view->eye[2];
-    const double *fb = view->floor_bounds;
-    for (int64_t p = 0; p < view->count; ++p) {
-        const double *ray = view->rays + 3 * p;
+    const double *fb = view->floor_bounds, *b = view->basis;
+    for (int64_t p = 0; p < view->width * view->height; ++p) {
+        const double u = view->u[p % view->width], v = view->v[p / view->width];
+        const double ray[3] = {b[0] + u * b[3] + v * b[6], b[1] + u * b[4] + v * b[7],
+                               b[2] + u * b[5] + v * b[8]};
         double best = INFINITY;
         const uint8_t *color = view->background;
         if (ray[2] < 0.0) {

@@ -58,9 +58,11 @@ speedup 1
 paused 0
 quit_time 0
 
+# Real Stage draws the camera in this window and caps its resolution at the window's
+# drawing area: large enough for a 640x480 camera.
 window
 (
-  size [ 600 500 ]
+  size [ 800 650 ]
   scale 120
   center [ {cx:.3f} {cy:.3f} ]
   rotate [ 0 0 ]

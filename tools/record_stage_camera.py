@@ -27,6 +27,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -46,27 +47,33 @@ from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WORLDS = os.path.join(REPO, 'worlds')
 OUT = os.path.join(REPO, 'test', 'data', 'stage_reference', 'camera')
-# (world, x, y, yaw_deg): on the line, beside it, across it, in bends both ways.
+# (world, x, y, yaw_deg, camera z or None): on the line, beside it, across it, in bends
+# both ways; the last ones with the camera lowered from its mast (pose z 0.16 in
+# waffle_pi.inc) to just above the body, which it then sees in the bottom rows.
 POSES = (
-    ('line_lab', -0.6, -1.0, 0.0),
-    ('line_lab', 0.3, -0.95, 10.0),
-    ('line_lab', 1.2, -0.9, 17.0),
-    ('line_lab', 1.45, -0.2, 75.0),
-    ('line_lab', 0.55, 0.9, 180.0),
-    ('line_lab', -0.2, 0.9, 190.0),
-    ('line_lab', -1.3, 0.2, -100.0),
-    ('line_tight', -0.55, -0.95, 60.0),
-    ('line_tight', 0.35, 0.7, 150.0),
-    ('line_open', 0.3, -1.3, -40.0),
+    ('line_lab', -0.6, -1.0, 0.0, None),
+    ('line_lab', 0.3, -0.95, 10.0, None),
+    ('line_lab', 1.2, -0.9, 17.0, None),
+    ('line_lab', 1.45, -0.2, 75.0, None),
+    ('line_lab', 0.55, 0.9, 180.0, None),
+    ('line_lab', -0.2, 0.9, 190.0, None),
+    ('line_lab', -1.3, 0.2, -100.0, None),
+    ('line_tight', -0.55, -0.95, 60.0, None),
+    ('line_tight', 0.35, 0.7, 150.0, None),
+    ('line_open', 0.3, -1.3, -40.0, None),
+    ('line_lab', -0.6, -1.0, 0.0, 0.03),
+    ('line_lab', 1.2, -0.9, 17.0, 0.06),
 )
 # World updates to wait before a frame counts (Stage renders from its first update on).
 SETTLE_UPDATES = 3
 FILES_OF_WORLD = ('burger.inc', 'waffle.inc', 'waffle_pi.inc')
 ROBOT_POSE = re.compile(r'(turtlebot3_waffle_pi\s*\(\s*name "turtlebot3"\s*pose \[)[^\]]*(\])')
+CAMERA_POSE = re.compile(r'(raspicam_v2\( pose \[)[^\]]*(\])')
 
 
-def world_at(world, x, y, yaw_deg, directory):
-    """A copy of worlds/<world>.world in `directory` with the robot at the pose."""
+def world_at(world, x, y, yaw_deg, camera_z, directory):
+    """A copy of worlds/<world>.world in `directory` with the robot at the pose (and its
+    camera at height camera_z above the body, unless None)."""
     with open(os.path.join(WORLDS, world + '.world')) as stream:
         text = stream.read()
     text, count = ROBOT_POSE.subn(r'\g<1> %.4f %.4f 0 %.4f \g<2>' % (x, y, yaw_deg), text)
@@ -74,6 +81,14 @@ def world_at(world, x, y, yaw_deg, directory):
         raise RuntimeError('%s.world: the robot stanza was not found' % world)
     for name in FILES_OF_WORLD + ('%s_line.png' % world,):
         shutil.copy(os.path.join(WORLDS, name), directory)
+    if camera_z is not None:
+        include = os.path.join(directory, 'waffle_pi.inc')
+        with open(include) as stream:
+            robot, count = CAMERA_POSE.subn(r'\g<1> 0 0 %.4f 0 \g<2>' % camera_z, stream.read())
+        if count != 1:
+            raise RuntimeError('waffle_pi.inc: the camera stanza was not found')
+        with open(include, 'w') as stream:
+            stream.write(robot)
     path = os.path.join(directory, '%s.world' % world)
     with open(path, 'w') as stream:
         stream.write(text)
@@ -127,7 +142,6 @@ def start(command, log, env):
 
 def stop(process):
     """End a process this script started, and its children, by its group id."""
-    import signal
     if process.poll() is None:
         os.killpg(process.pid, signal.SIGINT)
         try:
@@ -138,9 +152,9 @@ def stop(process):
 
 
 def record_pose(index, pose, wrapper, log, env, out):
-    world, x, y, yaw_deg = pose
+    world, x, y, yaw_deg, camera_z = pose
     directory = tempfile.mkdtemp(prefix='stage-camera-world-')
-    path = world_at(world, x, y, yaw_deg, directory)
+    path = world_at(world, x, y, yaw_deg, camera_z, directory)
     catch = Catch()
     stageros = start(wrapper + ['rosrun', 'stage_ros', 'stageros', path], log, env)
     try:
@@ -160,6 +174,7 @@ def record_pose(index, pose, wrapper, log, env, out):
     info = catch.info
     t = catch.transform.transform
     return {'file': name, 'world': world, 'x': x, 'y': y, 'yaw_deg': yaw_deg,
+            'camera_z': camera_z,
             'stamp': image.header.stamp.to_sec(), 'frame_id': image.header.frame_id,
             'encoding': image.encoding, 'width': image.width, 'height': image.height,
             'step': image.step,
@@ -197,7 +212,7 @@ def main():
         rospy.set_param('/use_sim_time', True)
         frames = []
         for index, pose in enumerate(POSES):
-            print('== pose %d: %s (%.2f, %.2f, %.1f deg)' % ((index,) + pose))
+            print('== pose %d: %s (%.2f, %.2f, %.1f deg), camera z %s' % ((index,) + pose))
             frames.append(record_pose(index, pose, wrapper, log, env, args.out))
     finally:
         stop(roscore)

@@ -110,6 +110,12 @@ class CameraTopics(unittest.TestCase):
         self.rec.unwatch()
         width, height = self.robot.camera.resolution
         stamps = [msg.header.stamp.to_sec() for msg in images]
+        # Each topic has its own connection: let the others catch up with the images.
+        self.rec.wait_for(
+            lambda: self.rec.clock and self.rec.clock[-1] >= stamps[-1] and
+            set(stamps) <= set(m.header.stamp.to_sec() for m in self.rec.infos) and
+            set(stamps) <= set(t.header.stamp.to_sec() for t in self.rec.camera_tf),
+            'the clock, camera_info and tf of every image step')
         for earlier, later in zip(stamps, stamps[1:]):
             self.assertAlmostEqual(later - earlier, DT, delta=1e-9, msg='not once per step')
         self.assertTrue(set(round(s, 6) for s in stamps) <=

@@ -48,7 +48,8 @@ CameraMount = namedtuple('CameraMount', ['x', 'y', 'z', 'rotation'])
 
 CameraFrame = namedtuple('CameraFrame', [
     'rgba',    # (height, width, 4) uint8, rows top-down
-    'depth',   # (height, width) float32 [m] along the optical axis; -inf / +inf as stageros
+    'depth',   # (height, width) float32 [m] along the optical axis; +inf where nothing is
+               # drawn (nothing nearer than `near` is drawn, so stageros' -inf never occurs)
 ])
 
 
@@ -102,7 +103,9 @@ def _box_edges(center_x, center_y, yaw, length, width):
 
 def body_solids(spec, pose):
     """A robot's body box and its ranger's box at world pose (x, y, yaw), as Stage draws them
-    (each child model stacked on top of the body)."""
+    (each child model stacked on top of the body). The camera's own box is left out: the
+    eye sits on its base, so that only rays up into it could meet it, nearer than any
+    sensible near clip."""
     x, y, yaw = pose
     cosa, sina = math.cos(yaw), math.sin(yaw)
 
@@ -182,8 +185,8 @@ def camera_mount(robot):
 class CameraRenderer(object):
     """Renders one CameraSpec's frames in a CameraScene.
 
-    The pixel rays (through the pixel centres, forward component 1 so that the ray
-    parameter is the depth along the optical axis) are computed once.
+    The pixel rays pass through the pixel centres, with a forward component of 1 so
+    that the ray parameter is the depth along the optical axis.
     """
 
     def __init__(self, scene, camera):
@@ -191,22 +194,18 @@ class CameraRenderer(object):
         self.camera = camera
         width, height = camera.resolution
         fx, fy, cx, cy = camera_intrinsics(camera)
-        u = (np.arange(width) + 0.5 - cx) / fx
-        v = (np.arange(height) + 0.5 - cy) / fy
-        self._u, self._v = [a.ravel() for a in np.meshgrid(u, v)]
+        self._u = (np.arange(width) + 0.5 - cx) / fx
+        self._v = (np.arange(height) + 0.5 - cy) / fy
         self.shape = (height, width)
 
-    def rays(self, yaw):
-        """World directions (P, 3) of the pixel rays of a robot heading `yaw`."""
+    def axes(self, yaw):
+        """The camera's forward, right and down in the world for a robot heading `yaw`:
+        pixel (row, column) looks along forward + u[column] right + v[row] down."""
         pan, tilt = self.camera.pantilt
         heading = yaw - pan
         ch, sh = math.cos(heading), math.sin(heading)
         ct, st = math.cos(tilt), math.sin(tilt)
-        forward = np.array([ch * ct, sh * ct, -st])
-        right = np.array([sh, -ch, 0.0])
-        down = np.array([-ch * st, -sh * st, -ct])
-        return (forward[None, :] + self._u[:, None] * right[None, :]
-                + self._v[:, None] * down[None, :])
+        return ((ch * ct, sh * ct, -st), (sh, -ch, 0.0), (-ch * st, -sh * st, -ct))
 
     def render(self, pose, robots=()):
         """CameraFrame seen from a robot at world pose (x, y, yaw).
@@ -219,7 +218,7 @@ class CameraRenderer(object):
         scenes = [self.scene.tables, compiled_camera.SceneTables(bodies, RASTER_CELL)]
         floor = tuple(self.scene.floor_lower) + tuple(self.scene.floor_upper)
         rgba, depth = compiled_camera.render(
-            scenes, self.rays(pose[2]), (pose[0], pose[1], self.camera.height),
+            scenes, self._u, self._v, self.axes(pose[2]), (pose[0], pose[1], self.camera.height),
             self.camera.range, floor, _bytes(FLOOR), _bytes(BACKGROUND))
         return CameraFrame(rgba.reshape(self.shape + (4,)), depth.reshape(self.shape))
 

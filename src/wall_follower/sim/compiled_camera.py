@@ -74,10 +74,11 @@ class SceneTables(ctypes.Structure):
 
 
 class ViewTables(ctypes.Structure):
-    """struct camera_view: the pixel rays, the eye, the clip range, the floor, and the
-    output arrays."""
+    """struct camera_view: the pixel grid, the camera's axes, the eye, the clip range,
+    the floor, and the output arrays."""
 
-    _fields_ = [('count', _INT), ('rays', _ADDRESS), ('eye', _DOUBLE * 3),
+    _fields_ = [('width', _INT), ('height', _INT), ('u', _ADDRESS), ('v', _ADDRESS),
+                ('basis', _DOUBLE * 9), ('eye', _DOUBLE * 3),
                 ('near_clip', _DOUBLE), ('far_clip', _DOUBLE), ('floor_bounds', _DOUBLE * 4),
                 ('floor_color', ctypes.c_uint8 * 3), ('background', ctypes.c_uint8 * 3),
                 ('rgba', _ADDRESS), ('depth', _ADDRESS)]
@@ -103,19 +104,24 @@ def available():
     return _CAMERA_RENDER is not None
 
 
-def render(scenes, rays, eye, clip, floor_bounds, floor_color, background):
-    """(rgba (P, 4) uint8, depth (P,) float32) of pixel rays (P, 3) from `eye` over the
-    SceneTables in `scenes`; raises RuntimeError (MISSING) without the library."""
+def render(scenes, u, v, basis, eye, clip, floor_bounds, floor_color, background):
+    """(rgba (H*W, 4) uint8, depth (H*W,) float32, rows top-down) of the pixels whose rays
+    are forward + u[column] right + v[row] down (basis: forward, right, down in the world),
+    from `eye` over the SceneTables in `scenes`; RuntimeError (MISSING) without the library.
+    """
     if _CAMERA_RENDER is None:
         raise RuntimeError(MISSING)
-    rays, rays_pointer = _address(rays, np.float64)
-    count = len(rays)
+    u, u_pointer = _address(u, np.float64)
+    v, v_pointer = _address(v, np.float64)
+    count = len(u) * len(v)
     rgba = np.empty((count, 4), dtype=np.uint8)
     depth = np.empty(count, dtype=np.float32)
     solids = sum(scene.solid_count for scene in scenes)
     reach = np.empty(max(solids, 1), dtype=np.float64)
     hidden = np.empty(max(solids, 1), dtype=np.uint8)
-    view = ViewTables(count, rays_pointer, tuple(eye), clip[0], clip[1], tuple(floor_bounds),
+    view = ViewTables(len(u), len(v), u_pointer, v_pointer,
+                      tuple(np.asarray(basis, dtype=float).ravel()), tuple(eye), clip[0], clip[1],
+                      tuple(floor_bounds),
                       tuple(floor_color), tuple(background), rgba.ctypes.data, depth.ctypes.data)
     packed = (SceneTables * len(scenes))(*scenes)
     _CAMERA_RENDER(packed, len(scenes), ctypes.byref(view), reach.ctypes.data,
