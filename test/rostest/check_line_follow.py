@@ -2,13 +2,14 @@
 """rostest: line_follower keeps the base on a line world's line, scored from ground truth.
 
 The base's distance to the course's centreline (evaluation.line_track,
-the centreline the world's bitmap is drawn from) at every ground-truth
-pose. On a closed line, one full lap (progress along the centreline, from
-where the robot starts, up to the line's length): RMS and worst distance
-within ~max_rms and ~max_error, at a mean speed of at least ~min_speed,
-or, on a course whose bends forbid that within the turn-rate limit
-(line_scoring.speed_bound), at least ~bound_share of the bound. On
-an open line: the robot stops for good within ~end_distance of the line's
+the centreline the world's bitmap is drawn from: the course file beside
+the world, or ~course) at every ground-truth pose. On a closed line, one
+full lap (progress along the centreline, from where the robot starts, up
+to the line's length): RMS and worst distance within ~max_rms and
+~max_error, at a mean speed of at least ~min_speed, or, on a course
+whose bends forbid that within the turn-rate limit
+(line_scoring.speed_bound), at least ~bound_share of the bound. On an
+open line: the robot stops for good within ~end_distance of the line's
 end, on the line all the way, and does not move again for ~still
 simulated seconds. The drive guard holds every command to the limits.
 Figures go to ~json when given (the benchmark reads them).
@@ -27,13 +28,14 @@ from wall_follower.evaluation.line_scoring import cross_track, progress, speed_b
 from wall_follower.evaluation.line_track import load_centreline
 from wall_follower.sim.stage_interface import world_path
 
-STILL = 1e-4      # m: a pose within this of the last one has not moved
+STILL = 1e-4      # m, rad: a pose within this of the last one has not moved (nor turned)
 
 
 class LineFollow(GroundTruthRun):
 
     def test_follows_the_line(self):
-        self.line = load_centreline(world_path(rospy.get_param('~world')))
+        self.line = load_centreline(rospy.get_param('~course', '')
+                                    or world_path(rospy.get_param('~world')))
         self.wall_limit = rospy.get_param('~wall_limit', 60.0)
         self.still = rospy.get_param('~still', 3.0)
         if self.line.closed:
@@ -86,12 +88,14 @@ class LineFollow(GroundTruthRun):
         return figures
 
     def _stopped_at(self):
-        """Index of the pose from which the robot has not moved for ~still simulated seconds
-        up to the newest, or None."""
+        """Index of the pose from which the robot has neither moved nor turned for ~still
+        simulated seconds up to the newest, or None."""
         poses = self._poses()
         if len(poses) < 2:
             return None
-        moved = np.nonzero(np.hypot(*np.diff(poses[:, 1:3], axis=0).T) > STILL)[0]
+        steps = np.diff(poses[:, 1:4], axis=0)
+        steps[:, 2] = np.angle(np.exp(1j * steps[:, 2]))
+        moved = np.nonzero(np.abs(steps).max(axis=1) > STILL)[0]
         if len(moved) == 0:
             return None
         stop = moved[-1] + 1
