@@ -40,11 +40,13 @@ class DriveLoop(object):
     half_width): whether the view shows what lies ahead, within half_width
     rad of straight ahead; None for a laser's (ScanView.known_in_sector).
     A node that drives from another sensor (the line follower's camera)
-    passes what its own sensor knows, with its own kind of view.
+    passes what its own sensor knows, with its own kind of view, and
+    names what it lacks in ahead_missing, for the warning.
     """
 
     def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
-                 ahead_half_width=math.radians(30.0), tick=None, ahead_known=None):
+                 ahead_half_width=math.radians(30.0), tick=None, ahead_known=None,
+                 ahead_missing='no valid reading'):
         self.name = name
         self.scan = scan
         self.commander = commander
@@ -52,6 +54,7 @@ class DriveLoop(object):
         self.tick = tick
         self._ahead_known = ahead_known or (lambda view, half_width: view.known_in_sector(
             0.0, half_width))
+        self._ahead_missing = ahead_missing
         self._warned = (None, None)   # (text, ROS time) of the last warning
         # ROS times, set by run(): of this pass, of the last answer (or the start), of
         # the last command sent, and of the next tick.
@@ -142,8 +145,8 @@ class DriveLoop(object):
     def _safe(self, command, view, now):
         """command, with no forward motion into a sector ahead that the laser cannot see."""
         if command.linear > 0.0 and not self._ahead_known(view, self.ahead_half_width):
-            self._warn('no valid reading within %.0f deg ahead; not driving forward'
-                       % math.degrees(self.ahead_half_width), now)
+            self._warn('%s within %.0f deg ahead; not driving forward'
+                       % (self._ahead_missing, math.degrees(self.ahead_half_width)), now)
             return Command(0.0, command.angular)
         return command
 
