@@ -2,7 +2,8 @@
 """rostest: line_follower stops the robot within 0.5 s of its camera's last good frame.
 
 The follower reads `gated_image`, which this test relays from the
-simulator's `image`. After ~drive simulated seconds of following the
+simulator's `image` (with ~compressed, as JPEG on gated_image/compressed,
+as the real Waffle Pi's raspicam sends them). After ~drive simulated seconds of following the
 line, the relay stops (~corrupt empty), or goes on with each frame spoilt
 (~corrupt: truncated, size, encoding or empty): from ~stop_within
 simulated seconds after the last good frame (plus one world step, the
@@ -14,11 +15,13 @@ command to the limits.
 import sys
 import threading
 
+import cv2
 import numpy as np
 import rospy
 import rostest
+from cv_bridge import CvBridge
 from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import Image
+from sensor_msgs.msg import CompressedImage, Image
 
 from paused_world import GroundTruthRun
 from rosout_log import RosoutLog
@@ -46,22 +49,33 @@ class ImagesStop(GroundTruthRun):
         self.relaying = 'good'         # good, spoilt, or none
         self.corrupt = rospy.get_param('~corrupt', '')
         self.last_good = None
-        self.gated = rospy.Publisher('gated_image', Image, queue_size=1)
+        self.compressed = rospy.get_param('~compressed', False)
+        self.assertFalse(self.compressed and self.corrupt, 'spoilt frames are raw frames')
+        if self.compressed:
+            self.bridge = CvBridge()
+            self.gated = rospy.Publisher('gated_image/compressed', CompressedImage,
+                                         queue_size=1)
+        else:
+            self.gated = rospy.Publisher('gated_image', Image, queue_size=1)
         self.images = rospy.Subscriber('image', Image, self._on_image, queue_size=1,
                                        buff_size=2 ** 24)
         self.assertTrue(wait_until(lambda: self.gated.get_num_connections() > 0, LIMIT),
-                        'the follower never subscribed to gated_image')
+                        'the follower never subscribed to %s' % self.gated.resolved_name)
         self.log = RosoutLog('/line_follower')
         GroundTruthRun.setUp(self)
 
     def _on_image(self, msg):
         with self.gate_lock:
             if self.relaying == 'good':
-                self.gated.publish(msg)
+                self.gated.publish(self._compressed(msg) if self.compressed else msg)
                 self.last_good = msg.header.stamp.to_sec()
             elif self.relaying == 'spoilt':
                 SPOILERS[self.corrupt][0](msg)
                 self.gated.publish(msg)
+
+    def _compressed(self, msg):
+        ok, data = cv2.imencode('.jpg', self.bridge.imgmsg_to_cv2(msg, 'bgr8'))
+        return CompressedImage(header=msg.header, format='jpeg', data=data.tobytes())
 
     def _now(self):
         with self.lock:
