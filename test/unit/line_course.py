@@ -15,7 +15,7 @@ from wall_follower.vision.floor import FloorProjection, Intrinsics, level_camera
 from wall_follower.vision.line_path import LinePath
 from wall_follower.vision.line_pursuit import LinePursuit, in_base_frame
 from wall_follower.params import defaults, pick
-from wall_follower.params.line_follower import PATH, PURSUIT
+from wall_follower.params.line_follower import NODE, PATH, PURSUIT
 
 STEP = 0.1
 LINE_WIDTH = 0.045
@@ -63,6 +63,7 @@ def run(centreline, start, steps, projection=None, values=None, lose_after=None)
     lose_after: from this step on the camera sees nothing (a covered lens)."""
     projection = projection or camera()
     values = dict(defaults(PATH + PURSUIT), **(values or {}))
+    margin = defaults(NODE)['view_margin']
     memory = LinePath(**pick(values, PATH))
     pursuit = LinePursuit(**pick(values, PURSUIT))
     painted = band(centreline, LINE_WIDTH)
@@ -74,8 +75,8 @@ def run(centreline, start, steps, projection=None, values=None, lose_after=None)
         seen = painted[projection.sees(local, 0.0)]
         if lose_after is not None and step >= lose_after:
             seen = seen[:0]
-        memory.update(seen, lambda p, b=base: projection.sees(in_base_frame(p, b), 0.0),
-                      base, lambda p, b=base: projection.sees(in_base_frame(p, b), 1.0)[0])
+        memory.update(seen, lambda p, b=base: projection.sees(in_base_frame(p, b), margin),
+                      base, lambda p, b=base: projection.sees(in_base_frame(p, b), margin)[0])
         command = clamp(pursuit.update(memory.path, memory.end_seen, base))
         poses.append(base)
         commands.append(command)

@@ -202,8 +202,10 @@ def test_another_sensor_says_what_it_knows_ahead():
 
     scans, commander = Scans([(0.1, GOOD)]), Commander()
     loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
-                     ahead_half_width=0.3, ahead_known=ahead_known)
+                     ahead_half_width=0.3, ahead_known=ahead_known,
+                     ahead_missing='no line known')
     loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= 0.5 else None)
     assert known and known[0] == 0.3
+    assert Clock.warnings == ['no line known within 17 deg ahead; not driving forward']
     assert all(c.linear == 0.0 for t, c in commander.sent)
     assert any(c == Command(0.0, 0.2) for t, c in commander.sent)

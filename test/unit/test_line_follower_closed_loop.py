@@ -95,3 +95,26 @@ def test_frames_of_the_base_and_the_odometry_invert_each_other():
     path = from_base_frame([(0.3, 0.25), (-0.5, 0.0)], base)
     assert not known_ahead(path, base, 0.5)
     assert known_ahead(path, base, 0.8)
+
+
+def test_an_end_found_stays_while_the_floor_beyond_it_leaves_the_view():
+    from wall_follower.params import defaults, pick
+    from wall_follower.params.line_follower import PATH
+    from wall_follower.vision.line_path import LinePath
+    memory = LinePath(**pick(defaults(PATH), PATH))
+    x = np.arange(0.2, 0.5, 0.005)
+    seen = np.array([(a, b) for a in x for b in (-0.01, 0.0, 0.01)])
+
+    def in_view(points):
+        return np.asarray(points).reshape(-1, 2)[:, 0] >= 0.15
+
+    memory.update(seen, in_view, (0.0, 0.0, 0.0), lambda point: True)
+    assert memory.end_seen and memory.path[-1][0] == pytest.approx(0.49, abs=0.03)
+    # The end's last bit still traced, but the floor beyond it counts as out of view.
+    memory.update(seen, in_view, (0.02, 0.0, 0.0), lambda point: False)
+    assert memory.end_seen
+    # A covered lens is no end: a path never seen to end does not become one.
+    fresh = LinePath(**pick(defaults(PATH), PATH))
+    fresh.update(seen, in_view, (0.0, 0.0, 0.0), lambda point: False)
+    fresh.update(seen[:0], in_view, (0.02, 0.0, 0.0), lambda point: True)
+    assert not fresh.end_seen

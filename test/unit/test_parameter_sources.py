@@ -24,6 +24,7 @@ from wall_follower.params import (course_report, driving, find_trials, forward_s
                                   stage_sim, teleop_key, wall_finder, wall_following, wander)
 from wall_follower.params import arm_controller, arm_plot, move_arm
 from wall_follower.params import grade_case
+from wall_follower.params import camera_view, line_follower, line_mask
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -46,6 +47,9 @@ NODES = {
     'move_arm': (move_arm.TABLE, 'MoveArm'),
     'arm_plot': (arm_plot.TABLE, None),
     'grade_case': (grade_case.TABLE, None),
+    'line_follower': (line_follower.TABLE, 'LineFollower'),
+    'line_mask': (line_mask.TABLE, 'LineMask'),
+    'camera_view': (camera_view.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
@@ -54,6 +58,7 @@ EXECUTABLES.update((node, node) for node in NODES if node + '.py' not in EXECUTA
 #: the nodes that drive, whose tables take params.driving's sections
 DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 'forward_stop',
            'wander')
+DRIVING += ('line_follower',)
 #: nodes set only by their launch files' arguments, which document them: no README table
 WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)

@@ -16,6 +16,7 @@ PARTS = {
     'mapping': 'mapping a lap with drifting odometry: map precision, recall, pose errors, CPU',
     'camera': 'the simulator\'s camera: frames per second at 320x240 and 640x480',
     'arm': 'robot arm: planning time and success on random reachable points, motion time',
+    'line': 'camera line following: lap time, speed, cross-track RMS and max, against the lab',
 }
 
 

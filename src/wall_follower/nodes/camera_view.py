@@ -28,9 +28,12 @@ class CameraView(object):
         self.window = self.values['window'] and bool(os.environ.get('DISPLAY'))
         self.snapshot_dir = self.values['snapshot_dir']
         if self.snapshot_dir and not os.path.isdir(self.snapshot_dir):
-            rospy.logfatal('%s: cannot start: ~snapshot_dir %s is not a directory', NAME,
-                           self.snapshot_dir)
-            raise SystemExit(1)
+            try:
+                os.makedirs(self.snapshot_dir)
+            except OSError as error:
+                rospy.logfatal('%s: cannot start: ~snapshot_dir %s: %s', NAME, self.snapshot_dir,
+                               error.strerror)
+                raise SystemExit(1)
         self._lock = threading.Lock()
         self._latest = None
         self._frames = 0
@@ -79,7 +82,10 @@ class CameraView(object):
 
     def _report(self, now):
         if self._counted_since is None or now < self._counted_since:
-            self._counted_since = now
+            if now > 0.0:        # on simulated time, 0 until the first /clock
+                with self._lock:
+                    self._frames = 0
+                self._counted_since = now
             return
         elapsed = now - self._counted_since
         if elapsed < self.values['report_period']:

@@ -43,18 +43,20 @@ class DriveLoop(object):
     half_width): whether the view shows what lies ahead, within half_width
     rad of straight ahead; None for a laser's (the share of valid beams
     above). A node that drives from another sensor (the line follower's
-    camera) passes what its own sensor knows, with its own kind of view.
+    camera) passes what its own sensor knows, with its own kind of view,
+    and names what it lacks in ahead_missing, for the warning.
     """
 
     def __init__(self, name, scan, commander, rate, keepalive, scan_timeout,
                  ahead_half_width=math.radians(30.0), ahead_min_known=AHEAD_MIN_KNOWN, tick=None,
-                 ahead_known=None):
+                 ahead_known=None, ahead_missing='nothing seen'):
         self.name = name
         self.scan = scan
         self.commander = commander
         self.tune(rate, keepalive, scan_timeout, ahead_half_width, ahead_min_known)
         self.tick = tick
         self._ahead_known = ahead_known
+        self._ahead_missing = ahead_missing
         self._warned = (None, None)   # (text, ROS time) of the last warning
         # ROS times, set by run(): of this pass, of the last answer (or the start), of
         # the last command sent, and of the next tick.
@@ -159,7 +161,7 @@ class DriveLoop(object):
         if self._ahead_known is not None:
             if self._ahead_known(view, self.ahead_half_width):
                 return None
-            return 'nothing seen within %.0f deg ahead' % half_width
+            return '%s within %.0f deg ahead' % (self._ahead_missing, half_width)
         known, beams = view.known_share_in_sector(0.0, self.ahead_half_width)
         if known == 0:
             return 'no valid reading within %.0f deg ahead' % half_width

@@ -4,8 +4,8 @@ Frames come as sensor_msgs/Image in any encoding cv_bridge reads, or as
 sensor_msgs/CompressedImage (the real Waffle Pi's raspicam publishes
 compressed, on `<image>/compressed` as image_transport names it). A frame
 that cannot be read is held with the reason in words, never handed on,
-as LatestScan holds a bad scan; LatestImage offers LatestScan's interface,
-so that a DriveLoop runs on images as it runs on scans.
+as LatestScan holds a bad scan; LatestImage offers what a DriveLoop asks
+of LatestScan, so that the loop runs on images as it runs on scans.
 """
 import threading
 from collections import namedtuple
@@ -32,9 +32,9 @@ def read_image(msg):
     try:
         return _BRIDGE.imgmsg_to_cv2(msg, 'bgr8'), None
     except (CvBridgeError, ValueError, TypeError) as error:
+        lines = str(error).strip().splitlines()
         return None, 'a %s image cv_bridge cannot turn into colour: %s' % (
-            msg.encoding, str(error).strip().splitlines()[-1] if str(error).strip() else
-            type(error).__name__)
+            msg.encoding, lines[-1] if lines else type(error).__name__)
 
 
 def read_compressed(msg):
@@ -74,10 +74,6 @@ class LatestImage(object):
         with self._arrived:
             self._latest = (Frame(image, msg.header.frame_id, stamp, problem), arrival)
             self._arrived.notify_all()
-
-    def taken(self):
-        frame = self._latest[0]
-        return None if frame is None else frame.stamp
 
     def forget(self):
         self._latest = (None, None)

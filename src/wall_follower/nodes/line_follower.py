@@ -52,7 +52,7 @@ class LineFollowerNode(object):
         self.images = LatestImage(values['compressed'])
         self.loop = DriveLoop(NAME, self.images, commander, values['rate'], values['keepalive'],
                               values['scan_timeout'], values['ahead_half_width'],
-                              ahead_known=self._ahead_known)
+                              ahead_known=self._ahead_known, ahead_missing='no line known')
         self.camera = CameraFloor(values)
         self.memory = LinePath(**pick(values, PATH))
         self.pursuit = LinePursuit(**pick(values, PURSUIT))

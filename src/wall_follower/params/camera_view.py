@@ -7,8 +7,8 @@ NODE = (
         P('report_period', 5.0, 'log the frames\' size, encoding and rate this often [s]',
           0.1, 3600.0),
         P('window', True, 'show the frames in a window when a display is there'),
-        P('snapshot_dir', '', 'without a window, write PNG snapshots into this directory '
-          "('': none)"),
+        P('snapshot_dir', '', 'without a window, write PNG snapshots into this directory, made '
+          "if missing ('': none)"),
         P('snapshot_period', 2.0, 'write a snapshot this often [s]', 0.1, 3600.0),
     )),
 )

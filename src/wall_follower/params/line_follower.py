@@ -47,11 +47,13 @@ PURSUIT = (
         P('speed', 0.19, 'cruising speed [m/s] (the clamp holds it to max_linear)', 0.0, 1.0),
         P('turn_rate', 0.49, 'the highest turn rate it plans with [rad/s] (the clamp holds it '
           'to max_angular)', 0.01, 3.0),
-        P('lookahead', 0.2, 'the target is the first point of the path this far from the '
-          'base [m]', 0.02, 2.0),
+        P('lookahead', 0.1, 'the target is the first point of the path at least this far '
+          'from the base [m]', 0.02, 2.0),
+        P('lookahead_time', 0.8, 'and at least as far as the planned speed goes in this time '
+          '[s]', 0.0, 10.0),
         P('preview', 0.3, 'slow down for the sharpest bend within this far ahead [m]',
           0.0, 3.0),
-        P('bend_share', 0.85, 'take bends at this share of turn_rate, keeping the rest for '
+        P('bend_share', 0.9, 'take bends at this share of turn_rate, keeping the rest for '
           'corrections', 0.1, 1.0),
         P('decel', 0.3, 'braking toward the line\'s end [m/s^2]', 0.01, 5.0),
         P('stop_distance', 0.05, "stop for good once the base is this near the line's end [m]",

@@ -25,12 +25,17 @@ def line_mask(bgr, bounds):
     A lower hue above the upper one wraps round (red lines: 170 to 10).
     """
     hsv = cv2.cvtColor(bgr, cv2.COLOR_BGR2HSV)
-    lower, upper = np.asarray(bounds.lower), np.asarray(bounds.upper)
+    lower, upper = bounds.lower, bounds.upper
     if lower[0] <= upper[0]:
-        return cv2.inRange(hsv, lower, upper)
-    high_hues = cv2.inRange(hsv, lower, np.array([179, upper[1], upper[2]]))
-    low_hues = cv2.inRange(hsv, np.array([0, lower[1], lower[2]]), upper)
+        return cv2.inRange(hsv, _bound(lower), _bound(upper))
+    high_hues = cv2.inRange(hsv, _bound(lower), _bound((179, upper[1], upper[2])))
+    low_hues = cv2.inRange(hsv, _bound((0, lower[1], lower[2])), _bound(upper))
     return cv2.bitwise_or(high_hues, low_hues)
+
+
+def _bound(values):
+    """An HSV bound as inRange takes it in every OpenCV 4 (uint8, as the image)."""
+    return np.array(values, dtype=np.uint8)
 
 
 def slice_rows(height, top, depth):

@@ -147,7 +147,10 @@ class LinePath(object):
         ended = self.end_seen and len(path) > 1
         if len(traced) and len(path) > 1:
             beyond = path[-1] + self.step * _unit(path[-1] - path[-2])
-            ended = bool(end_in_view(beyond))
+            # The floor beyond an end already found may have left the view (near its edge)
+            # while the line's last bit is still traced: the end stays where it was found.
+            ended = bool(end_in_view(beyond)) or (
+                self.end_seen and np.hypot(*(path[-1] - self.path[-1])) <= self.radius)
         self.path, self.end_seen = path, ended
         return self.path
 

@@ -1,16 +1,18 @@
 """The line follower's controller: pure pursuit on the remembered path, as a small state machine.
 
-FOLLOW drives the base along the path (odometry frame, from LinePath):
-the target is the first point of the path ahead at least `lookahead` [m]
-from the base, and the arc through it tangent to the robot's heading
-gives the curvature to drive; on a bend of constant curvature that arc is
-the bend itself, so the base stays on the line. The speed is the lowest
-of `speed`, what keeps that curvature within `turn_rate`, what takes the
-sharpest bend within `preview` [m] ahead at `bend_share` of `turn_rate`
-(so that it slows before a tight bend, not in it), and, when the path
-ends at the line's end, what stops within the rest of the path at
-`decel` [m/s^2]. A target more than `max_bearing` [rad] off the heading
-is turned to in place.
+FOLLOW drives the base along the path (odometry frame, from LinePath).
+It plans a speed: the lowest of `speed`, what takes the sharpest bend
+within `preview` [m] ahead at `bend_share` of `turn_rate` (so that it
+slows before a tight bend, not in it), and, when the path ends at the
+line's end, what stops within the rest of the path at `decel` [m/s^2].
+The target is the first point of the path ahead at least the lookahead
+from the base: `lookahead_time` [s] at that speed, not under `lookahead`
+[m] (a short one in bends, where a long one cuts them). The arc through
+the target tangent to the robot's heading gives the curvature to drive;
+on a bend of constant curvature that arc is the bend itself, so the base
+stays on the line. The speed is lowered further to keep that curvature
+within `turn_rate`. A target more than `max_bearing` [rad] off the
+heading is turned to in place.
 
 FINISHED: the base has come within `stop_distance` [m] of the line's end;
 it stays stopped. SEARCH: less than `min_ahead` [m] of path is left ahead
@@ -94,20 +96,22 @@ def sharpest_bend(path, reach):
 class LinePursuit(object):
     """Commands from the remembered path; see the module for the states and parameters."""
 
-    def __init__(self, speed, turn_rate, lookahead, preview, bend_share, decel,
+    def __init__(self, speed, turn_rate, lookahead, lookahead_time, preview, bend_share, decel,
                  stop_distance, min_ahead, max_bearing, search_rate, search_angle):
-        self.reconfigure(speed, turn_rate, lookahead, preview, bend_share, decel,
-                         stop_distance, min_ahead, max_bearing, search_rate, search_angle)
+        self.reconfigure(speed, turn_rate, lookahead, lookahead_time, preview, bend_share,
+                         decel, stop_distance, min_ahead, max_bearing, search_rate,
+                         search_angle)
         self.state = FOLLOW
         self._turn_side = 1.0          # +1: the line went left, -1: right
         self._searched = 0.0           # rad turned in this search
         self._last_yaw = None
 
-    def reconfigure(self, speed, turn_rate, lookahead, preview, bend_share, decel,
-                    stop_distance, min_ahead, max_bearing, search_rate, search_angle):
+    def reconfigure(self, speed, turn_rate, lookahead, lookahead_time, preview, bend_share,
+                    decel, stop_distance, min_ahead, max_bearing, search_rate, search_angle):
         self.speed = speed
         self.turn_rate = turn_rate
         self.lookahead = lookahead
+        self.lookahead_time = lookahead_time
         self.preview = preview
         self.bend_share = bend_share
         self.decel = decel
@@ -147,8 +151,16 @@ class LinePursuit(object):
         return Command(0.0, self._turn_side * self.search_rate)
 
     def _pursue(self, ahead, end_seen, left):
+        speed = self.speed
+        bend = sharpest_bend(ahead, self.preview)
+        if bend > 1e-9:
+            speed = min(speed, self.bend_share * self.turn_rate / bend)
+        if end_seen:
+            speed = min(speed, max(CREEP, math.sqrt(2.0 * self.decel
+                                                    * max(0.0, left - self.stop_distance))))
+        lookahead = max(self.lookahead, self.lookahead_time * speed)
         distances = np.hypot(*ahead.T)
-        beyond = np.nonzero(distances >= self.lookahead)[0]
+        beyond = np.nonzero(distances >= lookahead)[0]
         target = ahead[beyond[0]] if len(beyond) else ahead[-1]
         distance = float(np.hypot(*target))
         if distance < 1e-6:
@@ -159,13 +171,6 @@ class LinePursuit(object):
         if abs(bearing) > self.max_bearing:
             return Command(0.0, math.copysign(self.turn_rate, bearing))
         curvature = 2.0 * target[1] / (distance * distance)
-        speed = self.speed
         if abs(curvature) > 1e-9:
             speed = min(speed, self.turn_rate / abs(curvature))
-        bend = sharpest_bend(ahead, self.preview)
-        if bend > 1e-9:
-            speed = min(speed, self.bend_share * self.turn_rate / bend)
-        if end_seen:
-            speed = min(speed, max(CREEP, math.sqrt(2.0 * self.decel
-                                                    * max(0.0, left - self.stop_distance))))
         return Command(speed, speed * curvature)
