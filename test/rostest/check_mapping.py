@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """rostest: one lap of mapping.launch with drifting odometry, judged from ground truth.
 
-The saved map must match the world (precision >= 99 %, recall >= 99 %, see
-wall_follower/evaluation/map_scoring.py), and once the robot has stopped
+The saved map must match the world (precision and recall at least
+~min_precision and ~min_recall, 99 % unless mapping.test is told
+otherwise; see wall_follower/evaluation/map_scoring.py), and once the robot has stopped
 after the lap, the mapper's pose (tf map -> base_footprint) must be within
 3 cm and 1 degree of the true pose, while the raw odometry was off by more
 somewhere on the lap (a scale error alone closes the lap again, as in the
@@ -51,6 +52,8 @@ class Mapping(unittest.TestCase):
     def setUpClass(cls):
         cls.world = world_path(rospy.get_param('~world'))
         cls.map_file = rospy.get_param('~map_file')
+        cls.min_precision = rospy.get_param('~min_precision')
+        cls.min_recall = rospy.get_param('~min_recall')
         course = CourseMap(cls.world)
         cls.start = course.robot.pose
         # The range up to which beams draw walls: ~max_range (builtin), ~maxUrange (gmapping).
@@ -162,8 +165,8 @@ class Mapping(unittest.TestCase):
         quality = map_quality(load_map(self.map_file + '.yaml'), self.world, self.start, path,
                               self.max_range)
         rospy.loginfo('map: %s', quality)
-        self.assertGreaterEqual(quality.precision, 0.99, quality)
-        self.assertGreaterEqual(quality.recall, 0.99, quality)
+        self.assertGreaterEqual(quality.precision, self.min_precision, quality)
+        self.assertGreaterEqual(quality.recall, self.min_recall, quality)
 
     def test_mapper_pose_is_true_and_odometry_is_not(self):
         self.assertTrue(self.still, 'the robot never stopped after the lap')
