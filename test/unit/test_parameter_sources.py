@@ -22,6 +22,7 @@ from wall_follower.params import ParameterError, checked, defaults, parameters
 from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
                                   odom_recorder, range_ahead, simple_move_square, slam,
                                   stage_sim, teleop_key, wall_finder, wall_following, wander)
+from wall_follower.params import world_map
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -40,6 +41,7 @@ NODES = {
     'map_saver': (map_saver.TABLE, None),
     'course_report': (course_report.TABLE, None),
     'find_trials': (find_trials.TABLE, None),
+    'world_map': (world_map.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
@@ -49,7 +51,7 @@ EXECUTABLES.update((node, node) for node in NODES if node + '.py' not in EXECUTA
 DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 'forward_stop',
            'wander')
 #: nodes set only by their launch files' arguments, which document them: no README table
-WITHOUT_README_TABLE = {'course_report', 'find_trials'}
+WITHOUT_README_TABLE = {'course_report', 'find_trials', 'world_map'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 
