@@ -1,6 +1,6 @@
 """rviz on a virtual screen: a launch with rviz under Xvfb, and screenshots of it.
 
-For tools/rviz-screenshot and the rviz picture check. Xvfb picks a free
+For tools/rviz_screenshot.py and the rviz picture check. Xvfb picks a free
 display itself (-displayfd), each launch gets a ROS master of its own on a
 free port, and everything started here is stopped as a group, so that
 nothing is left behind on a machine others share. Needs Xvfb (xvfb) and

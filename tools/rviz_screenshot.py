@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Run a launch of wall_follower with rviz on a virtual screen (Xvfb) and save a screenshot.
 
-    tools/rviz-screenshot OUT.png main.launch sim:=true world:=arena
-    tools/rviz-screenshot --after 40 /tmp/mapping.png mapping.launch sim:=true map_file:=/tmp/map
+    /usr/bin/python3 tools/rviz_screenshot.py OUT.png main.launch sim:=true world:=arena
+    /usr/bin/python3 tools/rviz_screenshot.py --after 40 /tmp/mapping.png mapping.launch \
+        sim:=true map_file:=/tmp/map
 
 The launch gets rviz:=true and a ROS master of its own on a free port; the
 screenshot is taken `--after` wall seconds after it starts, then the launch
@@ -28,7 +29,7 @@ def main():
     options = parser.parse_args()
     missing = missing_tools()
     if missing:
-        sys.stderr.write('rviz-screenshot: not installed: %s (apt-get install %s)\n'
+        sys.stderr.write('rviz_screenshot: not installed: %s (apt-get install %s)\n'
                          % (', '.join(missing), ' '.join(missing)))
         return 1
     with VirtualScreen() as screen, tempfile.NamedTemporaryFile('w+', suffix='.log') as log:
@@ -40,7 +41,7 @@ def main():
             if not launch.running():
                 log.seek(0)
                 sys.stderr.write(log.read()[-3000:])
-                sys.stderr.write('rviz-screenshot: the launch ended early (its output is above)\n')
+                sys.stderr.write('rviz_screenshot: the launch ended early (its output is above)\n')
                 return 1
             screen.screenshot(os.path.abspath(options.out))
         finally:
