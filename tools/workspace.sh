@@ -27,6 +27,7 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   python3-rosservice python3-rosparam python3-rosmsg python3-rosbag
   python3-hypothesis
   python3-scipy
+  python3-visualization-msgs
   python3-dynamic-reconfigure
   libdynamic-reconfigure-config-init-mutex-dev
   ros-trajectory-msgs libtrajectory-msgs-dev python3-trajectory-msgs

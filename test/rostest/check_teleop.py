@@ -7,10 +7,13 @@ half a step per tick toward the target, the clamp at ~max_linear and
 ~max_angular, the stop at once on s, and a zero Twist when Ctrl-C's byte
 quits it while the robot is moving, with a line saying so; with its
 standard input closed, it stops at once with an error. Also: the targets
-it prints, its exit status, and the drive guard (limits, no contact). The ramp is checked on
-the ROS time each command is heard at, one tick (0.1 s) per half step
-within RAMP_JITTER, so that a command superseded before it was sent (the
-publisher keeps only the newest) does not fail it.
+it prints, its exit status, and the drive guard (limits, no contact). The ramp is checked, one
+tick (0.1 s) per half step, on the velocities the simulator applied in each
+step, as its odom reports them, stamped with the step's ROS time: not on
+when this test happened to hear each cmd_vel, which on a loaded machine
+lags by whole steps behind when the node sent it. A command superseded
+before a step took it (the newest counts) leaves a gap, which the check
+allows; a value out of its tick by more than RAMP_JITTER fails it.
 """
 import os
 import subprocess
@@ -21,6 +24,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
 
 from drive_guard import DriveGuard
@@ -30,7 +34,8 @@ from waiting import wait_until
 WAIT = 60.0
 EXACT = 1e-6
 TICK = 0.1             # ROS s between teleop_key's commands
-RAMP_JITTER = 0.25     # ROS s: when a command is heard may lag when it was sent
+RAMP_JITTER = 0.25     # ROS s: a value may be applied this much off its tick
+ODOM_QUEUE = 100000    # odom messages held while the test is busy
 
 
 class TeleopKey(unittest.TestCase):
@@ -39,9 +44,11 @@ class TeleopKey(unittest.TestCase):
         self.guard = DriveGuard()
         self.lock = threading.Lock()
         self.sent = []
-        self.heard = []
-        self.listening = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
-                          rospy.Subscriber('stalled', Bool, lambda _: None)]
+        self.applied = []      # (stamp, linear, angular) of each simulated step, from odom
+        self.listening = [
+            rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
+            rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=ODOM_QUEUE),
+            rospy.Subscriber('stalled', Bool, lambda _: None)]
         self.node = None
 
     def start(self, **stdin):
@@ -53,7 +60,11 @@ class TeleopKey(unittest.TestCase):
     def _on_command(self, msg):
         with self.lock:
             self.sent.append((msg.linear.x, msg.angular.z))
-            self.heard.append(rospy.get_time())
+
+    def _on_odom(self, msg):
+        with self.lock:
+            self.applied.append((msg.header.stamp.to_sec(), msg.twist.twist.linear.x,
+                                 msg.twist.twist.angular.z))
 
     def tearDown(self):
         if self.node is not None and self.node.poll() is None:
@@ -79,8 +90,23 @@ class TeleopKey(unittest.TestCase):
         self.assertTrue(index, 'never: ' + what)
         return index[0]
 
-    def assert_ramp(self, values, heard, ramp):
-        """values, heard at ROS times heard, follow ramp (one value per tick) in order, in time."""
+    def applied_ramp(self, axis, start, top):
+        """(values, stamps) of axis (1: linear, 2: angular) in the steps simulated from
+        the first whose value exceeds start to the first that reaches top."""
+        def reached():
+            with self.lock:
+                steps = list(self.applied)
+            return steps if any(step[axis] >= top - EXACT for step in steps) else None
+        steps = wait_until(reached, WAIT)
+        self.assertTrue(steps, 'odom never showed %.2f' % top)
+        first = next(i for i, step in enumerate(steps) if step[axis] > start + EXACT)
+        last = next(i for i, step in enumerate(steps) if step[axis] >= top - EXACT)
+        ramp = steps[first:last + 1]
+        return [step[axis] for step in ramp], [step[0] for step in ramp]
+
+    def assert_ramp(self, values, stamps, ramp):
+        """values, applied at ROS times stamps, follow ramp (one value per tick) in order,
+        in time."""
         self.assertAlmostEqual(values[0], ramp[0], delta=EXACT, msg='ramp %r' % values)
         self.assertAlmostEqual(values[-1], ramp[-1], delta=EXACT, msg='ramp %r' % values)
         ticks = []
@@ -90,10 +116,10 @@ class TeleopKey(unittest.TestCase):
                                    msg='%r is not on the ramp %r' % (value, values))
             ticks.append(tick)
         self.assertEqual(ticks, sorted(set(ticks)), 'not one value per tick, in order: %r' % values)
-        for tick, when in zip(ticks, heard):
-            self.assertLessEqual(abs(when - heard[0] - tick * TICK), RAMP_JITTER,
-                                 'ramp value %.3f heard %.2f s after the first, not %.1f s'
-                                 % (ramp[tick], when - heard[0], tick * TICK))
+        for tick, when in zip(ticks, stamps):
+            self.assertLessEqual(abs(when - stamps[0] - tick * TICK), RAMP_JITTER,
+                                 'ramp value %.3f applied %.2f s after the first, not %.1f s'
+                                 % (ramp[tick], when - stamps[0], tick * TICK))
 
     def test_keys_ramp_clamp_stop_and_quit(self):
         self.start()
@@ -101,18 +127,14 @@ class TeleopKey(unittest.TestCase):
         self.wait_for(lambda c: True, 'a first command')
         self.type('w' * 25)
         top = self.wait_for(lambda c: c[0] >= 0.19 - EXACT, 'full speed')
+        self.assert_ramp(*self.applied_ramp(1, 0.0, 0.19), ramp=[0.005 * k for k in range(1, 39)])
         commands = self.commands()
-        first = next(i for i, c in enumerate(commands) if c[0] > 0.0)
-        self.assert_ramp([c[0] for c in commands[first:top + 1]], self.heard[first:top + 1],
-                         [0.005 * k for k in range(1, 39)])
         self.assertTrue(all(abs(c[0] - 0.19) < EXACT for c in commands[top:]), 'not held at 0.19')
 
         self.type('a' * 8)
         turned = self.wait_for(lambda c: c[1] >= 0.49 - EXACT, 'full turn rate', after=top)
-        commands = self.commands()
-        start = next(i for i in range(top, len(commands)) if commands[i][1] > 0.0)
-        self.assert_ramp([c[1] for c in commands[start:turned + 1]],
-                         self.heard[start:turned + 1], [0.05 * k for k in range(1, 10)] + [0.49])
+        self.assert_ramp(*self.applied_ramp(2, 0.0, 0.49),
+                         ramp=[0.05 * k for k in range(1, 10)] + [0.49])
 
         self.type('s')
         stopped = self.wait_for(lambda c: c == (0.0, 0.0), 'a stop', after=turned)

@@ -25,6 +25,7 @@ from wall_follower.params import (course_report, driving, find_trials, forward_s
 from wall_follower.params import arm_controller, arm_plot, move_arm
 from wall_follower.params import grade_case
 from wall_follower.params import camera_view, line_follower, line_mask
+from wall_follower.params import world_map
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -50,6 +51,7 @@ NODES = {
     'line_follower': (line_follower.TABLE, 'LineFollower'),
     'line_mask': (line_mask.TABLE, 'LineMask'),
     'camera_view': (camera_view.TABLE, None),
+    'world_map': (world_map.TABLE, None),
 }
 #: the executable of each node in launch files -> its node
 EXECUTABLES = {'wall_following.py': 'wall_following', 'wall_finder.py': 'wall_finder',
@@ -60,7 +62,7 @@ DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 
            'wander')
 DRIVING += ('line_follower',)
 #: nodes set only by their launch files' arguments, which document them: no README table
-WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case'}
+WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case', 'world_map'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 

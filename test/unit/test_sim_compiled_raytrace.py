@@ -94,6 +94,7 @@ def test_without_the_library_a_scan_says_how_to_build_it():
     assert compiled_raytrace.LIBRARY in run.stdout and 'catkin_make' in run.stdout
 
 
+@pytest.mark.ros
 def test_without_the_library_the_node_exits_with_an_error_not_a_traceback():
     run = subprocess.run([sys.executable, os.path.join(REPO, 'scripts', 'stage_sim'),
                           '--simulator', 'builtin', '-g', WORLDS[0]],

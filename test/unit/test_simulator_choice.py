@@ -88,6 +88,7 @@ def run_stage_sim(package_path, simulator, gui):
     return done.returncode, done.stdout
 
 
+@pytest.mark.ros
 @pytest.mark.parametrize('combination', sorted(RULE))
 def test_stage_sim_hands_over_by_the_rule(fake_stage_ros, combination):
     simulator, gui, installed = combination

@@ -29,12 +29,20 @@ from wall_follower.params import pick
 from wall_follower.params.teleop_key import TABLE, TELEOP
 
 
+# Bytes taken from standard input at once: more than anyone types between two ticks.
+KEY_CHUNK = 1024
+
+
 class KeyReader(object):
-    """Reads standard input byte by byte in a thread of its own; keys wait in a queue.
+    """Reads standard input in a thread of its own; keys wait in a queue.
 
     stream: the input (sys.stdin, None when the process has none). An input
     that cannot be read ends the keys as its end does, with `problem` saying
-    why (None for a plain end of input).
+    why (None for a plain end of input). Keys that came together (a burst
+    written to a pipe, a paste, a held key that repeated while the node was
+    busy) are read in one go and queued as one batch, so that the next tick
+    applies them all: read byte by byte, a busy machine would hand them over
+    a few per tick and stretch the ramp.
     """
 
     def __init__(self, stream):
@@ -58,7 +66,7 @@ class KeyReader(object):
     def _read(self):
         while True:
             try:
-                data = os.read(self.fd, 1)
+                data = os.read(self.fd, KEY_CHUNK)
             except OSError as err:
                 self.problem = 'cannot read keys from standard input (%s)' % (
                     err.strerror or err)
@@ -66,16 +74,17 @@ class KeyReader(object):
             if not data:
                 self.keys.put(None)     # end of input
                 return
-            self.keys.put(data.decode('latin-1'))
+            self.keys.put(data.decode('latin-1'))   # one batch of keys
 
     def pending(self):
         """The keys that have come since the last call (None for the end of input)."""
         keys = []
         while True:
             try:
-                keys.append(self.keys.get_nowait())
+                batch = self.keys.get_nowait()
             except queue.Empty:
                 return keys
+            keys.extend([None] if batch is None else batch)
 
     def restore(self):
         if self._terminal is not None:

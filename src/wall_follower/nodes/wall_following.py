@@ -21,6 +21,7 @@ from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.common import init_node, wait_in_wall_time
+from wall_follower.nodes.course_markers import CourseMarkers
 from wall_follower.nodes.laser_mount import laser_x
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
 from wall_follower.params import pick
@@ -49,6 +50,8 @@ class WallFollowingNode(object):
         self._recorder = None
         self._recording = None
         self._distance = 0.0
+        self.markers = CourseMarkers()
+        self.markers.show_band(values['laser_x'])
 
     def find_wall(self):
         """Call find_wall and wait for its answer; True when the wall is on the right."""
@@ -67,6 +70,7 @@ class WallFollowingNode(object):
         except rospy.ServiceException as error:
             rospy.logerr('wall_following: %s failed: %s', name, error)
             return False
+        self.markers.show_find_wall(found)
         if not found:
             rospy.logerr('wall_following: %s found no wall; not following', name)
         return found
