@@ -5,9 +5,11 @@ Each node is started as a child process and given SIGINT at one of
 MOMENTS after its start (while Python imports, while rospy.init_node
 registers, while the node waits for its first scan, odometry, service or
 action server, and once it runs): it must end within EXIT_LIMIT wall
-seconds, and a node that drives must have sent a zero Twist last. The
-nodes of one wave start together, each at another moment, so that the
-machine is as busy as a launch file's start makes it. Half the runs start
+seconds, and a node that drives must have sent a zero Twist last. Each
+wave tries every node once, each at another moment, GROUP nodes started
+together, so that the machine is as busy as a launch file's start makes
+it (all of them at once would make it busier than any launch file does,
+and time the machine rather than the nodes). Half the runs start
 with SIGINT ignored, as a shell starts a job in the background (and the
 issue's nodes were started): a node must answer it all the same, from its
 first line on, not only once rospy is up. The nodes are started as
@@ -16,13 +18,15 @@ its own (catkin_find, a Python program) that a signal can land in.
 
 In wall time (/use_sim_time false): the test itself is about wall time,
 and it feeds the nodes a room's scan and a standing robot's odometry
-(with tf between them) so that the ones that drive do. Left out: the
-tools that end by themselves (benchmark, course_report's plot, map_png,
-require_package, find_trials' series of calls), which a launch file does
-not keep running.
+(with tf between them) so that the ones that drive do; the arm's nodes get
+its description as arm.launch loads it. Left out: the tools that end by
+themselves (TOOLS), which a launch file does not keep running. Every
+script CMakeLists.txt installs is one or the other: a new node is not
+left out by accident.
 """
 import math
 import os
+import re
 import pty
 import signal
 import subprocess
@@ -38,6 +42,7 @@ import rospkg
 import rospy
 import rostest
 import tf2_ros
+import yaml
 from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
@@ -50,8 +55,10 @@ LATE_LIMIT = 10.0     # wall s more that a node past EXIT_LIMIT is given, to tel
 PERIOD = 0.1          # wall s between two scans and two odometry messages
 MOMENTS = (0.5, 1.0, 1.5, 2.0, 3.0, 4.5)   # wall s from start to SIGINT
 WAVES = 3
+GROUP = 6             # nodes started together: as many as a launch file's start, not all
 WAVE_LIMIT = 30.0     # wall s for every node of a wave to be signalled and to end
 ROOM = 1.2            # m from the robot to each wall of the room in the scans
+PACKAGE = rospkg.RosPack().get_path('wall_follower')
 
 # script -> (arguments, whether it drives)
 NODES = {
@@ -66,8 +73,39 @@ NODES = {
     'slam': ([], False),
     'map_saver': (['-f', os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'map')], False),
     'stage_sim': (['--simulator', 'builtin', '-g', os.path.join(
-        rospkg.RosPack().get_path('wall_follower'), 'worlds', 'room.world')], False),
+        PACKAGE, 'worlds', 'room.world')], False),
+    'world_map': ([], False),
+    'line_follower': ([], True),
+    'line_mask': ([], False),
+    'camera_view': (['_window:=false'], False),
+    'arm_controller': ([], False),
+    'move_arm': ([], False),
+    'arm_plot': (['_live:=false', '_file:=' + os.path.join(
+        tempfile.mkdtemp(prefix='check_signals'), 'joints.png')], False),
+    'grade_case': (['_world:=' + os.path.join(PACKAGE, 'worlds', 'room.world'), '_json:=' +
+                    os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'case.json')], False),
 }
+# Scripts that end by themselves once their job is done.
+TOOLS = ('benchmark', 'course_report', 'map_png', 'require_package', 'find_trials', 'grade')
+# Scripts that need the arm's description (arm.launch's parameters), in their namespace.
+ARM_NODES = ('arm_controller', 'move_arm')
+
+
+def installed_scripts():
+    """The scripts CMakeLists.txt's catkin_install_python installs, by file name."""
+    with open(os.path.join(PACKAGE, 'CMakeLists.txt')) as cmake:
+        block = re.search(r'catkin_install_python\(PROGRAMS(.*?)DESTINATION', cmake.read(), re.S)
+    return set(os.path.basename(word) for word in block.group(1).split())
+
+
+def arm_description():
+    """The parameters arm.launch loads for the arm's nodes: name -> value."""
+    def text(*path):
+        with open(os.path.join(PACKAGE, *path)) as stream:
+            return stream.read()
+    return {'robot_description': text('urdf', 'cougarbot.urdf'),
+            'robot_description_semantic': text('config', 'cougarbot.srdf'),
+            'robot_description_planning': yaml.safe_load(text('config', 'joint_limits.yaml'))}
 
 
 def room_scan():
@@ -82,12 +120,12 @@ def room_scan():
     return scan
 
 
-def signal_masks(pid):
-    """(ignored, caught): the process's signal masks as /proc shows them; None once gone."""
+def ignored_signals(pid):
+    """The mask of the signals the process ignores, as /proc shows it; None once gone."""
     try:
         with open('/proc/%d/status' % pid) as status:
             fields = dict(line.split(':', 1) for line in status)
-        return int(fields['SigIgn'], 16), int(fields['SigCgt'], 16)
+        return int(fields['SigIgn'], 16)
     except (OSError, ValueError, KeyError):
         return None
 
@@ -147,6 +185,9 @@ class Run(object):
         self.lock = threading.Lock()
         self.commands = []
         rospy.Subscriber('/signals/%s/cmd_vel' % name, Twist, self._on_cmd, queue_size=1000)
+        if script in ARM_NODES:
+            for key, value in arm_description().items():
+                rospy.set_param('/signals/%s/%s' % (name, key), value)
         self.terminal, child_end = pty.openpty()   # teleop_key reads a keyboard
         self.errors = tempfile.TemporaryFile()
         self.process = subprocess.Popen(
@@ -175,8 +216,8 @@ class Run(object):
         as soon as it has (its interpreter's start was slow).
         """
         if self.started is None:
-            masks = signal_masks(self.process.pid)
-            if masks is not None and has(masks[0], signal.SIGPIPE):
+            ignored = ignored_signals(self.process.pid)
+            if ignored is not None and has(ignored, signal.SIGPIPE):
                 self.started = now
         if self.signalled is None and self.started is not None and \
                 now - self.started >= self.moment and self._ready_for_signal():
@@ -186,15 +227,15 @@ class Run(object):
             self.ended = now
 
     def _ready_for_signal(self):
-        """False while a node started with SIGINT ignored still imports, not catching it;
+        """False while a node started with SIGINT ignored still imports, still ignoring it;
         notes a node registered with the master while it still ignores SIGINT. (The
-        master first: a node registers only after it catches SIGINT, so this order
+        master first: a node registers only after it answers SIGINT, so this order
         cannot see the two the wrong way round.)"""
         if self.inherited != signal.SIG_IGN:
             return True
         registered_now = registered(self.name)
-        masks = signal_masks(self.process.pid)
-        if masks is None or has(masks[1], signal.SIGINT):
+        ignored = ignored_signals(self.process.pid)
+        if ignored is None or not has(ignored, signal.SIGINT):
             return True
         self.registered_first = registered_now
         return registered_now
@@ -223,7 +264,7 @@ class Run(object):
             return '%s: %s (limit %.1f s); it wrote:\n%s' % (
                 self.label, ended, EXIT_LIMIT, self.written())
         if self.registered_first:
-            return '%s: caught SIGINT only after registering with the master' % self.label
+            return '%s: answered SIGINT only after registering with the master' % self.label
         if self.signalled is None or self.ended < self.signalled:
             return '%s: ended by itself before SIGINT (status %s)' % (
                 self.label, self.process.returncode)
@@ -243,14 +284,18 @@ class Run(object):
 
 class Signals(unittest.TestCase):
 
+    def test_every_installed_script_is_tried_or_a_tool(self):
+        self.assertEqual(installed_scripts(), set(NODES) | set(TOOLS))
+
     def test_every_node_ends_on_sigint(self):
         Feed()
         scripts = sorted(NODES)
         problems, runs_done = [], 0
-        for wave in range(WAVES):
-            runs = [Run(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
-                        (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
-                    for index, script in enumerate(scripts)]
+        plan = [(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
+                 (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
+                for wave in range(WAVES) for index, script in enumerate(scripts)]
+        for first in range(0, len(plan), GROUP):
+            runs = [Run(*run) for run in plan[first:first + GROUP]]
             deadline = time.monotonic() + WAVE_LIMIT
             while not all(run.done(time.monotonic()) for run in runs) and \
                     time.monotonic() < deadline:

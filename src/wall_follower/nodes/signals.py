@@ -6,15 +6,18 @@ lands while the node still imports rospy or registers with the master
 (seconds on a loaded machine) would then be lost for good, and a node whose
 handlers came only after rospy.init_node ran on. So importing
 wall_follower.nodes, the first thing every script of scripts/ does, calls
-catch(): from then on both signals reach this module's handler.
+catch(): from then on both signals are answered.
 
 Until a node hands over its own answer (answer_with, which
 nodes.common.init_node calls before rospy.init_node), a signal ends the
-process at once, with the status a shell gives (128 + the signal's
-number): nothing has started that needs stopping. Not by an exception:
-a KeyboardInterrupt raised inside an import can be swallowed (importlib
-ignores what a lock's callback raises, libraries have bare `except:`),
-and the node would then go on starting. From then on the node's answer
+process at once: nothing has started that needs stopping. The kernel ends
+it (the signals' default action), not Python: a Python handler runs only
+between two bytecodes, so one that lands in a long import of a C library
+(OpenCV's takes seconds on a loaded machine) would wait for it; and an
+exception is no way either: a KeyboardInterrupt raised inside an import
+can be swallowed (importlib ignores what a lock's callback raises,
+libraries have bare `except:`), and the node would go on starting. From
+then on the node's answer
 is called in the main thread, wherever the signal caught it, so it must
 only wake something up. A process that gives the signals to rospy
 (rospy.init_node with its signal handlers) gets this handler called by
@@ -23,7 +26,6 @@ rospy's after its own; it then does nothing more.
 The handlers are the process's, by nature global: this module holds the
 one answer in force.
 """
-import os
 import signal
 import threading
 
@@ -33,13 +35,14 @@ _answers = []   # the node's answer, once it has handed one over
 
 
 def catch():
-    """Answer SIGINT and SIGTERM with this module's handler, ignored before or not.
+    """Answer SIGINT and SIGTERM, ignored before or not: with the node's answer once it
+    has handed one over, else by ending the process at once.
 
     Only the main thread may set handlers: from any other, nothing changes.
     """
     if threading.current_thread() is threading.main_thread():
         for number in SIGNALS:
-            signal.signal(number, _on_signal)
+            signal.signal(number, _on_signal if _answers else signal.SIG_DFL)
 
 
 def answer_with(answer):
@@ -51,7 +54,4 @@ def answer_with(answer):
 def _on_signal(number, _frame):
     if signal.getsignal(number) is not _on_signal:
         return     # called by rospy's handler, which has answered already
-    if _answers:
-        _answers[0](number)
-    else:
-        os._exit(128 + number)
+    _answers[0](number)
