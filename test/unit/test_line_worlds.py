@@ -11,13 +11,18 @@ import textwrap
 import numpy as np
 import pytest
 
+from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.evaluation.line_scoring import speed_bound
 from wall_follower.evaluation.line_track import (CourseError, course_path, load_centreline,
-                                                 trace_path)
+                                                 read_course, trace_path)
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
 WORLDS = sorted(glob.glob(os.path.join(REPO, 'worlds', 'line_*.world')))
+# The issue asks a lap of every closed line world at a mean speed of at least 0.15 m/s;
+# each must allow that within the limits with room to spare for slowing into bends.
+LEAST_SPEED_BOUND = 0.17
 
 
 def _tool():
@@ -74,6 +79,27 @@ def test_robot_is_a_waffle_pi_on_the_line_with_a_raspicam(path):
     assert camera.height > robot.size[2]
     assert camera.pantilt[1] > 0
     assert load_centreline(path).distance(robot.pose[0], robot.pose[1]) < 0.005
+
+
+@pytest.mark.parametrize('path', [p for p in WORLDS if load_centreline(p).closed],
+                         ids=os.path.basename)
+def test_every_closed_line_allows_the_required_mean_speed_within_the_limits(path):
+    assert speed_bound(load_centreline(path), MAX_LINEAR, MAX_ANGULAR) >= LEAST_SPEED_BOUND
+
+
+def _arcs(path):
+    """(radius, angle_deg) of every arc of a world's course."""
+    return [(float(piece[1]), float(piece[2])) for piece in read_course(course_path(path))['path']
+            if piece[0] == 'arc']
+
+
+def test_line_tight_has_the_tightest_bends_and_bends_both_ways():
+    tight = os.path.join(REPO, 'worlds', 'line_tight.world')
+    radii = {path: min(radius for radius, _ in _arcs(path)) for path in WORLDS}
+    assert all(radii[tight] <= radius for radius in radii.values())
+    angles = [angle for _, angle in _arcs(tight)]
+    assert min(angles) < 0 < max(angles)
+    assert any(abs(angle) == 60 for angle in angles)
 
 
 def test_lasers_and_bodies_ignore_the_line():
