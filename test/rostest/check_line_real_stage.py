@@ -22,7 +22,7 @@ import unittest
 import rospy
 import rostest
 
-from installed import package_installed
+from installed import real_stage_suite
 from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port, \
     launch_command
 
@@ -66,27 +66,7 @@ class RealStageLap(unittest.TestCase):
         self.assertGreaterEqual(self.figures['mean_speed'], 0.15, self.figures)
 
 
-class NotRunStageRosNotInstalled(unittest.TestCase):
-
-    def test_line_real_stage_not_run__stage_ros_not_installed(self):
-        print('line_real_stage: NOT RUN: stage_ros is not installed '
-              '(tools/build-real-stage builds it)')
-
-
-class NotRunNoDisplay(unittest.TestCase):
-
-    def test_line_real_stage_not_run__no_display_and_no_xvfb_run(self):
-        print('line_real_stage: NOT RUN: Stage needs a display: no DISPLAY and no xvfb-run')
-
-
-def suite():
-    if not package_installed('stage_ros'):
-        return NotRunStageRosNotInstalled
-    if display_wrapper() is None:
-        return NotRunNoDisplay
-    return RealStageLap
-
-
 if __name__ == '__main__':
     rospy.init_node('check_line_real_stage')
-    rostest.rosrun('wall_follower', 'check_line_real_stage', suite(), sys.argv)
+    rostest.rosrun('wall_follower', 'check_line_real_stage',
+                   real_stage_suite('line_real_stage', RealStageLap), sys.argv)

@@ -19,7 +19,7 @@ import unittest
 import rospy
 import rostest
 
-from installed import package_installed
+from installed import real_stage_suite
 from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
                                                            launch_and_wait, launch_command)
 
@@ -73,26 +73,7 @@ class RealStageCourse(unittest.TestCase):
         self.assertLessEqual(self.figure('max_angular'), 0.49 + 1e-6)
 
 
-class NotRunStageRosNotInstalled(unittest.TestCase):
-
-    def test_real_stage_not_run__stage_ros_not_installed(self):
-        print('real_stage: NOT RUN: stage_ros is not installed (tools/build-real-stage builds it)')
-
-
-class NotRunNoDisplay(unittest.TestCase):
-
-    def test_real_stage_not_run__no_display_and_no_xvfb_run(self):
-        print('real_stage: NOT RUN: Stage needs a display: no DISPLAY and no xvfb-run')
-
-
-def suite():
-    if not package_installed('stage_ros'):
-        return NotRunStageRosNotInstalled
-    if display_wrapper() is None:
-        return NotRunNoDisplay
-    return RealStageCourse
-
-
 if __name__ == '__main__':
     rospy.init_node('check_real_stage')
-    rostest.rosrun('wall_follower', 'check_real_stage', suite(), sys.argv)
+    rostest.rosrun('wall_follower', 'check_real_stage',
+                   real_stage_suite('real_stage', RealStageCourse), sys.argv)

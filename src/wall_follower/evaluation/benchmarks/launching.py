@@ -106,6 +106,28 @@ def run_launch(launch_file, args, timeout=600.0, wrapper=()):
     return figures
 
 
+def run_rostest(test_file, args, timeout):
+    """rostest wall_follower test_file ARG:=VALUE... json:=FILE; FILE's JSON, or None
+    (said on stderr) when the run wrote none: it failed or ran out of time."""
+    fd, output = tempfile.mkstemp(suffix='.json')
+    os.close(fd)
+    os.unlink(output)
+    command = ['rostest', 'wall_follower', test_file] + [
+        '%s:=%s' % item for item in sorted(dict(args, json=output).items())]
+    try:
+        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT,
+                       timeout=timeout)
+    except subprocess.TimeoutExpired:
+        pass
+    if not os.path.exists(output):
+        sys.stderr.write('run failed: %s\n' % ' '.join(command))
+        return None
+    with open(output) as stream:
+        figures = json.load(stream)
+    os.unlink(output)
+    return figures
+
+
 def fmt(value, spec):
     """A table cell; '-' where a figure is missing."""
     if value is None or value != value:

@@ -14,17 +14,12 @@ simulator's camera has its own benchmark where it is built (`benchmark
 camera`).
 """
 import argparse
-import json
 import math
-import os
-import subprocess
-import sys
-import tempfile
 import time
 
 import numpy as np
 
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table
+from wall_follower.evaluation.benchmarks.launching import fmt, print_table, run_rostest
 from wall_follower.evaluation.line_scoring import speed_bound
 from wall_follower.evaluation.line_track import load_centreline
 from wall_follower.params import defaults, pick
@@ -42,23 +37,7 @@ CONTROLLERS = ('pursuit', 'pixel_p')
 
 def run_line(world, controller, timeout=600.0):
     """The figures of one line_follow run as a dict, or None when it wrote none."""
-    fd, output = tempfile.mkstemp(suffix='.json')
-    os.close(fd)
-    os.unlink(output)
-    command = ['rostest', 'wall_follower', 'line_follow.test', 'world:=' + world,
-               'controller:=' + controller, 'json:=' + output]
-    try:
-        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT,
-                       timeout=timeout)
-    except subprocess.TimeoutExpired:
-        pass
-    if not os.path.exists(output):
-        sys.stderr.write('run failed: %s\n' % ' '.join(command))
-        return None
-    with open(output) as stream:
-        figures = json.load(stream)
-    os.unlink(output)
-    return figures
+    return run_rostest('line_follow.test', {'world': world, 'controller': controller}, timeout)
 
 
 def pipeline_rate(width, height, frames=50):

@@ -7,37 +7,17 @@ that the robot's axle passed through (evaluation/coverage.py), the path
 driven, the smallest clearance and whether anything was touched.
 """
 import argparse
-import json
-import os
-import subprocess
-import sys
-import tempfile
 
 from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, laser_profile,
-                                                           print_table, shipped_world)
+                                                           print_table, run_rostest, shipped_world)
 
 EXERCISE_WORLDS = WORLDS + ('pillars',)
 
 
 def run_wander(world, profile, duration, timeout=900.0):
     """The figures of one wander run as a dict, or None when it wrote none."""
-    fd, output = tempfile.mkstemp(suffix='.json')
-    os.close(fd)
-    os.unlink(output)
-    command = ['rostest', 'wall_follower', 'wander.test', 'world:=' + world,
-               'laser_profile:=' + profile, 'duration:=%g' % duration, 'json:=' + output]
-    try:
-        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT,
-                       timeout=timeout)
-    except subprocess.TimeoutExpired:
-        pass
-    if not os.path.exists(output):
-        sys.stderr.write('run failed: %s\n' % ' '.join(command))
-        return None
-    with open(output) as stream:
-        figures = json.load(stream)
-    os.unlink(output)
-    return figures
+    return run_rostest('wander.test', {'world': world, 'laser_profile': profile,
+                                       'duration': '%g' % duration}, timeout)
 
 
 def main(argv=None):
