@@ -129,3 +129,20 @@ def test_a_change_to_a_value_read_at_start_is_refused_and_the_rest_applied(serve
                                     'find_wall': True}
     assert [level for level, _ in fake.logs] == ['warn', 'info']
     assert '~wall_min_points read at start only; kept as 6' in fake.logs[0][1]
+
+
+def test_a_found_value_is_looked_for_only_once_the_given_ones_pass(server):
+    """A bad given value stops the node at once, before the (maybe long) wait of a finder."""
+    asked = []
+
+    def find():
+        asked.append(True)
+        return 0.3
+
+    server({'wall_min_points': 1000})
+    with pytest.raises(SystemExit):
+        parameters.NodeParameters(TABLE, found={'target_distance': find})
+    assert not asked
+    server({'wall_min_points': 7})
+    params = parameters.NodeParameters(TABLE, found={'target_distance': find})
+    assert asked and params.snapshot()['target_distance'] == 0.3

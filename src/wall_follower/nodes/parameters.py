@@ -32,8 +32,10 @@ class NodeParameters(object):
     """The current values of one node's parameters, and the changes made to them since."""
 
     def __init__(self, table, config_type=None, found=None, rules=(), read_at_start=()):
-        """found: name -> value of parameters the node has found out for itself
-        (laser_x from tf, say), in force as if given on the parameter server.
+        """found: name -> a call that finds out the value of a parameter the node
+        learns for itself (laser_x from tf, say), in force as if given on the
+        parameter server; called only once the given values have passed their
+        checks, so that a bad value stops the node at once, not after a wait.
         rules: what the values must satisfy together (see params.checked),
         at start and at each reconfiguration.
         read_at_start: names of parameters the node uses only at start (the
@@ -113,16 +115,23 @@ def _load(table, found, rules, tunable):
         rospy.logwarn('%s: ignoring unknown parameter(s) %s (misspelt? %s the known ones)',
                       rospy.get_name(), ', '.join('~' + name for name in unknown), hint)
     known = dict((name, value) for name, value in given.items() if name not in unknown)
-    known.update(found)
+    values = _checked_or_exit(table, known, rules)
+    if found:
+        known.update((name, find()) for name, find in found.items())
+        values = _checked_or_exit(table, known, rules)
+    for name in known:
+        rospy.set_param('~' + name, values[name])
+    return values
+
+
+def _checked_or_exit(table, known, rules):
+    """checked(table, known, rules), or the node's end with a line naming what is wrong."""
     try:
-        values = checked(table, known, rules)
+        return checked(table, known, rules)
     except ParameterError as error:
         rospy.logfatal('%s: cannot start: %s (check the launch file and config/*.yaml)',
                        rospy.get_name(), '; '.join('~' + problem for problem in error.problems))
         raise SystemExit(1)
-    for name in known:
-        rospy.set_param('~' + name, values[name])
-    return values
 
 
 def drive_loop(name, values, tick=None):

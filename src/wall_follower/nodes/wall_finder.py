@@ -26,8 +26,8 @@ class WallFinderNode(object):
     """Offers find_wall; each call runs one search with a fresh WallFinder."""
 
     def __init__(self):
-        # ~laser_x if set, else read from tf: before the parameters are copied.
-        self.params = NodeParameters(TABLE, WallFinderConfig, found={'laser_x': laser_x()})
+        # ~laser_x if set, else read from tf, once the given values have passed.
+        self.params = NodeParameters(TABLE, WallFinderConfig, found={'laser_x': laser_x})
         values = self.params.snapshot()
         # max_linear and max_angular are the behaviour's limits and the clamp
         # alike, so the behaviour never asks for more than the node will send.

@@ -39,8 +39,8 @@ class WallFollowingNode(object):
     """The follower's ROS wiring: scan in, clamped cmd_vel out, plus the two clients."""
 
     def __init__(self):
-        # ~laser_x if set, else read from tf: before the parameters are copied.
-        self.params = NodeParameters(TABLE, WallFollowingConfig, found={'laser_x': laser_x()})
+        # ~laser_x if set, else read from tf, once the given values have passed.
+        self.params = NodeParameters(TABLE, WallFollowingConfig, found={'laser_x': laser_x})
         values = self.params.snapshot()
         self.node = pick(values, NODE)
         self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))
