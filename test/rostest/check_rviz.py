@@ -1,16 +1,23 @@
 #!/usr/bin/env python3
-"""rostest: rviz starts with every shipped config, no display in error, the walls drawn.
+"""rostest: rviz starts with every shipped config, no display in error, showing what it must.
 
 Each config in config/*.rviz is opened by the launch it belongs to
-(SCENARIOS; a config without one fails), with the built-in simulator in the
-arena, on an Xvfb screen of the check's own. Screenshots are taken until
-one shows what rviz should (or the time is up): no display's name in
-rviz's error red in the Displays panel, and at least WALLS_SHARE of the
-world's wall pixels, drawn at the config's scale, dark in the render panel
-at one offset, within PLACE_SLACK of where the view puts the world's
-walls (the scan drawn over the walls hides the rest). The last
-screenshot of each config is kept under ROS_LOG_DIR (rviz_pictures/) and
-its path printed.
+(SCENARIOS; a config without one fails) on an Xvfb screen of the check's
+own: a world's config beside the built-in simulator in that world, the
+arm's beside arm.launch. Screenshots are taken until one shows what rviz
+should (or the time is up): no display's name in rviz's error red in the
+Displays panel, and
+
+- a world's config (WallsShown): at least WALLS_SHARE of the world's wall
+  pixels, drawn at the config's scale, dark in the render panel at one
+  offset, within PLACE_SLACK of where the view puts the world's walls
+  (the scan drawn over the walls hides the rest);
+- the arm's (RobotShown): at least ROBOT_SHARE of the render panel in the
+  hues of the robot's coloured URDF materials (none if the RobotModel
+  draws nothing).
+
+The last screenshot of each config is kept under ROS_LOG_DIR
+(rviz_pictures/) and its path printed.
 
 Where rviz, Xvfb or ImageMagick is missing (CI without them), nothing is
 run, and the one test that passes says so in its name and on stdout.
@@ -30,21 +37,32 @@ import rostest
 import yaml
 
 from wall_follower.evaluation.rviz_picture import (error_text_pixels, expected_corner,
+                                                   material_colours, material_share,
                                                    render_panel, wall_template, walls_drawn)
 from wall_follower.evaluation.rviz_screen import Launch, VirtualScreen, missing_tools
 from wall_follower.sim.world_map import world_map
 from wall_follower.sim.worldfile import load_world
 
-WORLD = 'arena'
-SIMULATION = ['sim:=true', 'simulator:=builtin', 'world:=' + WORLD, 'rviz:=true']
-# config file -> (launch file, its arguments besides SIMULATION) that opens rviz with it
+
+def simulation(world):
+    """A driving launch's arguments for the built-in simulator in `world`, with rviz."""
+    return ['sim:=true', 'simulator:=builtin', 'world:=' + world, 'rviz:=true']
+
+
+# config file -> (the launch that opens rviz with it and its arguments,
+#                 what it must show: ('walls', a world of worlds/) or ('robot', a URDF of urdf/))
 SCENARIOS = {
-    'wall_follower.rviz': ('main.launch', []),
-    'exercises.rviz': ('exercise_wander.launch', []),
-    'slam.rviz': ('mapping.launch', ['map_file:={tmp}/map']),
+    'wall_follower.rviz': (['main.launch'] + simulation('arena'), ('walls', 'arena')),
+    'exercises.rviz': (['exercise_wander.launch'] + simulation('arena'), ('walls', 'arena')),
+    'slam.rviz': (['mapping.launch', 'map_file:={tmp}/map'] + simulation('arena'),
+                  ('walls', 'arena')),
+    'line_following.rviz': (['line_following.launch'] + simulation('line_lab'),
+                            ('walls', 'line_lab')),
+    'arm.rviz': (['arm.launch', 'rviz:=true'], ('robot', 'cougarbot')),
 }
 WALLS_SHARE = 0.5      # of the world's wall pixels, found dark in the render panel
 PLACE_SLACK = 4.0      # pixels between where the walls are drawn and where they belong
+ROBOT_SHARE = 0.005    # of the render panel, drawn in the robot's material colours
 LIMIT = 40.0           # wall seconds for rviz to show the picture
 POLL = 1.0             # wall seconds between screenshots
 
@@ -58,60 +76,90 @@ def config_view(path):
     return float(view['Scale']), (float(view['X']), float(view['Y']))
 
 
+class WallsShown(object):
+    """What a screenshot misses of a world's walls, as a top-down config draws them."""
+
+    def __init__(self, package, world, config):
+        self.walls = world_map(load_world(os.path.join(package, 'worlds', world + '.world')))
+        self.scale, self.focal = config_view(config)
+        self.template = wall_template(self.walls.values, self.walls.resolution, self.scale)
+
+    def __call__(self, rgb):
+        """(what is missing, [] if nothing, a summary of what is seen)."""
+        share, corner = walls_drawn(rgb, self.template)
+        panel = render_panel(rgb)
+        off = (float('inf') if panel is None else math.hypot(*np.subtract(
+            corner, expected_corner(panel, self.walls.origin, self.template.shape,
+                                    self.scale, self.focal))))
+        missing = []
+        if share < WALLS_SHARE:
+            missing.append('the walls are not drawn')
+        elif off > PLACE_SLACK:
+            missing.append('the walls are drawn %.0f px from where the world has them' % off)
+        return missing, 'walls %.0f %% drawn, %.1f px from their place' % (100 * share, off)
+
+
+class RobotShown(object):
+    """What a screenshot misses of a robot drawn alone (no map): its coloured links."""
+
+    def __init__(self, package, urdf):
+        with open(os.path.join(package, 'urdf', urdf + '.urdf')) as stream:
+            self.colours = material_colours(stream.read())
+        assert self.colours, '%s.urdf: no coloured material to look for' % urdf
+
+    def __call__(self, rgb):
+        """(what is missing, [] if nothing, a summary of what is seen)."""
+        share = material_share(rgb, self.colours)
+        missing = [] if share >= ROBOT_SHARE else ['the robot is not drawn']
+        return missing, 'robot in %.2f %% of the render panel' % (100 * share)
+
+
 class RvizPictures(unittest.TestCase):
 
     def setUp(self):
-        package = rospkg.RosPack().get_path('wall_follower')
-        self.configs = sorted(glob.glob(os.path.join(package, 'config', '*.rviz')))
-        self.walls = world_map(load_world(os.path.join(package, 'worlds', WORLD + '.world')))
+        self.package = rospkg.RosPack().get_path('wall_follower')
+        self.configs = sorted(glob.glob(os.path.join(self.package, 'config', '*.rviz')))
         self.out = os.path.join(os.environ.get('ROS_LOG_DIR', tempfile.gettempdir()),
                                 'rviz_pictures')
         os.makedirs(self.out, exist_ok=True)
 
-    def test_every_config_shows_the_walls_and_no_error(self):
+    def test_every_config_shows_what_it_must_and_no_error(self):
         self.assertTrue(self.configs)
         with VirtualScreen() as screen, tempfile.TemporaryDirectory() as tmp:
             for path in self.configs:
                 name = os.path.basename(path)
                 self.assertIn(name, SCENARIOS, 'no launch to try %s with' % name)
-                launch_file, args = SCENARIOS[name]
-                args = [arg.format(tmp=tmp) for arg in args] + SIMULATION
-                self.check_config(screen, path, launch_file, args, tmp)
+                launch, (kind, subject) = SCENARIOS[name]
+                judge = (WallsShown(self.package, subject, path) if kind == 'walls'
+                         else RobotShown(self.package, subject))
+                self.check_config(screen, name, [arg.format(tmp=tmp) for arg in launch],
+                                  judge, tmp)
 
-    def check_config(self, screen, path, launch_file, args, tmp):
-        name = os.path.basename(path)
-        scale, focal = config_view(path)
-        template = wall_template(self.walls.values, self.walls.resolution, scale)
+    def check_config(self, screen, name, launch_args, judge, tmp):
         shot = os.path.join(self.out, name.replace('.rviz', '.png'))
         log_path = os.path.join(tmp, name + '.log')
         with open(log_path, 'w') as log:
-            launch = Launch(screen, launch_file, args, log)
+            launch = Launch(screen, launch_args[0], launch_args[1:], log)
             started = time.monotonic()
             try:
                 deadline = started + LIMIT
                 while True:
                     rgb = screen.screenshot(shot)
                     errors = error_text_pixels(rgb)
-                    share, corner = walls_drawn(rgb, template)
-                    panel = render_panel(rgb)
-                    off = (float('inf') if panel is None else math.hypot(*np.subtract(
-                        corner, expected_corner(panel, self.walls.origin, template.shape,
-                                                scale, focal))))
-                    good = errors == 0 and share >= WALLS_SHARE and off <= PLACE_SLACK
+                    missing, seen = judge(rgb)
+                    good = errors == 0 and not missing
                     if good or time.monotonic() > deadline or not launch.running():
                         break
                     time.sleep(POLL)
             finally:
                 launch.stop()
-        print('%s: %s after %.0f s (walls %.0f %% drawn, %.1f px from their place, %d error '
-              'pixels)' % (name, shot, time.monotonic() - started, 100 * share, off, errors))
+        print('%s: %s after %.0f s (%s, %d error pixels)'
+              % (name, shot, time.monotonic() - started, seen, errors))
         with open(log_path) as log:
             output = log.read()[-3000:]
         self.assertEqual(errors, 0, '%s: a display in error, see %s\n%s' % (name, shot, output))
-        self.assertGreaterEqual(share, WALLS_SHARE, '%s: the walls are not drawn, see %s\n%s'
-                                % (name, shot, output))
-        self.assertLessEqual(off, PLACE_SLACK, '%s: the walls are drawn %.0f px from where '
-                             'the world has them, see %s' % (name, off, shot))
+        self.assertEqual(missing, [], '%s: %s, see %s\n%s'
+                         % (name, '; '.join(missing), shot, output))
 
 
 class NotRunRvizPictures(unittest.TestCase):

@@ -21,7 +21,8 @@ EXERCISES = ['exercise_forward_stop.launch', 'exercise_range_ahead.launch',
 # launch file -> the config its rviz:=true opens
 CONFIGS = dict({'main.launch': 'wall_follower.rviz', 'simulation.launch': 'wall_follower.rviz',
                 'mapping.launch': 'slam.rviz', 'slam.launch': 'slam.rviz',
-                'find_trials.launch': 'wall_follower.rviz'},
+                'find_trials.launch': 'wall_follower.rviz',
+                'line_following.launch': 'line_following.rviz'},
                **{name: 'exercises.rviz' for name in EXERCISES})
 
 
@@ -35,7 +36,8 @@ def nodes_of(config):
 
 
 @pytest.mark.parametrize('launch_file, args', [(name, ['sim:=true']) for name in sorted(CONFIGS)]
-                         + [('main.launch', []), ('exercise_wander.launch', [])])
+                         + [('main.launch', []), ('exercise_wander.launch', []),
+                            ('line_following.launch', [])])
 def test_rviz_opens_the_config_of_the_job_after_checking_it_is_installed(launch_file, args):
     config = load(launch_file, 'rviz:=true', *args)
     rviz = nodes_of(config)['rviz']
@@ -68,3 +70,14 @@ def test_simulation_publishes_the_walls_and_the_robot_model(model):
 def test_mapping_moves_the_world_walls_off_the_map_it_builds():
     walls = nodes_of(load('mapping.launch', 'sim:=true'))['world_map']
     assert dict(walls.remap_args) == {'map': 'world_map', 'map_metadata': 'world_map_metadata'}
+
+
+def test_line_following_simulation_draws_the_waffle_pi():
+    description = load('line_following.launch', 'sim:=true').params['/robot_description'].value
+    assert '<robot name="turtlebot3_waffle_pi">' in description
+
+
+def test_line_following_rviz_shows_the_image_the_follower_reads():
+    nodes = nodes_of(load('line_following.launch', 'rviz:=true', 'image:=/raspicam_node/image'))
+    assert dict(nodes['rviz'].remap_args) == {'image': '/raspicam_node/image'}
+    assert dict(nodes['line_follower'].remap_args)['image'] == '/raspicam_node/image'

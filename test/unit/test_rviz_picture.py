@@ -2,7 +2,8 @@
 import numpy as np
 
 from wall_follower.evaluation.rviz_picture import (BACKGROUND, ERROR_TEXT, error_text_pixels,
-                                                   expected_corner, render_panel, wall_template,
+                                                   expected_corner, material_colours,
+                                                   material_share, render_panel, wall_template,
                                                    walls_drawn)
 
 RESOLUTION = 0.05
@@ -67,3 +68,36 @@ def test_error_red_counts_left_of_the_render_panel_only():
     assert error_text_pixels(rgb) == 150
     rgb[50:55, 150:200] = ERROR_TEXT   # a red scan in the render panel is no error
     assert error_text_pixels(rgb) == 150
+
+
+ARM_URDF = """<robot name="arm">
+  <material name="grey"><color rgba="0.6 0.6 0.6 1.0"/></material>
+  <material name="orange"><color rgba="0.95 0.55 0.1 1.0"/></material>
+  <link name="base"><visual><geometry><box size="1 1 1"/></geometry>
+    <material name="blue"><color rgba="0.2 0.35 0.8 1"/></material></visual></link>
+</robot>"""
+ORANGE = (0.95, 0.55, 0.1)
+BLUE = (0.2, 0.35, 0.8)
+
+
+def test_material_colours_are_the_coloured_ones_not_grey():
+    assert material_colours(ARM_URDF) == [ORANGE, BLUE]
+
+
+def test_a_shaded_link_counts_in_its_materials_hue():
+    rgb = screen()
+    top, bottom, left, right = PANEL
+    rgb[top:top + 60, left:left + 30] = (121, 70, 13)       # the orange link, in shadow
+    rgb[top:top + 60, left + 30:left + 60] = (242, 140, 26)   # lit
+    area = (bottom - top) * (right - left)
+    assert abs(material_share(rgb, [ORANGE, BLUE]) - 3600.0 / area) < 1e-9
+
+
+def test_no_robot_drawn_no_share():
+    rgb = screen()
+    top, bottom, left, right = PANEL
+    rgb[top + 10:top + 12, left:right] = (160, 160, 164)    # the grid
+    rgb[top + 50:top + 60, left:left + 40] = (255, 0, 0)    # a red axis of the TF display
+    rgb[top + 70:top + 80, left:left + 40] = (0, 0, 255)    # a blue one
+    assert material_share(rgb, [ORANGE, BLUE]) == 0.0
+    assert material_share(screen(), []) == 0.0

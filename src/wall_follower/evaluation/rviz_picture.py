@@ -10,14 +10,24 @@ drawn (the scan drawn over them hides some), and that offset, against the
 one the view's focal point puts them at, whether they are where they
 belong. rviz writes the name of a display in error in one red (ERROR_TEXT)
 in its Displays panel, left of the render panel.
+
+A view with no map (the arm's) is judged by its robot instead: the share
+of the render panel drawn in the hues of the robot's coloured URDF
+materials (shading changes a lit surface's brightness, not its hue; the
+grid, the background and grey materials have no hue to match).
 """
+import xml.etree.ElementTree as ElementTree
+
 import numpy as np
+from matplotlib.colors import rgb_to_hsv
 
 ERROR_TEXT = (192, 32, 32)     # rviz's colour of a display's name and status in error
 COLOUR_SLACK = 12              # per channel, for anti-aliased text
 DARK = 40                      # a drawn wall (black map cell): every channel below this
 BACKGROUND = (48, 48, 48)      # the configs' render background
 PANEL_SHARE = 0.5              # a render-panel column: at least this share of background
+MIN_SATURATION = 0.4           # a coloured material, and a pixel drawn in its colour
+HUE_SLACK = 0.025              # of the hue circle (9 degrees), for a pixel of a material's hue
 
 
 def wall_template(values, resolution, scale):
@@ -87,3 +97,31 @@ def error_text_pixels(rgb):
     found = render_panel(rgb)
     panel = rgb[:, :found[2] if found else rgb.shape[1]].astype(int)
     return int(np.all(np.abs(panel - np.array(ERROR_TEXT)) <= COLOUR_SLACK, axis=2).sum())
+
+
+def material_colours(urdf_text):
+    """(r, g, b) in 0..1 of the URDF's materials coloured enough (MIN_SATURATION)
+    that the robot's pixels can be told from grey by their hue."""
+    colours = []
+    for colour in ElementTree.fromstring(urdf_text).iter('color'):
+        rgb = [float(value) for value in colour.get('rgba').split()[:3]]
+        if rgb_to_hsv(np.array(rgb))[1] >= MIN_SATURATION:
+            colours.append(tuple(rgb))
+    return colours
+
+
+def material_share(rgb, colours):
+    """The share of rviz's render panel of the screenshot rgb whose pixels have the hue
+    of one of `colours` (within HUE_SLACK) and at least MIN_SATURATION; 0.0 with no
+    render panel or no colours."""
+    found = render_panel(rgb)
+    if found is None or not colours:
+        return 0.0
+    top, bottom, left, right = found
+    hsv = rgb_to_hsv(rgb[top:bottom, left:right] / 255.0)
+    drawn = np.zeros(hsv.shape[:2], dtype=bool)
+    for colour in colours:
+        hue = rgb_to_hsv(np.array(colour, dtype=float))[0]
+        apart = np.abs(hsv[..., 0] - hue)
+        drawn |= (np.minimum(apart, 1.0 - apart) <= HUE_SLACK) & (hsv[..., 1] >= MIN_SATURATION)
+    return float(drawn.mean())
