@@ -3,16 +3,19 @@
 The same loop the node runs, minus ROS, scored from ground truth and the
 map as the benchmark scores it. A few seconds, so it runs with every test.
 """
+import math
 import os
 
 from wall_follower.control.follower import WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.scan import ScanView
+from wall_follower.evaluation import world_generator
 from wall_follower.evaluation.scoring import CourseMap, RunScore
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
-ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
+WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
+ROOM = os.path.join(WORLDS, 'room.world')
 
 
 def lap(world_path, profile, seed=0, time_limit=120.0):
@@ -47,3 +50,25 @@ def test_a_lap_of_the_room_in_band_without_contact():
     # time its path takes at the speed limit.
     assert figures['lap_time_ratio'] <= 1.2
     assert 'WALL_AHEAD' in states
+
+
+def generated_world(directory, seed, index, start):
+    """The generator's world index of seed, written into directory with its start moved to start."""
+    world = world_generator.generate(seed, index)._replace(start=start)
+    return world_generator.write_world(world, str(directory), os.path.join(WORLDS, 'burger.inc'),
+                                       seed, index)
+
+
+def test_a_pillar_beyond_an_outer_corner_does_not_turn_the_robot_off_the_wall(tmp_path):
+    # Generated world 0 of seed 1: a wing leaves the room's north wall, and
+    # a pillar stands 0.8 m south of where the wing's west wall ends. The
+    # robot comes down that wall and rounds its end to the west; the pillar,
+    # then square ahead, once interrupted that right turn with a left one,
+    # lost the wall and looped through the wing without ever closing a lap.
+    # Started where find_wall leaves it, on the room's east wall, heading north.
+    world = generated_world(tmp_path, 1, 0, (1.28, 0.0, math.pi / 2))
+    figures, states = lap(world, 'stage', time_limit=120.0)
+    assert figures['lap_closed']
+    assert not figures['contact'], figures['min_clearance']
+    assert figures['time_in_band'] >= 0.97
+    assert 'SEARCH' not in states

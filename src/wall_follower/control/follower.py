@@ -140,8 +140,13 @@ class WallFollower(object):
             manoeuvre.begin(obs, previous)
 
     def _next_state(self, obs):
-        """A wall ahead within reach interrupts any manoeuvre; else the state's own transition."""
-        if self.inner_corner.needed(obs):
+        """A wall ahead within reach interrupts any manoeuvre; else the state's own transition.
+
+        Round an outer corner only something near in the lane is within
+        reach: the right turn carries the robot away from anything farther
+        across its present heading.
+        """
+        if self.inner_corner.needed(obs, turning_right=self.state == OUTER_CORNER):
             return WALL_AHEAD
         return self._transitions[self.state](obs)
 

@@ -61,13 +61,18 @@ class InnerCorner(Manoeuvre):
             turn = self.short_turn.drifting_at_most(allowed)
         self.turn = turn
 
-    def needed(self, obs):
+    def needed(self, obs, turning_right=False):
         """True when anything is near in the lane ahead, or a wall across the way is near
-        enough that the planned turn, begun now, ends inner_corner_distance from it."""
+        enough that the planned turn, begun now, ends inner_corner_distance from it.
+
+        turning_right: the robot is rounding an outer corner, which turns it
+        away from a wall across its present heading (a pillar or an island
+        beyond the corner, say): only something near in the lane counts then.
+        """
         p = self.params
         if obs.front < p.front_turn_distance:
             return True
-        if not self.blocking(obs):
+        if turning_right or not self.blocking(obs):
             return False
         distance, angle = self._ahead_as_planned(obs)
         return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
