@@ -27,3 +27,16 @@ def test_an_unknown_world_or_profile_is_a_usage_error(capsys, argv, says, names)
     error = capsys.readouterr().err.splitlines()[-1]
     assert error.startswith('benchmark %s: error: ' % argv[0])
     assert says in error and error.endswith(names)
+
+
+@pytest.mark.parametrize('argv, profiles', [
+    (['--generated', '2'], ['stage', 'lds01', 'lds02', 'gazebo', 'course720']),
+    (['--generated', '2', '--profiles', 'lds01', 'course720'], ['lds01', 'course720'])])
+def test_generated_worlds_are_run_in_the_profiles_asked_for(monkeypatch, tmp_path, argv,
+                                                            profiles):
+    from wall_follower.evaluation.benchmarks import follow, follow_generated
+    ran = []
+    monkeypatch.setattr(follow_generated, 'run', lambda count, seed, asked, *rest: ran.append(
+        (count, list(asked))))
+    follow.main(argv + ['--out', str(tmp_path)])
+    assert ran == [(2, profiles)]

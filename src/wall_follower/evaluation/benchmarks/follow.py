@@ -63,7 +63,9 @@ def lap_args(simulator, world, profile, seed):
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark follow', description=__doc__)
     parser.add_argument('--worlds', nargs='+', default=list(WORLDS), type=shipped_world())
-    parser.add_argument('--profiles', nargs='+', default=list(PROFILES), type=laser_profile)
+    parser.add_argument('--profiles', nargs='+', type=laser_profile,
+                        help='laser profiles (default: %s; with --generated, every one)'
+                        % ' '.join(PROFILES))
     parser.add_argument('--seeds', type=int, default=5,
                         help='laps per noisy laser profile, one per noise seed (default 5)')
     parser.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
@@ -78,7 +80,8 @@ def main(argv=None):
                         '(default: a new temporary one)')
     args = parser.parse_args(argv)
     if args.generated:
-        return follow_generated.run(args.generated, args.seed, LASER_PROFILES,
+        return follow_generated.run(args.generated, args.seed,
+                                    args.profiles or list(LASER_PROFILES),
                                     args.jobs, args.out or tempfile.mkdtemp(prefix='follow-'),
                                     args.room)
     wrapper = ()
@@ -89,6 +92,7 @@ def main(argv=None):
                              'no xvfb-run\n')
             return 1
         args.profiles, args.seeds = ['stage'], 1
+    args.profiles = args.profiles or list(PROFILES)
     rows = []
     for world in args.worlds:
         for profile in args.profiles:
