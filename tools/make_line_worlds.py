@@ -33,6 +33,7 @@ sys.path.insert(0, os.path.join(REPO, 'src'))
 from wall_follower.evaluation.line_track import centreline_of, read_course  # noqa: E402
 
 LINE_PIXEL = 0.005
+TIE = 1e-9         # m: a pixel centre this near the line's edge is a tie (line_raster)
 MARGIN = 0.5
 WALL = 0.1
 MARKING_HEIGHT = 0.001
@@ -114,8 +115,12 @@ turtlebot3_waffle_pi
 
 
 def line_raster(centreline):
-    """(black pixels, x of column 0's left edge, y of row 0's top edge): the line drawn
-    on a grid of LINE_PIXEL aligned to multiples of it, cropped to its black pixels."""
+    """(black pixels, ties, x of column 0's left edge, y of row 0's top edge): the line
+    drawn on a grid of LINE_PIXEL aligned to multiples of it, cropped to its black pixels.
+
+    ties: the pixels whose centre lies on the line's edge, to rounding: which way they
+    fall depends on the last bit of a distance, and so on numpy's version (1.17 and
+    1.24 part on a few dozen), so a check of the files does not judge them."""
     half = centreline.width / 2.0
     lower = np.floor((centreline.points.min(axis=0) - half) / LINE_PIXEL) - 2
     upper = np.ceil((centreline.points.max(axis=0) + half) / LINE_PIXEL) + 2
@@ -124,19 +129,23 @@ def line_raster(centreline):
     xs = (lower[0] + np.arange(cols) + 0.5) * LINE_PIXEL
     ys = (upper[1] - np.arange(rows) - 0.5) * LINE_PIXEL
     gx, gy = np.meshgrid(xs, ys)
-    black = centreline.distance(gx, gy, within=half + LINE_PIXEL) <= half
+    distance = centreline.distance(gx, gy, within=half + LINE_PIXEL)
+    black = distance <= half
+    ties = np.abs(distance - half) <= TIE
     used_rows = np.nonzero(black.any(axis=1))[0]
     used_cols = np.nonzero(black.any(axis=0))[0]
     r0, r1, c0, c1 = used_rows[0], used_rows[-1] + 1, used_cols[0], used_cols[-1] + 1
-    return black[r0:r1, c0:c1], (lower[0] + c0) * LINE_PIXEL, (upper[1] - r0) * LINE_PIXEL
+    return (black[r0:r1, c0:c1], ties[r0:r1, c0:c1], (lower[0] + c0) * LINE_PIXEL,
+            (upper[1] - r0) * LINE_PIXEL)
 
 
 def world_files(course_file):
-    """{file name: bytes} of the world and bitmap generated from one course file."""
+    """{file name: (bytes, pixels a check may not judge (ties) or None)} of the world and
+    bitmap generated from one course file."""
     name = os.path.basename(course_file)[:-len('.course.yaml')]
     course = read_course(course_file)
     centreline = centreline_of(course, course_file)
-    black, left, top = line_raster(centreline)
+    black, ties, left, top = line_raster(centreline)
     rows, cols = black.shape
     image = Image.fromarray(np.where(black, 0, 255).astype(np.uint8), mode='L')
     png = io.BytesIO()
@@ -158,18 +167,18 @@ def world_files(course_file):
         lx=cols * LINE_PIXEL, ly=rows * LINE_PIXEL, lz=MARKING_HEIGHT,
         px=left + cols * LINE_PIXEL / 2.0, py=top - rows * LINE_PIXEL / 2.0)
     text = HEADER.format(**values) + BODY.format(**values)
-    return {name + '.world': text.encode(), bitmap: png.getvalue()}
+    return {name + '.world': (text.encode(), None), bitmap: (png.getvalue(), ties)}
 
 
-def _same(path, data):
-    """Whether the file at path holds `data` (for a PNG: the same pixels, since PIL
-    versions compress differently)."""
+def _same(path, data, ties):
+    """Whether the file at path holds `data` (for a PNG: the same pixels but for the
+    ties, since PIL versions compress differently)."""
     if not os.path.exists(path):
         return False
     if path.endswith('.png'):
         with Image.open(path) as old, Image.open(io.BytesIO(data)) as new:
-            return old.size == new.size and \
-                np.array_equal(np.asarray(old.convert('L')), np.asarray(new.convert('L')))
+            return old.size == new.size and np.array_equal(
+                np.asarray(old.convert('L'))[~ties], np.asarray(new.convert('L'))[~ties])
     with open(path, 'rb') as stream:
         return stream.read() == data
 
@@ -182,10 +191,10 @@ def main(argv=None):
     worlds = os.path.join(REPO, 'worlds')
     stale = []
     for course_file in sorted(glob.glob(os.path.join(worlds, '*.course.yaml'))):
-        for name, data in sorted(world_files(course_file).items()):
+        for name, (data, ties) in sorted(world_files(course_file).items()):
             path = os.path.join(worlds, name)
             if args.check:
-                if not _same(path, data):
+                if not _same(path, data, ties):
                     stale.append(name)
             else:
                 with open(path, 'wb') as stream:

@@ -8,7 +8,9 @@ from wall_follower.evaluation.benchmark import main
 
 # Parts are imported by name on demand: all of them, and each refusal, come before any run.
 CASES = [
-    (['sim', '--world', 'nowhere'], "argument --world: no world ", 'nowhere.world'),
+    # The simulator's part imports rosgraph before it reads its arguments.
+    pytest.param(['sim', '--world', 'nowhere'], "argument --world: no world ", 'nowhere.world',
+                 marks=pytest.mark.ros),
     (['mapping', '--worlds', 'pillars'], 'argument --worlds: no world ', 'pillars_odom.world'),
     (['find', '--worlds', 'nowhere'], 'argument --worlds: no world ', 'nowhere.world'),
     (['find', '--laser-profile', 'sonar'], "no laser profile 'sonar'", ''),

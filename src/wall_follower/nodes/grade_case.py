@@ -133,12 +133,23 @@ class SolutionSeen(object):
         self.action_server = self.action_server or graph.action_server(state)
 
 
+GONE = 'none of the solution\'s nodes is running (it crashed or ended)'
+
+
+def solution_running(graph, state=None):
+    """Whether any of the solution's nodes is alive (state: the graph's, if at hand)."""
+    state = graph.state() if state is None else state
+    return any(node_alive(name) for name in graph.solution_nodes(state))
+
+
 def watch(monitor, graph, seen, clock, params, start):
     """Why the run ended: 'result', or the reason no lap can come any more.
 
     Meanwhile notes in seen what the solution advertises. The solution's
     nodes count as gone only after ~start_limit wall seconds, the time
-    its launch file has to start them.
+    its launch file has to start them; but a run that ends idle with none
+    of them running ended because they are gone, not because they hang
+    (in lockstep, simulated time may pass the idle limit first).
     """
     started = time.monotonic()
     gone_since = None
@@ -150,6 +161,8 @@ def watch(monitor, graph, seen, clock, params, start):
         if now - start > params['time_limit']:
             return 'no lap within %.0f simulated s' % params['time_limit']
         if now - (clock.latest if clock.latest is not None else start) > params['idle_limit']:
+            if not solution_running(graph):
+                return GONE
             return 'no command for %.0f simulated s: the solution hangs' % params['idle_limit']
         if clock.stalled_since is not None and now - clock.stalled_since > params['idle_limit']:
             return 'stuck against an obstacle for %.0f simulated s' % params['idle_limit']
@@ -157,13 +170,13 @@ def watch(monitor, graph, seen, clock, params, start):
             next_graph = time.monotonic() + GRAPH_POLL
             state = graph.state()
             seen.look(graph, state)
-            alive = [name for name in graph.solution_nodes(state) if node_alive(name)]
-            if alive or time.monotonic() - started < params['start_limit']:
+            if solution_running(graph, state) or \
+                    time.monotonic() - started < params['start_limit']:
                 gone_since = None
             elif gone_since is None:
                 gone_since = time.monotonic()
             elif time.monotonic() - gone_since > params['gone_limit']:
-                return 'none of the solution\'s nodes is running (it crashed or ended)'
+                return GONE
         time.sleep(POLL)
     return 'shut down'
 
