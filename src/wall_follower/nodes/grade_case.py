@@ -48,8 +48,9 @@ SIMULATOR_LIMIT = 60.0
 MOVED = (0.05, math.radians(10.0))
 # The longest stretches out of band a record keeps.
 OUT_OF_BAND_KEPT = 3
-# Nodes of the grading itself, not of the solution.
-OWN_NODES = ('/simulator', '/rosout')
+# Nodes of the grading itself (grade_case.launch and the simulation.launch it includes:
+# the simulator, the world's map and the robot's model for rviz), not of the solution.
+OWN_NODES = ('/simulator', '/world_map', '/robot_state_publisher', '/rosout')
 STATUS_NAMES = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
                 GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
                 GoalStatus.RECALLED: 'recalled', GoalStatus.LOST: 'lost'}
