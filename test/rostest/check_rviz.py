@@ -63,7 +63,7 @@ SCENARIOS = {
 WALLS_SHARE = 0.5      # of the world's wall pixels, found dark in the render panel
 PLACE_SLACK = 4.0      # pixels between where the walls are drawn and where they belong
 ROBOT_SHARE = 0.005    # of the render panel, drawn in the robot's material colours
-LIMIT = 40.0           # wall seconds for rviz to show the picture
+LIMIT = 90.0           # wall seconds for rviz to show the picture (slow to start when busy)
 POLL = 1.0             # wall seconds between screenshots
 
 
