@@ -33,6 +33,7 @@ from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.evaluation.plot import plot_course
 from wall_follower.evaluation.scoring import CourseMap, true_lap_length
+from wall_follower.nodes.common import init_node
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.course_report import course_figures
 from wall_follower.nodes.parameters import NodeParameters
@@ -262,7 +263,7 @@ def _json_safe(value):
 
 
 def main():
-    rospy.init_node('grade_case')
+    init_node('grade_case')
     params = NodeParameters(TABLE).snapshot()
     try:
         course_map = CourseMap(params['world'])

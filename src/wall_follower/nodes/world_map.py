@@ -10,7 +10,7 @@ table in wall_follower.params.world_map, read once at start.
 import rospy
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 
-from wall_follower.nodes.common import pose_message
+from wall_follower.nodes.common import init_node, pose_message
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.world_map import TABLE
 from wall_follower.sim.stage_interface import parse_pose, robot_prefix, world_path
@@ -32,7 +32,7 @@ def map_message(grid, frame, stamp):
 
 
 def main():
-    rospy.init_node('world_map')
+    init_node('world_map')
     values = NodeParameters(TABLE).snapshot()
     try:
         world = load_world(world_path(values['world']))
