@@ -37,7 +37,7 @@ import rospkg
 
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.evaluation import grade_report
-from wall_follower.evaluation.benchmarks.launching import display_wrapper
+from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
 from wall_follower.evaluation.processes import ProcessGroup
 from wall_follower.evaluation.world_generator import (Settings, free_space_of, generate,
                                                       world_name, write_world)
@@ -100,14 +100,6 @@ class Solution(object):
         paths = [os.path.join(scratch, 'overlay')] + [
             p for p in base.get('ROS_PACKAGE_PATH', '').split(':') if p]
         return dict(base, ROS_PACKAGE_PATH=':'.join(paths))
-
-
-def free_port():
-    sock = socket.socket()
-    sock.bind(('', 0))
-    port = sock.getsockname()[1]
-    sock.close()
-    return port
 
 
 def _wait_for_port(port, limit, process):
