@@ -22,24 +22,13 @@ from nav_msgs.msg import Odometry
 from rosout_log import RosoutLog
 from sensor_msgs.msg import LaserScan
 
+from synthetic_scans import square_room
 from waiting import assert_soon
 
 PERIOD = 0.1        # wall s between two scans and two odometry messages
 WATCH = 2.0         # wall s of commands to look at while odometry is bad
 WAIT_LIMIT = 10.0
 STANDING = (0.0, 0.0)
-
-
-def room_scan():
-    """A 360-beam scan (beam 0 ahead) of walls 1.2 m from the robot on every side."""
-    scan = LaserScan()
-    scan.header.frame_id = 'base_scan'
-    scan.angle_min, scan.angle_increment = 0.0, 2.0 * math.pi / 360
-    scan.angle_max = scan.angle_increment * 359
-    scan.range_min, scan.range_max = 0.12, 3.5
-    scan.ranges = [1.2 / max(abs(math.cos(a)), abs(math.sin(a)))
-                   for a in (scan.angle_increment * i for i in range(360))]
-    return scan
 
 
 def odometry(x=0.0, y=0.0, orientation=(0.0, 0.0, 0.0, 1.0)):
@@ -100,7 +89,7 @@ class BadOdometry(unittest.TestCase):
 
     @classmethod
     def _feed(cls):
-        scan = room_scan()
+        scan = square_room()
         while not rospy.is_shutdown():
             now = rospy.Time.now()
             scan.header.stamp = now

@@ -24,7 +24,6 @@ themselves (TOOLS), which a launch file does not keep running. Every
 script CMakeLists.txt installs is one or the other: a new node is not
 left out by accident.
 """
-import math
 import os
 import re
 import pty
@@ -47,6 +46,7 @@ from geometry_msgs.msg import TransformStamped, Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import LaserScan
 
+from synthetic_scans import square_room
 from waiting import wait_until
 
 EXIT_LIMIT = 2.0      # wall s from SIGINT to the node's exit
@@ -108,18 +108,6 @@ def arm_description():
             'robot_description_planning': yaml.safe_load(text('config', 'joint_limits.yaml'))}
 
 
-def room_scan():
-    """A 360-beam scan (index 0 ahead) of a square room, ROOM m to each wall."""
-    scan = LaserScan()
-    scan.header.frame_id = 'base_scan'
-    scan.angle_min, scan.angle_increment = 0.0, 2.0 * math.pi / 360
-    scan.angle_max = scan.angle_increment * 359
-    scan.range_min, scan.range_max = 0.12, 3.5
-    scan.ranges = [ROOM / max(abs(math.cos(a)), abs(math.sin(a)))
-                   for a in (scan.angle_increment * i for i in range(360))]
-    return scan
-
-
 def ignored_signals(pid):
     """The mask of the signals the process ignores, as /proc shows it; None once gone."""
     try:
@@ -153,7 +141,7 @@ class Feed(object):
         threading.Thread(target=self._run, daemon=True).start()
 
     def _run(self):
-        scan, odom = room_scan(), Odometry()
+        scan, odom = square_room(ROOM), Odometry()
         odom.header.frame_id, odom.child_frame_id = 'odom', 'base_footprint'
         odom.pose.pose.orientation.w = 1.0
         links = []

@@ -19,6 +19,19 @@ def wall_on_the_right(distance=0.25, beams=360):
     return scan
 
 
+def square_room(distance=1.2):
+    """An LDS-01-convention scan (360 beams, beam 0 ahead) of a square room whose walls
+    stand `distance` m from the robot on every side."""
+    scan = LaserScan()
+    scan.header.frame_id = 'base_scan'
+    scan.angle_min, scan.angle_increment = 0.0, 2.0 * math.pi / 360
+    scan.angle_max = scan.angle_increment * 359
+    scan.range_min, scan.range_max = 0.12, 3.5
+    scan.ranges = [distance / max(abs(math.cos(a)), abs(math.sin(a)))
+                   for a in (scan.angle_increment * i for i in range(360))]
+    return scan
+
+
 def spoiled(scan, **fields):
     """A copy of scan with some fields replaced."""
     copy = LaserScan()
