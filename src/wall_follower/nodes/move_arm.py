@@ -138,6 +138,7 @@ class MoveArmServer(object):
                 what = 'point (%.3f, %.3f, %.3f) in %s' % (tuple(target) + (self.model.root,))
         except PlanningError as error:
             raise GoalFailed(str(error))
+        self._wait_for_controller(values['controller_timeout'])
         self.command.publish(self._trajectory(plan.move, values['waypoint_spacing']))
         final = self._follow(plan, state, values)
         error = np.linalg.norm(self._tool_in_tf(final[0], values['tf_timeout']) - target)
@@ -152,6 +153,19 @@ class MoveArmServer(object):
             raise GoalFailed('no joint_states from the arm for %.1f s: is arm_controller '
                              'running?' % values['state_timeout'])
         return state
+
+    def _wait_for_controller(self, timeout):
+        """Wait until the arm controller subscribes to the command topic: a trajectory
+        published before its subscription is connected is lost, and the arm never moves.
+        The connection is made after the node starts, later on a busy machine."""
+        deadline = time.time() + timeout
+        while self.command.get_num_connections() == 0:
+            if time.time() >= deadline or rospy.is_shutdown():
+                raise GoalFailed('nothing subscribes to %s after %.1f s: is the arm controller '
+                                 'running?' % (self.command.resolved_name, timeout))
+            if self.server.is_preempt_requested():
+                raise GoalFailed('pre-empted before the arm controller was there')
+            time.sleep(0.01)
 
     def _follow(self, plan, state, values):
         """Wait, joint state by joint state, until the arm is at the plan's goal: the final

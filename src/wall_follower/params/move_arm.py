@@ -21,6 +21,8 @@ TABLE = (
         P('state_timeout', 1.0, 'joint_states older than this is stale: no goal is started, '
           'and a running one is stopped [s]', 0.05, 60.0),
         P('tf_timeout', 1.0, 'how long to wait for a transform from tf [s]', 0.01, 60.0),
+        P('controller_timeout', 5.0, 'how long a planned goal waits for the arm controller '
+          'to subscribe to arm_controller/command before it is aborted [wall s]', 0.1, 300.0),
     )),
 )
 """Every parameter of move_arm (wall_follower.nodes.move_arm)."""
