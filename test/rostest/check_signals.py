@@ -6,10 +6,11 @@ MOMENTS after its start (while Python imports, while rospy.init_node
 registers, while the node waits for its first scan, odometry, service or
 action server, and once it runs): it must end within EXIT_LIMIT wall
 seconds, and a node that drives must have sent a zero Twist last. Each
-wave tries every node once, each at another moment, GROUP nodes started
-together, so that the machine is as busy as a launch file's start makes
-it (all of them at once would make it busier than any launch file does,
-and time the machine rather than the nodes). Half the runs start
+wave tries every node once, each at another moment; GROUP nodes run at a
+time, the next one starting as soon as one has ended, so that the machine
+is as busy as a launch file's start makes it (all of them at once would
+make it busier than any launch file does, and time the machine rather
+than the nodes). Half the runs start
 with SIGINT ignored, as a shell starts a job in the background (and the
 issue's nodes were started): a node must answer it all the same, from its
 first line on, not only once rospy is up. The nodes are started as
@@ -54,9 +55,9 @@ DELIVERY_LIMIT = 2.0  # wall s for its last command to reach this node
 LATE_LIMIT = 10.0     # wall s more that a node past EXIT_LIMIT is given, to tell late from hung
 PERIOD = 0.1          # wall s between two scans and two odometry messages
 MOMENTS = (0.5, 1.0, 1.5, 2.0, 3.0, 4.5)   # wall s from start to SIGINT
-WAVES = 3
-GROUP = 6             # nodes started together: as many as a launch file's start, not all
-WAVE_LIMIT = 30.0     # wall s for every node of a wave to be signalled and to end
+WAVES = 2
+GROUP = 4             # nodes running at once: as many as a small launch file starts
+RUN_LIMIT = 30.0      # wall s for a node to be signalled and to end
 ROOM = 1.2            # m from the robot to each wall of the room in the scans
 PACKAGE = rospkg.RosPack().get_path('wall_follower')
 
@@ -241,7 +242,7 @@ class Run(object):
                 self.process.kill()
                 self.process.wait()
                 return '%s: not signalled in %.0f s, still ignoring SIGINT' % (
-                    self.label, WAVE_LIMIT)
+                    self.label, RUN_LIMIT)
             try:   # late, or not ending at all? Say which.
                 self.process.wait(LATE_LIMIT)
                 ended = 'ended only %.1f s after SIGINT' % (time.monotonic() - self.signalled)
@@ -282,16 +283,19 @@ class Signals(unittest.TestCase):
         plan = [(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
                  (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
                 for wave in range(WAVES) for index, script in enumerate(scripts)]
-        for first in range(0, len(plan), GROUP):
-            runs = [Run(*run) for run in plan[first:first + GROUP]]
-            deadline = time.monotonic() + WAVE_LIMIT
-            while not all(run.done(time.monotonic()) for run in runs) and \
-                    time.monotonic() < deadline:
-                for run in runs:
-                    run.step(time.monotonic())
-                time.sleep(0.02)
-            problems.extend(problem for problem in (run.finish() for run in runs) if problem)
-            runs_done += len(runs)
+        waiting, running = list(plan), []
+        while waiting or running:
+            while waiting and len(running) < GROUP:
+                running.append((Run(*waiting.pop(0)), time.monotonic() + RUN_LIMIT))
+                runs_done += 1
+            now = time.monotonic()
+            for run, _ in running:
+                run.step(now)
+            over = [entry for entry in running if entry[0].done(now) or now >= entry[1]]
+            for entry in over:
+                running.remove(entry)
+                problems.extend(problem for problem in [entry[0].finish()] if problem)
+            time.sleep(0.02)
         self.assertEqual(problems, [], '%d of %d runs failed:\n%s'
                          % (len(problems), runs_done, '\n'.join(problems)))
 
