@@ -118,3 +118,26 @@ def test_an_end_found_stays_while_the_floor_beyond_it_leaves_the_view():
     fresh.update(seen, in_view, (0.0, 0.0, 0.0), lambda point: False)
     fresh.update(seen[:0], in_view, (0.02, 0.0, 0.0), lambda point: True)
     assert not fresh.end_seen
+
+
+def test_an_end_found_stays_when_only_the_end_is_left_of_the_path():
+    """The line's last bit, seen beyond the near floor that has left the view, is traced in
+    one jump; once the base is past the middle of that jump with nothing in view, only the
+    end is left of the path: still the line's end, not a lost line (line_camera.test's
+    robot turned round there and drove the line back)."""
+    from wall_follower.params import defaults, pick
+    from wall_follower.params.line_follower import PATH
+    from wall_follower.vision.line_path import LinePath
+    memory = LinePath(**pick(defaults(PATH), PATH))
+
+    def dots(x0, x1):
+        return np.array([(a, b) for a in np.arange(x0, x1, 0.005) for b in (-0.01, 0.0, 0.01)])
+
+    def beyond(x):
+        return lambda points: np.asarray(points).reshape(-1, 2)[:, 0] >= x
+
+    memory.update(dots(0.0, 0.04), beyond(-1.0), (0.0, 0.0, 0.0), lambda point: False)
+    memory.update(dots(0.17, 0.19), beyond(0.1), (0.0, 0.0, 0.0), lambda point: True)
+    assert memory.end_seen and memory.path[-1][0] == pytest.approx(0.18, abs=0.01)
+    path = memory.update(np.zeros((0, 2)), beyond(1.0), (0.13, 0.0, 0.0), lambda point: True)
+    assert len(path) == 1 and memory.end_seen

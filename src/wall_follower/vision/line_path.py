@@ -144,7 +144,7 @@ class LinePath(object):
         # An end is found by seeing the line up to it and the floor beyond it; with nothing
         # traced this frame (the line's last bit too short to trace, or no line in view at
         # all: a covered lens is no end), what was found before stands.
-        ended = self.end_seen and len(path) > 1
+        ended = self.end_seen and len(path) > 0
         if len(traced) and len(path) > 1:
             beyond = path[-1] + self.step * _unit(path[-1] - path[-2])
             # The floor beyond an end already found may have left the view (near its edge)
