@@ -224,14 +224,22 @@ def test_a_wrong_type_or_a_misspelling_is_refused_by_name():
 
 @pytest.mark.parametrize('node', DRIVING)
 def test_a_driving_node_declares_the_loop_and_the_clamp_through_params_driving(node):
-    """One declaration of the loop's and the clamp's parameters: only scan_timeout's default
-    and meaning may differ from node to node."""
+    """One declaration of the loop's and the clamp's parameters: only the input timeout's
+    default (and a laser node's scan_timeout's meaning) may differ from node to node; a node
+    that drives by its camera has image_timeout instead, and no share of beams."""
     table = NODES[node][0]
     sections = dict((section.name, section) for section in table)
     assert sections['limits'] is driving.LIMITS
-    scan_timeout = next(p for p in sections['drive_loop'].parameters if p.name == 'scan_timeout')
-    assert sections['drive_loop'] == driving.loop(scan_timeout.default, scan_timeout.description)
-    shared = set(p.name for p in parameters((driving.loop(1.0), driving.LIMITS)))
+    timeouts = dict((p.name, p) for p in sections['drive_loop'].parameters
+                    if p.name.endswith('_timeout'))
+    if 'image_timeout' in timeouts:
+        expected = driving.camera_loop(timeouts['image_timeout'].default)
+    else:
+        expected = driving.loop(timeouts['scan_timeout'].default,
+                                timeouts['scan_timeout'].description)
+    assert sections['drive_loop'] == expected
+    loops = (driving.loop(1.0), driving.camera_loop(1.0), driving.LIMITS)
+    shared = set(p.name for p in parameters(loops))
     elsewhere = [p.name for section in table for p in section.parameters
                  if section.name not in ('drive_loop', 'limits')]
     assert not shared & set(elsewhere)

@@ -8,7 +8,7 @@ remembers the line's path and vision.line_pursuit steers the base along
 it (~controller pursuit); or, as the lab's baseline, the slice centroid's
 pixel offset steers (~controller pixel_p). Safe as every driving node:
 clamped to ~max_linear and ~max_angular, stopped while the newest image is
-older than ~scan_timeout or unreadable (a warning says why), never
+older than ~image_timeout or unreadable (a warning says why), never
 forward without line known ahead of the base, a zero Twist on shutdown. A
 lost line is searched for by turning in place only; at the line's end the
 robot stops for good. Its parameters (params/line_follower.py) are tuned
@@ -24,7 +24,7 @@ from wall_follower.nodes.camera_floor import CameraFloor
 from wall_follower.nodes.common import VelocityCommander, init_node, pose_message
 from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.nodes.image_input import LatestImage
-from wall_follower.nodes.parameters import NodeParameters, take_retuned
+from wall_follower.nodes.parameters import NodeParameters, input_timeout, take_retuned
 from wall_follower.params import pick
 from wall_follower.params.line_follower import PATH, PURSUIT, RULES, TABLE
 from wall_follower.vision.line_image import hsv_bounds, line_mask, line_pixels
@@ -51,7 +51,7 @@ class LineFollowerNode(object):
         commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
         self.images = LatestImage(values['compressed'])
         self.loop = DriveLoop(NAME, self.images, commander, values['rate'], values['keepalive'],
-                              values['scan_timeout'], values['ahead_half_width'],
+                              input_timeout(values), values['ahead_half_width'],
                               ahead_known=self._ahead_known, ahead_missing='no line known')
         self.camera = CameraFloor(values)
         self.memory = LinePath(**pick(values, PATH))

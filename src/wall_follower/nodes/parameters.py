@@ -134,6 +134,12 @@ def _checked_or_exit(table, known, rules):
         raise SystemExit(1)
 
 
+def input_timeout(values):
+    """The age [s] at which a driving node's input is stale: its scan_timeout, or the
+    image_timeout of one that drives by its camera (params.driving.camera_loop)."""
+    return values['image_timeout'] if 'image_timeout' in values else values['scan_timeout']
+
+
 def drive_loop(name, values, tick=None):
     """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value:
     those of params.driving's sections); tick as DriveLoop's."""
@@ -144,11 +150,11 @@ def drive_loop(name, values, tick=None):
 
 
 def tune_drive_loop(loop, values):
-    """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout,
-    ahead_half_width, ahead_min_known, max_linear, max_angular) in force; in the loop's own
-    thread."""
-    loop.tune(values['rate'], values['keepalive'], values['scan_timeout'],
-              values['ahead_half_width'], values['ahead_min_known'])
+    """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout or a camera
+    node's image_timeout, ahead_half_width, ahead_min_known where the laser has one,
+    max_linear, max_angular) in force; in the loop's own thread."""
+    loop.tune(values['rate'], values['keepalive'], input_timeout(values),
+              values['ahead_half_width'], values.get('ahead_min_known', loop.ahead_min_known))
     loop.commander.max_linear = values['max_linear']
     loop.commander.max_angular = values['max_angular']
 

@@ -22,17 +22,22 @@ STALE_SCAN_STOPS = 'stop the robot while the newest scan is older than this [s]'
 """What scan_timeout means to a node that drives for as long as it runs."""
 
 
+RATE = P('rate', 20.0, 'how often the loop looks at the clock while it waits for input [Hz]; '
+         'each new scan or frame is answered at once', 1.0, 100.0)
+KEEPALIVE = P('keepalive', 0.15, 'no new scan or frame for this long: send the last command '
+              'again, so that a velocity watchdog does not stop the robot mid-turn [s]',
+              0.01, 1.0)
+
+
 def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
-    """The Section of the DriveLoop's parameters (nodes/drive_loop.py).
+    """The Section of the DriveLoop's parameters (nodes/drive_loop.py) of a node that reads
+    the laser.
 
     scan_timeout: its default [s], which differs between nodes, and
     scan_timeout_meaning what the node does when a scan is that old.
     """
     return Section('drive_loop', (
-        P('rate', 20.0, 'how often the loop looks at the clock while it waits for scans [Hz]; '
-          'each new scan is answered at once', 1.0, 100.0),
-        P('keepalive', 0.15, 'no new scan for this long: send the last command again, so that '
-          'a velocity watchdog does not stop the robot mid-turn [s]', 0.01, 1.0),
+        RATE, KEEPALIVE,
         P('scan_timeout', scan_timeout, scan_timeout_meaning, 0.05, 10.0),
         P('ahead_half_width', 0.5236, 'never drive forward while too few beams within this '
           'angle either side of straight ahead read a hit or a proven no-return [rad]',
@@ -41,6 +46,19 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
           'that must read a hit or a proven no-return for the robot to drive forward (0: one '
           'beam will do); low enough for an LDS-01 that drops beams or sees nothing beyond its '
           'reach there', 0.0, 1.0),
+    ))
+
+
+def camera_loop(image_timeout):
+    """The Section of the DriveLoop's parameters of a node that drives by what its camera sees
+    (line_follower): its input's timeout is image_timeout [s] (the default), and what is known
+    ahead is the node's own to say, not a share of laser beams."""
+    return Section('drive_loop', (
+        RATE, KEEPALIVE,
+        P('image_timeout', image_timeout, 'stop the robot while the newest image is older '
+          'than this [s]', 0.05, 10.0),
+        P('ahead_half_width', 0.5236, 'never drive forward while nothing to follow is known '
+          'within this angle either side of straight ahead [rad]', 0.0, math.pi),
     ))
 
 

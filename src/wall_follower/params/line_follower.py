@@ -6,8 +6,7 @@ from wall_follower.params import Parameter as P, Section, driving
 from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
 NODE = (
-    driving.loop(scan_timeout=0.3, scan_timeout_meaning='stop the robot while the newest '
-                 'image is older than this [s]'),
+    driving.camera_loop(image_timeout=0.3),
     driving.LIMITS,
     Section('camera', (
         P('controller', 'pursuit', "pursuit: follow the line's remembered path with the base; "
