@@ -6,7 +6,7 @@ and ~live is true, also shows them in a live window.
     rosrun wall_follower arm_plot _file:=joints.png _duration:=20
 """
 import os
-import time
+import threading
 
 import rospy
 from sensor_msgs.msg import JointState
@@ -31,6 +31,8 @@ def main():
     record = JointRecord()
     rospy.Subscriber('joint_states', JointState, lambda msg: record.add(
         msg.header.stamp.to_sec(), msg.name, msg.position, msg.velocity), queue_size=100)
+    stopped = threading.Event()
+    rospy.on_shutdown(stopped.set)   # a Ctrl-C saves at once, not after the rest of a wait
     figure = None
     if values['live'] and os.environ.get('DISPLAY'):
         import matplotlib.pyplot as plt   # only here: it needs a display
@@ -45,7 +47,7 @@ def main():
             draw(figure, record, values['window'])
             plt.pause(REFRESH)
         else:
-            time.sleep(REFRESH)
+            stopped.wait(REFRESH)
         if record.times and started is None:
             started = record.times[0]
         if values['duration'] and started is not None and \
