@@ -279,7 +279,7 @@ class Signals(unittest.TestCase):
     def test_every_node_ends_on_sigint(self):
         Feed()
         scripts = sorted(NODES)
-        problems, runs_done = [], 0
+        problems = []
         plan = [(script, wave, MOMENTS[(index + 2 * wave) % len(MOMENTS)],
                  (signal.SIG_DFL, signal.SIG_IGN)[(index + wave) % 2])
                 for wave in range(WAVES) for index, script in enumerate(scripts)]
@@ -287,17 +287,18 @@ class Signals(unittest.TestCase):
         while waiting or running:
             while waiting and len(running) < GROUP:
                 running.append((Run(*waiting.pop(0)), time.monotonic() + RUN_LIMIT))
-                runs_done += 1
             now = time.monotonic()
             for run, _ in running:
                 run.step(now)
             over = [entry for entry in running if entry[0].done(now) or now >= entry[1]]
             for entry in over:
                 running.remove(entry)
-                problems.extend(problem for problem in [entry[0].finish()] if problem)
+                problem = entry[0].finish()
+                if problem:
+                    problems.append(problem)
             time.sleep(0.02)
         self.assertEqual(problems, [], '%d of %d runs failed:\n%s'
-                         % (len(problems), runs_done, '\n'.join(problems)))
+                         % (len(problems), len(plan), '\n'.join(problems)))
 
 
 if __name__ == '__main__':

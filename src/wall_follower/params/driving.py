@@ -22,6 +22,9 @@ STALE_SCAN_STOPS = 'stop the robot while the newest scan is older than this [s]'
 """What scan_timeout means to a node that drives for as long as it runs."""
 
 
+AHEAD_HALF_WIDTH = 0.5236
+"""The default of ahead_half_width: 30 degrees either side of straight ahead."""
+
 RATE = P('rate', 20.0, 'how often the loop looks at the clock while it waits for input [Hz]; '
          'each new scan or frame is answered at once', 1.0, 100.0)
 KEEPALIVE = P('keepalive', 0.15, 'no new scan or frame for this long: send the last command '
@@ -39,8 +42,8 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
     return Section('drive_loop', (
         RATE, KEEPALIVE,
         P('scan_timeout', scan_timeout, scan_timeout_meaning, 0.05, 10.0),
-        P('ahead_half_width', 0.5236, 'never drive forward while too few beams within this '
-          'angle either side of straight ahead read a hit or a proven no-return [rad]',
+        P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward while too few beams within '
+          'this angle either side of straight ahead read a hit or a proven no-return [rad]',
           0.0, math.pi),
         P('ahead_min_known', AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width '
           'that must read a hit or a proven no-return for the robot to drive forward (0: one '
@@ -57,8 +60,8 @@ def camera_loop(image_timeout):
         RATE, KEEPALIVE,
         P('image_timeout', image_timeout, 'stop the robot while the newest image is older '
           'than this [s]', 0.05, 10.0),
-        P('ahead_half_width', 0.5236, 'never drive forward while nothing to follow is known '
-          'within this angle either side of straight ahead [rad]', 0.0, math.pi),
+        P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward while nothing to follow is '
+          'known within this angle either side of straight ahead [rad]', 0.0, math.pi),
     ))
 
 
