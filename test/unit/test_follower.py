@@ -253,6 +253,21 @@ def test_a_distant_wall_ahead_is_not_turned_for_yet():
     assert abs(command.angular) < 0.01
 
 
+def test_a_left_turn_ends_on_the_wall_reached_while_the_next_one_is_still_far():
+    # A room whose walls meet at wide angles: the turn onto one wall ends
+    # with the next already across the way, farther than the turn onto it
+    # starts. Held on until that wall was gone, the turn carried the robot
+    # round off the wall it had just reached.
+    start = turn_start(EXACT)
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    update(corridor_end(start + 0.2), controller=controller)
+    assert controller.state == FOLLOW
+    controller.state = WALL_AHEAD
+    update(corridor_end(start - 0.01), controller=controller)
+    assert controller.state == WALL_AHEAD
+
+
 def test_a_wall_right_in_front_is_turned_from_on_the_spot():
     controller, command = update(corridor_end(0.15))
     assert controller.state == WALL_AHEAD

@@ -69,18 +69,30 @@ class InnerCorner(Manoeuvre):
         away from a wall across its present heading (a pillar or an island
         beyond the corner, say): only something near in the lane counts then.
         """
-        p = self.params
-        if obs.front < p.front_turn_distance:
+        if obs.front < self.params.front_turn_distance:
             return True
-        if turning_right or not self.blocking(obs):
+        return not turning_right and self.due(obs)
+
+    def due(self, obs):
+        """True when a wall across the way is near enough that the planned turn, begun now,
+        ends inner_corner_distance from it."""
+        if not self.blocking(obs):
             return False
+        p = self.params
         distance, angle = self._ahead_as_planned(obs)
         return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def done(self, obs):
-        """True once a straight wall is along the right again and none lies across the way."""
+        """True once a straight wall is along the right again and no turn onto a wall across
+        the way is due yet.
+
+        A wall farther across the way (the next one of a room whose walls
+        meet at wide angles) is turned onto when it comes within reach, from
+        FOLLOW: a turn held on until it was gone would carry the robot round
+        off the wall it has just reached.
+        """
         p = self.params
-        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.blocking(obs)
+        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
 
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
