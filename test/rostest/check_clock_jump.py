@@ -21,6 +21,8 @@ from rosout_log import RosoutLog
 from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
 
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
 from wall_follower.srv import FindWall
 from waiting import assert_soon, wait_until
 
@@ -41,7 +43,7 @@ class TestClock(object):
         self.clock = rospy.Publisher('/clock', Clock, queue_size=10)
         self.scans = [(rospy.Publisher('scan', LaserScan, queue_size=1), wall_on_the_right()),
                       (rospy.Publisher('finder/scan', LaserScan, queue_size=1),
-                       wall_on_the_right(0.30))]
+                       wall_on_the_right(defaults(FINDER)['wall_distance']))]
         threading.Thread(target=self._run, daemon=True).start()
 
     def jump_to(self, when):

@@ -21,6 +21,8 @@ from drive_guard import DriveGuard
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.evaluation.scoring import CourseMap, taken_every, true_lap_length
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
 
 # Ground truth is kept this long after the result, to see the true return.
 AFTER_RESULT = 10.0
@@ -45,7 +47,7 @@ class Course(unittest.TestCase):
     def test_wall_found_before_recording(self):
         self.assertIsNotNone(self.monitor.goal_pose, 'no record_odom goal: find_wall failed?')
         distance, heading = self.monitor.score.map.right_wall_alignment(self.monitor.goal_pose)
-        self.assertAlmostEqual(distance, 0.30, delta=0.03)
+        self.assertAlmostEqual(distance, defaults(FINDER)['wall_distance'], delta=0.03)
         self.assertLess(abs(math.degrees(heading)), 5.0)
 
     def test_feedback_rises_and_matches_true_distance(self):

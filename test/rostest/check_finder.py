@@ -2,7 +2,7 @@
 """rostest: find_wall aligns the robot from five start poses in one world.
 
 Each pose of config/find_trials.yaml is one test: the robot must end
-0.30 +- 0.03 m from the wall on its right, parallel within 5 deg, with no
+the finder's wall_distance +- 0.03 m from the wall on its right, parallel within 5 deg, with no
 contact and no command above the limits, judged from ground truth.
 """
 import sys
@@ -13,6 +13,10 @@ import rostest
 from drive_guard import DriveGuard
 
 from wall_follower.nodes.find_trials import FindTrials
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
+
+WALL_DISTANCE = defaults(FINDER)['wall_distance']
 
 
 class FindWallFromPoses(unittest.TestCase):
@@ -28,7 +32,7 @@ class FindWallFromPoses(unittest.TestCase):
         result = self.trials.run(self.starts[index])
         rospy.loginfo('find_wall trial: %s', result)
         self.assertTrue(result['found'])
-        self.assertAlmostEqual(result['distance'], 0.30, delta=0.03)
+        self.assertAlmostEqual(result['distance'], WALL_DISTANCE, delta=0.03)
         self.assertLess(abs(result['heading_error_deg']), 5.0)
         self.assertFalse(result['contact'], 'touched an obstacle')
         self.guard.assert_safe(self)

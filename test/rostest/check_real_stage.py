@@ -22,6 +22,8 @@ import rostest
 from installed import real_stage_suite
 from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
                                                            launch_and_wait, launch_command)
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
 
 WORLD = 'room'
 # Wall seconds for the launch: real Stage runs at the world's pace (speedup
@@ -57,7 +59,8 @@ class RealStageCourse(unittest.TestCase):
         self.assertEqual(self.figure('simulator'), 'stageros')
 
     def test_find_wall(self):
-        self.assertAlmostEqual(self.figure('found_distance'), 0.30, delta=0.03)
+        self.assertAlmostEqual(self.figure('found_distance'), defaults(FINDER)['wall_distance'],
+                               delta=0.03)
         self.assertLess(abs(self.figure('found_heading_error_deg')), 5.0)
 
     def test_one_lap(self):

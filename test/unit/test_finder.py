@@ -9,9 +9,12 @@ from wall_follower.control import finder
 from wall_follower.control.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
 from wall_follower.control.scan import ScanView
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
 
 LASER_X = -0.032  # TurtleBot3 Burger: the laser 32 mm behind the axle
 ROOM = box(-2.0, -1.5, 2.0, 1.5)
+WALL_DISTANCE = defaults(FINDER)['wall_distance']
 DT = 0.1
 
 
@@ -74,7 +77,7 @@ def test_finds_aligns_and_stops_in_every_convention(convention, pose):
     assert states == [finder.CHOOSE_WALL, finder.ROTATE_TO_WALL, finder.APPROACH,
                       finder.ALIGN, finder.DONE]
     distance, heading_error = right_wall_error((-2.0, -1.5, 2.0, 1.5), final)
-    assert distance == pytest.approx(0.30, abs=0.01)
+    assert distance == pytest.approx(WALL_DISTANCE, abs=0.01)
     assert abs(math.degrees(heading_error)) < 2.0
     assert commands[-1] == STOP
     assert all(clamp(c) == c for c in commands)
@@ -170,8 +173,8 @@ def test_approach_slows_near_the_target_and_backs_off_when_too_close():
 def test_at_the_approach_distance_it_turns_left_to_put_the_wall_on_the_right():
     walker = WallFinder(laser_x=LASER_X)
     walker.start()
-    # Laser 0.332 m from the wall ahead: the approach is already over.
-    command = walker.update(scan_view(ROOM, (2.0 - 0.332, 0.0, 0.0), STAGE))
+    # The laser wall_distance - laser_x from the wall ahead: the approach is already over.
+    command = walker.update(scan_view(ROOM, (2.0 - WALL_DISTANCE + LASER_X, 0.0, 0.0), STAGE))
     assert walker.state == finder.ALIGN
     assert command.linear == 0.0 and command.angular > 0.0
 
@@ -179,17 +182,27 @@ def test_at_the_approach_distance_it_turns_left_to_put_the_wall_on_the_right():
 def test_already_in_place_it_answers_at_once():
     walker = WallFinder(laser_x=LASER_X)
     walker.start()
-    # The wall 0.30 m on the right and 0.5 deg off parallel: nothing to do.
-    aligned = scan_view(ROOM, laser_pose((0.0, -1.2, 0.009)), STAGE)
+    # The wall wall_distance on the right and 0.5 deg off parallel: nothing to do.
+    aligned = scan_view(ROOM, laser_pose((0.0, -1.5 + WALL_DISTANCE, 0.009)), STAGE)
     assert walker.update(aligned) == STOP
     assert walker.state == finder.DONE and walker.success
     assert walker.failure_reason is None
 
 
+@pytest.mark.parametrize('off, in_place', [(0.015, True), (-0.015, True), (0.03, False)])
+def test_a_call_where_a_search_ended_answers_at_once_despite_the_grid(off, in_place):
+    # Stage reads a wall up to a grid cell long, by a different amount on each
+    # side of the robot: where a search ended may read a cell or so off.
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    walker.update(scan_view(ROOM, laser_pose((0.0, -1.5 + WALL_DISTANCE + off, 0.0)), STAGE))
+    assert (walker.state == finder.DONE) == in_place
+
+
 def test_nearly_in_place_it_straightens_up_without_the_full_dance():
     walker = WallFinder(laser_x=LASER_X)
     walker.start()
-    command = walker.update(scan_view(ROOM, laser_pose((0.0, -1.2, 0.1)), STAGE))
+    command = walker.update(scan_view(ROOM, laser_pose((0.0, -1.5 + WALL_DISTANCE, 0.1)), STAGE))
     assert walker.state == finder.ALIGN
     assert command.linear == 0.0 and command.angular < 0.0
 

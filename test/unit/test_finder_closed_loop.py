@@ -13,12 +13,15 @@ from wall_follower.control.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.scan import ScanView
 from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.params import defaults
+from wall_follower.params.wall_finder import FINDER
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
 WORLD = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'obstacles.world')
 LASER_X = -0.032  # the Burger of worlds/burger.inc
 TIME_LIMIT = 20.0
+WALL_DISTANCE = defaults(FINDER)['wall_distance']
 
 POSES = {
     'world start, wall on the right at 0.25 m': (-1.75, 0.8, -math.pi / 2),
@@ -59,13 +62,13 @@ def course_map():
 
 @pytest.mark.parametrize('profile', ['stage', 'lds01'])
 @pytest.mark.parametrize('start', sorted(POSES))
-def test_ends_parallel_at_0_30_m_from_the_wall_on_its_right(course_map, start, profile):
+def test_ends_parallel_at_wall_distance_from_the_wall_on_its_right(course_map, start, profile):
     finder, elapsed, pose, stalled, commands = find_wall(POSES[start], profile)
     assert finder.success, finder.failure_reason
     assert elapsed <= TIME_LIMIT
     distance = course_map.right_wall_distance(pose)
     _, heading_error = course_map.right_wall_alignment(pose)
-    assert distance == pytest.approx(0.30, abs=0.015)
+    assert distance == pytest.approx(WALL_DISTANCE, abs=0.015)
     assert abs(math.degrees(heading_error)) <= 3.0
     assert not stalled
     assert max(abs(c.linear) for c in commands) <= MAX_LINEAR
@@ -82,5 +85,5 @@ def test_a_second_call_from_where_the_first_ended_answers_at_once(course_map, st
     turned = sum(abs(c.angular) for c in commands) * 0.1
     assert math.degrees(turned) <= 3.0, 'turned %.0f deg' % math.degrees(turned)
     assert elapsed <= 0.5
-    assert course_map.right_wall_distance(second_pose) == pytest.approx(0.30, abs=0.015)
+    assert course_map.right_wall_distance(second_pose) == pytest.approx(WALL_DISTANCE, abs=0.015)
     assert not stalled

@@ -195,10 +195,11 @@ class WallFinder(object):
         return STOP
 
     def _in_place(self, wall):
-        """True when wall is on the right, parallel and at wall_distance, within the tolerances."""
+        """True when wall is on the right, parallel and at wall_distance, within the tolerances
+        (in_place_tolerance on the distance)."""
         p = self.params
         return (abs(float(wrap_angle(wall.angle - RIGHT))) <= p['heading_tolerance']
-                and abs(wall.distance - p['wall_distance']) <= p['distance_tolerance'])
+                and abs(wall.distance - p['wall_distance']) <= p['in_place_tolerance'])
 
     def _heading_error(self, target):
         """Angle (rad) by which the wall's normal lies left of where it should be.

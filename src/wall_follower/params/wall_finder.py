@@ -22,8 +22,9 @@ FINDER = (
     )),
     driving.LIMITS,
     Section('behaviour', (
-        P('wall_distance', 0.30, 'final distance from the laser to the wall on the right [m]',
-          0.12, 1.0),
+        P('wall_distance', 0.28, 'final distance from the laser to the wall on the right [m]; '
+          'the course asks for 0.3 m, which is the edge of the following band (0.2-0.3 m): '
+          'a little inside it, the lap does not begin out of band', 0.12, 1.0),
         P('min_wall_length', 0.5, 'a straight run of hits this long counts as a wall; shorter '
           'ones are never chosen [m]', 0.05, 10.0),
         P('corridor_half_width', 0.15, 'a wall is chosen only if nothing lies within this of '
@@ -37,6 +38,10 @@ FINDER = (
           'late, so a higher gain overshoots', 0.0, 20.0),
         P('angular_gain', 2.0, 'turn rate per radian still to turn [1/s]', 0.0, 20.0),
         P('distance_tolerance', 0.01, 'how close to wall_distance counts as there [m]',
+          0.001, 0.2),
+        P('in_place_tolerance', 0.02, 'a search begun parallel to the wall on the right and this '
+          'near wall_distance ends at once [m]: Stage reads a wall up to a grid cell long, by '
+          'a different amount on each side, so where a search ended may read that much off',
           0.001, 0.2),
         P('heading_tolerance', 0.0175, 'how near parallel counts as aligned [rad]',
           0.001, 0.5),
