@@ -268,6 +268,20 @@ def test_a_left_turn_ends_on_the_wall_reached_while_the_next_one_is_still_far():
     assert controller.state == WALL_AHEAD
 
 
+@pytest.mark.parametrize('turned', [0.1, 0.2, 0.3])
+def test_a_left_turn_for_a_step_at_the_lanes_edge_goes_on_until_it_is_clear_of_it(turned):
+    # The wall steps 0.13 m nearer the way 0.25 m ahead. The step's corner
+    # sits at the lane's edge: a few degrees of left turn take it out of the
+    # lane. Handed back to FOLLOW then, the robot steered back into it, and
+    # turned for it again, scan after scan, until its nose was on it.
+    step = [((-5.0, -0.25), (0.25, -0.25)), ((0.25, -0.25), (0.25, -0.12)),
+            ((0.25, -0.12), (5.0, -0.12))]
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    update(step, (0.0, 0.0, turned), controller=controller)
+    assert controller.state == WALL_AHEAD
+
+
 def test_a_wall_right_in_front_is_turned_from_on_the_spot():
     controller, command = update(corridor_end(0.15))
     assert controller.state == WALL_AHEAD

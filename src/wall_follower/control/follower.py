@@ -167,7 +167,8 @@ class WallFollower(object):
         """
         if self.inner_corner.done(obs):
             return FOLLOW
-        if obs.ahead is not None or obs.front < self.params.front_clear_distance:
+        if (obs.ahead is not None or obs.front < self.params.front_clear_distance
+                or not self.inner_corner.clear_of_lane_edges(obs)):
             return WALL_AHEAD
         if self._near(obs):
             return OUTER_CORNER if self._beside(obs.nearest) else WALL_AHEAD

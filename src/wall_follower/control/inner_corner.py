@@ -83,8 +83,8 @@ class InnerCorner(Manoeuvre):
         return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def done(self, obs):
-        """True once a straight wall is along the right again and no turn onto a wall across
-        the way is due yet.
+        """True once a straight wall is along the right again, no turn onto a wall across
+        the way is due yet, and the lane's edges are clear.
 
         A wall farther across the way (the next one of a room whose walls
         meet at wide angles) is turned onto when it comes within reach, from
@@ -92,7 +92,19 @@ class InnerCorner(Manoeuvre):
         off the wall it has just reached.
         """
         p = self.params
-        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
+        return (obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
+                and self.clear_of_lane_edges(obs))
+
+    def clear_of_lane_edges(self, obs):
+        """True when nothing is nearer than front_turn_distance in the lane widened by
+        clear_margin each side.
+
+        Something at the lane's edge (a step in the wall, a stub at a
+        corner's tip) leaves the lane after a few degrees of left turn; a
+        turn handed back to FOLLOW then is steered straight back into it,
+        and begun again, scan after scan.
+        """
+        return obs.front_wide >= self.params.front_turn_distance
 
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.

@@ -16,7 +16,8 @@ class Observation(object):
     farthest hit ahead, and wall_ahead its x: how far ahead of the laser
     the wall is still seen (-inf without a wall). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
-    about to drive through. ahead: the straight wall across that lane (a
+    about to drive through; front_wide: the same in that lane widened by
+    clear_margin each side. ahead: the straight wall across that lane (a
     Line measured like the right wall: pi/2 for a wall square ahead), or
     None. nearest: (distance, bearing) of the closest hit on the right
     side, or None.
@@ -38,6 +39,8 @@ class Observation(object):
         front = hits[hits[:, 0] > 0.0]
         lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
         self.front = second_smallest(lane[:, 0])
+        wide = front[np.abs(front[:, 1]) <= params.corridor_half_width + params.clear_margin]
+        self.front_wide = second_smallest(wide[:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
 
