@@ -28,6 +28,10 @@ POSES = {
     'facing away from the nearest wall': (1.0, 1.1, -math.pi / 2),
     'in a corner': (-1.7, -1.2, -2.4),
     'next to the free-standing box': (0.3, -0.6, 0.0),
+    # Here Stage's grid makes the fitted wall jump 2 deg as the robot turns
+    # a fraction of that: aiming for the tolerance's middle, the robot
+    # turned to and fro across it until the call timed out.
+    'between the right wall and a pillar': (1.7, 0.6, 0.0),
 }
 
 
@@ -84,6 +88,9 @@ def test_a_second_call_from_where_the_first_ended_answers_at_once(course_map, st
     assert finder.success, finder.failure_reason
     turned = sum(abs(c.angular) for c in commands) * 0.1
     assert math.degrees(turned) <= 3.0, 'turned %.0f deg' % math.degrees(turned)
-    assert elapsed <= 0.5
+    # At most a straighten-up of a few scans: where the first call ended on
+    # crossing the heading it aimed for, a noisy laser may read it just
+    # outside the tolerance.
+    assert elapsed <= 1.0
     assert course_map.right_wall_distance(second_pose) == pytest.approx(WALL_DISTANCE, abs=0.015)
     assert not stalled

@@ -76,6 +76,7 @@ class WallFinder(object):
         self._lost = 0
         self._reacquired = 0
         self._settled = 0
+        self._heading = None
 
     def update(self, view):
         """Advance on one scan (a ScanView) and return the Command to drive."""
@@ -114,8 +115,7 @@ class WallFinder(object):
         if (abs(self._heading_error(RIGHT)) <= p['approach_heading']
                 and abs(self.wall.distance - p['wall_distance']) <= p['distance_tolerance']):
             # Already beside the wall at the right distance: only straighten up.
-            self.state = ALIGN
-            return self._align(view, tracked=True)
+            return self._start_align(view)
         self.state = ROTATE_TO_WALL
         return self._rotate_to_wall(view)
 
@@ -141,20 +141,34 @@ class WallFinder(object):
         # having crossed the target inside the band has to do.
         if abs(remaining) <= p['distance_tolerance'] / 2.0 or (
                 crossed and abs(remaining) <= p['distance_tolerance']):
-            self.state = ALIGN
-            return self._align(view, tracked=True)
+            return self._start_align(view)
         linear = _speed(remaining, p['max_linear'], p['linear_gain'], p['min_linear'])
         # Driving while still turned away would reach the wall at an angle.
         linear *= max(0.0, 1.0 - abs(heading_error) / p['approach_heading'])
         return Command(linear, self._turn(heading_error))
+
+    def _start_align(self, view):
+        self.state = ALIGN
+        self._heading = None
+        return self._align(view, tracked=True)
 
     def _align(self, view, tracked=False):
         p = self.params
         if not tracked and not self._track(view):
             return self._on_lost()
         heading_error = self._heading_error(RIGHT)
-        stopped = self._last == STOP
-        if abs(heading_error) <= p['heading_tolerance'] and stopped:
+        crossed = self._heading is not None and heading_error * self._heading <= 0.0
+        self._heading = heading_error
+        within = abs(heading_error) <= p['heading_tolerance']
+        if within and crossed:
+            # Turns aim for the middle of the tolerance; but where Stage's
+            # grid makes the fitted wall jump by a degree or more as the
+            # robot turns a fraction of that, the middle is never read, and
+            # the robot would turn to and fro across it: having turned
+            # across it inside the tolerance has to do, as in the approach.
+            self.state = DONE
+            return STOP
+        if within and self._last == STOP:
             self._settled += 1
             if self._settled >= p['settle_updates']:
                 self.state = DONE
