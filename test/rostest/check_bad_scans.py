@@ -45,12 +45,17 @@ NAMED = {
 
 
 class Feed(object):
-    """Publishes one scan over and over at SCAN_PERIOD and records what comes back."""
+    """Publishes one scan over and over at SCAN_PERIOD and records what comes back.
 
-    def __init__(self, namespace=''):
+    scan: the first scan to publish (a wall on the right unless given); it is
+    published from the start, so a test that wants a node never to see a
+    good scan gives its bad one here rather than setting it afterwards.
+    """
+
+    def __init__(self, namespace='', scan=None):
         self.lock = threading.Lock()
         self.commands = []
-        self.scan = wall_on_the_right()
+        self.scan = scan if scan is not None else wall_on_the_right()
         self.publisher = rospy.Publisher(namespace + 'scan', LaserScan, queue_size=1)
         rospy.Subscriber(namespace + 'cmd_vel', Twist, self._on_cmd, queue_size=1000)
         threading.Thread(target=self._publish, daemon=True).start()
@@ -107,8 +112,7 @@ class BadScans(unittest.TestCase):
                     'driving again on good scans')
 
     def test_find_wall_answers_false_on_a_dead_laser_without_moving(self):
-        feed = Feed('finder/')
-        feed.scan = unusable_scans()['all 0.0']
+        feed = Feed('finder/', unusable_scans()['all 0.0'])
         # Connected first: a call that heard no scan at all would fail for that reason.
         assert_soon(self, WAIT_LIMIT, lambda: feed.publisher.get_num_connections() > 0,
                     'find_wall to subscribe')
