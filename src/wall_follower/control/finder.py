@@ -39,9 +39,10 @@ class WallFinder(object):
     are the FINDER table) are the defaults overridden by those given.
     Turns and the approach aim for half of distance_tolerance and
     heading_tolerance, so that what the robot still moves after a stop
-    command keeps it within them; the approach accepts the whole band once
-    it has crossed the target, as Stage's grid moves the measured distance
-    in steps of up to a cell.
+    command keeps it within them; the approach and the last straighten-up
+    accept the whole band once they have crossed the target, as Stage's grid
+    moves the measured distance in steps of up to a cell and the fitted
+    wall's angle in steps of a degree or more.
     """
 
     def __init__(self, **params):
