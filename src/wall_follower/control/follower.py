@@ -159,16 +159,18 @@ class WallFollower(object):
         return self._wall_or_search(obs)
 
     def _from_wall_ahead(self, obs):
-        """Turn on until the wall ahead has come round to the right.
+        """Turn on until the wall ahead has come round to the right and the lane's edges
+        are clear.
 
         Only the end of a wall beside the robot (a short wall, a box) can
         end the turn otherwise: anything near behind it only means the
         turn is not over yet.
         """
+        if not self.inner_corner.clear_of_lane_edges(obs):
+            return WALL_AHEAD
         if self.inner_corner.done(obs):
             return FOLLOW
-        if (obs.ahead is not None or obs.front < self.params.front_clear_distance
-                or not self.inner_corner.clear_of_lane_edges(obs)):
+        if obs.ahead is not None or obs.front < self.params.front_clear_distance:
             return WALL_AHEAD
         if self._near(obs):
             return OUTER_CORNER if self._beside(obs.nearest) else WALL_AHEAD

@@ -83,8 +83,8 @@ class InnerCorner(Manoeuvre):
         return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def done(self, obs):
-        """True once a straight wall is along the right again, no turn onto a wall across
-        the way is due yet, and the lane's edges are clear.
+        """True once a straight wall is along the right again and no turn onto a wall across
+        the way is due yet.
 
         A wall farther across the way (the next one of a room whose walls
         meet at wide angles) is turned onto when it comes within reach, from
@@ -92,8 +92,7 @@ class InnerCorner(Manoeuvre):
         off the wall it has just reached.
         """
         p = self.params
-        return (obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
-                and self.clear_of_lane_edges(obs))
+        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
 
     def clear_of_lane_edges(self, obs):
         """True when nothing is nearer than front_turn_distance in the lane widened by

@@ -37,10 +37,11 @@ class Observation(object):
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
-        lane = front[np.abs(front[:, 1]) <= params.corridor_half_width]
+        across = np.abs(front[:, 1])
+        lane = front[across <= params.corridor_half_width]
         self.front = second_smallest(lane[:, 0])
-        wide = front[np.abs(front[:, 1]) <= params.corridor_half_width + params.clear_margin]
-        self.front_wide = second_smallest(wide[:, 0])
+        self.front_wide = second_smallest(
+            front[across <= params.corridor_half_width + params.clear_margin][:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
 
