@@ -22,6 +22,9 @@ TAKEN = 'laser_x %.3f m (from tf base_link -> base_laser_link)' % WAFFLE_LASER_X
 NODES = ('/wall_finder', '/wall_following')
 # Wall seconds allowed for the monitor's subscriptions to connect.
 CONNECT_LIMIT = 30.0
+# Least clearance of the body [m]: more than a cell of the world's grid, which
+# the simulator (as Stage) takes for contact when the body's edge enters it.
+MIN_CLEARANCE = 0.025
 
 
 class WaffleMount(unittest.TestCase):
@@ -48,6 +51,7 @@ class WaffleMount(unittest.TestCase):
         self.assertTrue(score['lap_closed'])
         self.assertFalse(score['contact'], 'touched a wall (clearance %.3f m)'
                          % score['min_clearance'])
+        self.assertGreaterEqual(score['min_clearance'], MIN_CLEARANCE)
         self.guard.assert_safe(self)
 
 

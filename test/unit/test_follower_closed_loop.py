@@ -6,7 +6,9 @@ map as the benchmark scores it. A few seconds, so it runs with every test.
 import math
 import os
 
-from wall_follower.control.follower import WallFollower
+import yaml
+
+from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.scan import ScanView
 from wall_follower.evaluation import world_generator
@@ -14,15 +16,21 @@ from wall_follower.evaluation.scoring import CourseMap, RunScore
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
-WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
+ROOT = os.path.join(os.path.dirname(__file__), '..', '..')
+WORLDS = os.path.join(ROOT, 'worlds')
 ROOM = os.path.join(WORLDS, 'room.world')
+# room.world with a TurtleBot3 Waffle (waffle.test's world).
+WAFFLE_ROOM = os.path.join(ROOT, 'test', 'rostest', 'waffle_room.world')
 
 
-def lap(world_path, profile, seed=0, time_limit=120.0):
-    """Follow from the world's start pose until the lap closes; the run's figures."""
+def lap(world_path, profile, seed=0, time_limit=120.0, params=None):
+    """Follow from the world's start pose until the lap closes; the run's figures.
+
+    params: the controller's FollowerParams (None: the defaults).
+    """
     simulation = Simulation(load_world(world_path), laser_profile=profile, seed=seed)
     score = RunScore(CourseMap(world_path))
-    controller = WallFollower()
+    controller = WallFollower(params)
     states = set()
     while simulation.time < time_limit and not score.lap.closed:
         robot = simulation.step().robots[0]
@@ -50,6 +58,18 @@ def test_a_lap_of_the_room_in_band_without_contact():
     # time its path takes at the speed limit.
     assert figures['lap_time_ratio'] <= 1.2
     assert 'WALL_AHEAD' in states
+
+
+def test_a_waffle_keeps_its_tail_off_the_walls_at_inner_corners():
+    # A Waffle's rear corners reach 0.26 m from its rotation centre: riding
+    # nearer the wall before a left turn, as a Burger does, swings its tail
+    # within a grid cell of the wall it leaves.
+    with open(os.path.join(ROOT, 'config', 'waffle_pi.yaml')) as stream:
+        body = yaml.safe_load(stream)
+    figures, _ = lap(WAFFLE_ROOM, 'stage', params=FollowerParams(laser_x=-0.064, **body))
+    assert figures['lap_closed']
+    assert figures['min_clearance'] >= 0.025, figures['min_clearance']
+    assert figures['time_in_band'] >= 0.97
 
 
 def generated_world(directory, seed, index, start):

@@ -13,6 +13,7 @@ a pivot.
 """
 import math
 
+from wall_follower.control.body import Body
 from wall_follower.control.left_turn import LeftTurn
 from wall_follower.control.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
@@ -40,6 +41,10 @@ class InnerCorner(Manoeuvre):
         p = self.params
         wide_radius = p.cruise_speed / p.max_turn_rate
         self.left_turn = LeftTurn(p.inner_corner_radius, wide_radius, p.wide_start, p.wide_end)
+        # The nearest the robot may ride before the turn, for its tail to keep
+        # body_clearance from the wall as the wide start swings it round.
+        self._deepest_dip = p.target_distance - p.body_clearance - \
+            Body(p.body_rear, p.body_half_width).swing(wide_radius)
         self.short_turn = LeftTurn(p.short_turn_radius, wide_radius, p.short_wide_start,
                                    p.short_wide_end)
 
@@ -125,16 +130,19 @@ class InnerCorner(Manoeuvre):
         """How much nearer to ride while a wall across the way is within approach_range.
 
         As much as the wide start of the turn onto that wall will drift,
-        less what it may drift past target_distance (wide_allowance).
-        still_turning: how far (rad) the robot turns right before that turn
-        starts, which adds to the wall's angle.
+        less what it may drift past target_distance (wide_allowance), but
+        never so near that the start of the turn swings the robot's tail
+        within body_clearance of the wall. still_turning: how far (rad) the
+        robot turns right before that turn starts, which adds to the wall's
+        angle.
         """
         if not self.blocking(obs):
             return 0.0
         distance, angle = self._ahead_square_to_right(obs)
         if distance >= self.params.approach_range:
             return 0.0
-        return max(0.0, self.left_turn.drift(angle + still_turning) - self.params.wide_allowance)
+        drift = self.left_turn.drift(angle + still_turning) - self.params.wide_allowance
+        return max(0.0, min(drift, self._deepest_dip))
 
     def blocking(self, obs):
         """True when a wall lies across the way ahead (not the right wall seen ahead)."""

@@ -28,6 +28,11 @@ FOLLOWER = (
     Section('robot', (
         P('laser_x', -0.032, 'laser position ahead of the rotation centre [m] (a Burger has it '
           'behind; a Waffle twice as far behind)', -0.3, 0.3),
+        P('body_rear', 0.101, "how far the robot's body reaches behind the rotation centre [m] "
+          '(a Burger; config/waffle_pi.yaml has a Waffle)', 0.0, 1.0),
+        P('body_half_width', 0.089, "half the width of the robot's body [m]", 0.0, 1.0),
+        P('body_clearance', 0.04, 'before a left turn, ride no nearer the wall than keeps the '
+          "body's tail this far from it as the turn swings it round [m]", 0.0, 0.5),
     )),
     Section('straight_wall', (
         P('target_distance', 0.25, 'wanted distance to the wall on the right [m]', 0.12, 1.0),
