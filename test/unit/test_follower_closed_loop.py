@@ -12,7 +12,7 @@ from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.scan import ScanView
 from wall_follower.evaluation import world_generator
-from wall_follower.evaluation.scoring import CourseMap, RunScore
+from wall_follower.evaluation.scoring import BAND, CourseMap, RunScore
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
@@ -92,3 +92,27 @@ def test_a_pillar_beyond_an_outer_corner_does_not_turn_the_robot_off_the_wall(tm
     assert not figures['contact'], figures['min_clearance']
     assert figures['time_in_band'] >= 0.97
     assert 'SEARCH' not in states
+
+
+def test_round_a_sharp_corner_the_wide_end_waits_for_the_next_wall(tmp_path):
+    # Generated world 27 of seed 1: a slanted wall ends in a tip, and the
+    # next wall leaves it northwards, some 135 degrees of right turn on.
+    # The turn's wide end, begun where a square corner's would begin, once
+    # swept on for the rest of the turn and carried the robot out of the
+    # band. Started on the slanted wall, 0.25 m below it, short of the tip.
+    world = generated_world(tmp_path, 1, 27, (1.85, 0.515, math.radians(-165.0)))
+    simulation = Simulation(load_world(world), laser_profile='stage')
+    course = CourseMap(world)
+    controller = WallFollower()
+    states, farthest = set(), 0.0
+    # Through the corner and up the next wall, short of the wall across its end.
+    while simulation.time < 5.0:
+        robot = simulation.step().robots[0]
+        truth = robot.ground_truth
+        farthest = max(farthest, course.right_wall_distance((truth.x, truth.y, truth.yaw)))
+        scan = robot.scan
+        simulation.set_command(0, *clamp(controller.update(ScanView(
+            scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max))))
+        states.add(controller.state)
+    assert 'OUTER_CORNER' in states
+    assert farthest <= BAND[1], farthest

@@ -145,7 +145,16 @@ class OuterTurn(object):
         `distance` (less nearer) from the next wall, so an arc flown wide of
         the tight one turns out later.
         """
-        if not self.wide_end or abs(turned - math.pi / 2) > self.wide_end:
+        return self.lands_within(past_tip, math.pi / 2 - turned, nearer)
+
+    def lands_within(self, distance, angle, nearer=0.0):
+        """True where a wide end begun now ends at `distance` (less nearer) or nearer.
+
+        distance: the rotation centre's from the next wall; angle (rad): the
+        turn still to go onto it, at most wide_end. The wide arc carries the
+        robot wide_radius * (1 - cos angle) off that wall as it turns.
+        """
+        if not self.wide_end or abs(angle) > self.wide_end:
             return False
-        landing = past_tip + self.wide_radius * (1.0 - math.cos(math.pi / 2 - turned))
+        landing = distance + self.wide_radius * (1.0 - math.cos(angle))
         return landing <= self.distance - nearer

@@ -4,8 +4,10 @@ A wide arc, an arc round the corner's tip and a wide arc again (see
 corner.py): the middle arc is pinned to the tip at every scan, and the
 last one starts where it will end at the planned distance from the next
 wall (nearer, by the dip, when that wall is a short side with a wall
-across its end), and then goes on. A corner that comes up with no wall
-fitted (the end of a box's short side, mid-turn) is circled instead.
+across its end): judged on that wall once it is fitted, and until then
+as if the corner were square, in which case it then goes on. A corner
+that comes up with no wall fitted (the end of a box's short side,
+mid-turn) is circled instead.
 """
 import math
 
@@ -14,7 +16,11 @@ from wall_follower.control.follow_wall import steer
 from wall_follower.control.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.scan import RIGHT, wrap_angle
-from wall_follower.control.wall_fit import along_the_way
+from wall_follower.control.wall_fit import along_the_way, from_centre
+
+# A wall fitted this much further round than the robot has turned from the
+# one that ended is another wall [rad].
+OTHER_WALL_ANGLE = math.radians(15.0)
 
 
 class OuterCorner(Manoeuvre):
@@ -98,8 +104,28 @@ class OuterCorner(Manoeuvre):
         # short side) leaves no room to ride nearer before the turn onto
         # it: the corner lands that much nearer the side instead.
         nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
-        self.ending_wide = self.ending_wide or self.turn.ends_wide(
-            self.arc.turned(), self.arc.past_tip(), nearer)
+        next_wall = self._next_wall(obs)
+        if next_wall is not None:
+            self.ending_wide = self.turn.lands_within(
+                from_centre(next_wall, self.params.laser_x).distance, -next_wall.angle, nearer)
+        else:
+            self.ending_wide = self.ending_wide or self.turn.ends_wide(
+                self.arc.turned(), self.arc.past_tip(), nearer)
+
+    def _next_wall(self, obs):
+        """The wall on the right the turn is coming round onto, once it is fitted; else None.
+
+        Until then the corner is taken for a square one. Not every corner
+        is: round the tip of a wall that meets the next at a sharp angle,
+        the wide end begun where a square corner's would have begun carries
+        the robot far off the next wall. The wall that ended lies across the
+        heading as far as the robot has turned; the next one, not yet
+        reached, lies the other way (the robot heads away from it).
+        """
+        wall = obs.wall
+        if wall is None or wall.angle >= min(0.0, self.arc.turned() - OTHER_WALL_ANGLE):
+            return None
+        return wall
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
