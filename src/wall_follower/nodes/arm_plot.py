@@ -53,6 +53,11 @@ def main():
         if values['duration'] and started is not None and \
                 record.times[-1] - started >= values['duration']:
             break
+    if not record.times:
+        # Nothing to draw: an empty plot would only cost a stopped node a
+        # second of a busy machine's time before it exits.
+        rospy.logwarn('%s: no joint_states came; nothing saved', rospy.get_name())
+        return 0
     save(record, filename)
     rospy.loginfo('%s: saved %d joint states to %s', rospy.get_name(), len(record.times),
                   filename)
