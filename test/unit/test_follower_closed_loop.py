@@ -24,7 +24,8 @@ WAFFLE_ROOM = os.path.join(ROOT, 'test', 'rostest', 'waffle_room.world')
 
 
 def lap(world_path, profile, seed=0, time_limit=120.0, params=None):
-    """Follow from the world's start pose until the lap closes; the run's figures.
+    """Follow from the world's start pose until the lap closes or time_limit [simulated s];
+    the run's RunScore and the controller's states.
 
     params: the controller's FollowerParams (None: the defaults).
     """
@@ -43,12 +44,13 @@ def lap(world_path, profile, seed=0, time_limit=120.0, params=None):
         score.add_command(*command)
         states.add(controller.state)
         simulation.set_command(0, *command)
-    return score.summary(), states
+    return score, states
 
 
 def test_a_lap_of_the_room_in_band_without_contact():
     # The LDS-01 profile: range noise and 0.0 dropouts on top of Stage's grid.
-    figures, states = lap(ROOM, 'lds01')
+    score, states = lap(ROOM, 'lds01')
+    figures = score.summary()
     assert figures['lap_closed']
     assert not figures['contact'], figures['min_clearance']
     assert figures['time_in_band'] >= 0.97
@@ -66,7 +68,8 @@ def test_a_waffle_keeps_its_tail_off_the_walls_at_inner_corners():
     # within a grid cell of the wall it leaves.
     with open(os.path.join(ROOT, 'config', 'waffle_pi.yaml')) as stream:
         body = yaml.safe_load(stream)
-    figures, _ = lap(WAFFLE_ROOM, 'stage', params=FollowerParams(laser_x=-0.064, **body))
+    score, _ = lap(WAFFLE_ROOM, 'stage', params=FollowerParams(laser_x=-0.064, **body))
+    figures = score.summary()
     assert figures['lap_closed']
     assert figures['min_clearance'] >= 0.025, figures['min_clearance']
     assert figures['time_in_band'] >= 0.97
@@ -87,7 +90,8 @@ def test_a_pillar_beyond_an_outer_corner_does_not_turn_the_robot_off_the_wall(tm
     # lost the wall and looped through the wing without ever closing a lap.
     # Started where find_wall leaves it, on the room's east wall, heading north.
     world = generated_world(tmp_path, 1, 0, (1.28, 0.0, math.pi / 2))
-    figures, states = lap(world, 'stage', time_limit=120.0)
+    score, states = lap(world, 'stage', time_limit=120.0)
+    figures = score.summary()
     assert figures['lap_closed']
     assert not figures['contact'], figures['min_clearance']
     assert figures['time_in_band'] >= 0.97
@@ -101,18 +105,8 @@ def test_round_a_sharp_corner_the_wide_end_waits_for_the_next_wall(tmp_path):
     # swept on for the rest of the turn and carried the robot out of the
     # band. Started on the slanted wall, 0.25 m below it, short of the tip.
     world = generated_world(tmp_path, 1, 27, (1.85, 0.515, math.radians(-165.0)))
-    simulation = Simulation(load_world(world), laser_profile='stage')
-    course = CourseMap(world)
-    controller = WallFollower()
-    states, farthest = set(), 0.0
     # Through the corner and up the next wall, short of the wall across its end.
-    while simulation.time < 5.0:
-        robot = simulation.step().robots[0]
-        truth = robot.ground_truth
-        farthest = max(farthest, course.right_wall_distance((truth.x, truth.y, truth.yaw)))
-        scan = robot.scan
-        simulation.set_command(0, *clamp(controller.update(ScanView(
-            scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max))))
-        states.add(controller.state)
+    score, states = lap(world, 'stage', time_limit=5.0)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
     assert 'OUTER_CORNER' in states
     assert farthest <= BAND[1], farthest
