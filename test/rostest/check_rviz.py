@@ -147,8 +147,8 @@ class RvizPictures(unittest.TestCase):
     def check_config(self, screen, name, launch_args, judge, tmp):
         shot = os.path.join(self.out, name.replace('.rviz', '.png'))
         for attempt in range(1, ATTEMPTS + 1):
-            errors, missing, output = self.show(screen, name, launch_args, judge, tmp, shot)
-            crash = RVIZ_CRASH.search(output)
+            errors, missing, crash, output = self.show(screen, name, launch_args, judge, tmp,
+                                                       shot)
             if not crash:
                 break
             print('%s: rviz itself crashed (attempt %d of %d): %s'
@@ -159,7 +159,8 @@ class RvizPictures(unittest.TestCase):
 
     def show(self, screen, name, launch_args, judge, tmp, shot):
         """Screenshots of the launch until one shows what judge wants, the time is up, or
-        the launch or rviz has ended; (error pixels, what is missing, the launch's output)."""
+        the launch or rviz has ended; (error pixels, what is missing, rviz's crash in the
+        launch's output or None, the end of that output)."""
         log_path = os.path.join(tmp, name + '.log')
         with open(log_path, 'w') as log:
             launch = Launch(screen, launch_args[0], launch_args[1:], log)
@@ -181,7 +182,8 @@ class RvizPictures(unittest.TestCase):
         print('%s: %s after %.0f s (%s, %d error pixels)'
               % (name, shot, time.monotonic() - started, seen, errors))
         with open(log_path) as log:
-            return errors, missing, log.read()[-3000:]
+            output = log.read()
+        return errors, missing, RVIZ_CRASH.search(output), output[-3000:]
 
 
 class NotRunRvizPictures(unittest.TestCase):
