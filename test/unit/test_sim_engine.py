@@ -89,6 +89,25 @@ def test_watchdog_timeout_is_configurable_and_zero_disables_it():
         assert len(set(poses)) == expected
 
 
+def test_a_robot_told_to_stand_still_is_driven_until_its_watchdog_time_is_up():
+    # A lockstep simulator waits for the next command of a driven robot: one
+    # standing on its controller's orders is waited for as much as a moving
+    # one, so that its next move off is not late by however busy the machine is.
+    sim = Simulation(_room())
+    assert sim.driven() == [False]          # nothing has commanded it yet
+    sim.set_command(0, 0.0, 0.0)
+    driven = []
+    for _ in range(3):
+        driven.append(sim.driven()[0])
+        sim.step()
+    assert driven == [True, True, False]
+    off = Simulation(_room(), watchdog_timeout=0.0)
+    off.set_command(0, 0.0, 0.0)
+    assert off.driven() == [False]
+    off.set_command(0, 0.1, 0.0)
+    assert off.driven() == [True]
+
+
 def test_velocity_bounds_are_honoured():
     sim = Simulation(_room())    # Stage's default bounds: 1 m/s, 90 deg/s
     sim.step()

@@ -306,8 +306,8 @@ class StageSimNode(object):
             if not self._running.wait(self.PAUSE_POLL):
                 continue
             with self._lock:
-                moving = [robot.command != (0.0, 0.0) for robot in self._sim.robots]
-            if not self._pacer.wait_turn(moving):
+                driven = self._sim.driven()
+            if not self._pacer.wait_turn(driven):
                 return
             with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
             with_images = any(topics.camera is not None and topics.camera.wanted()

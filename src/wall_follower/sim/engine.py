@@ -65,7 +65,7 @@ class RobotState(object):
         self.pose = self.start_pose
         self.command = (0.0, 0.0)
         self.velocity = (0.0, 0.0)
-        self.last_command_us = 0
+        self.last_command_us = None   # sim time of the last command; None before the first
         self.stalled = False
         self.published_pose = None   # ground truth at the last update, for its twist
         self.odom_pose = (0.0, 0.0, 0.0)   # dead reckoning for localization "odom"
@@ -116,6 +116,21 @@ class Simulation(object):
         robot.command = (float(v), float(w))
         robot.last_command_us = self._time_us
 
+    def driven(self):
+        """Per robot, whether a controller is driving it: it was commanded, a stop too,
+        within the watchdog time (without a watchdog: it is commanded to move).
+
+        A simulator in lockstep waits for the next command of these. A robot
+        told to stand still is driven as much as a moving one: a controller
+        whose next command, to move off, comes late would otherwise find the
+        world stepped on without it, and its timing shifted by the load.
+        """
+        if self._watchdog_us <= 0:
+            return [robot.command != (0.0, 0.0) for robot in self.robots]
+        return [robot.last_command_us is not None
+                and self._time_us - robot.last_command_us < self._watchdog_us
+                for robot in self.robots]
+
     def reset(self):
         """Back to the start poses with zero commands (stageros' reset_positions).
 
@@ -164,7 +179,8 @@ class Simulation(object):
             frames.append(RobotFrame(robot.name, scan, odom, self._ground_truth(robot),
                                      robot.stalled, laser_mount(robot.spec), image))
         for robot in self.robots:
-            if self._watchdog_us > 0 and self._time_us - robot.last_command_us >= self._watchdog_us:
+            if self._watchdog_us > 0 and robot.last_command_us is not None and \
+                    self._time_us - robot.last_command_us >= self._watchdog_us:
                 robot.command = (0.0, 0.0)
         return Frame(self.time, frames)
 
