@@ -1,6 +1,9 @@
 """arm_plot's record and picture: joint_states in any joint order, saved as a PNG."""
 import math
+import subprocess
+import sys
 
+import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
@@ -39,3 +42,16 @@ def test_saves_a_png_of_positions_and_velocities(tmp_path):
     assert [line.get_label() for line in above.lines] == ['hip', 'shoulder']
     assert len(above.lines[0].get_xdata()) == 26     # the last half second
     assert below.get_ylabel() == 'velocity [rad/s]'
+
+
+@pytest.mark.ros
+def test_the_recorder_loads_matplotlib_only_to_save():
+    # A recorder stopped before any joint_states came ends without matplotlib
+    # ever loaded: on a busy machine its import and teardown took arm_plot
+    # past the two seconds a Ctrl-C may take (signals.test).
+    loaded = subprocess.check_output([sys.executable, '-c', (
+        'import sys\n'
+        'import wall_follower.nodes.arm_plot\n'
+        'print(sorted(m for m in sys.modules if m.split(".")[0] == "matplotlib"))')],
+        universal_newlines=True)
+    assert loaded.strip() == '[]'

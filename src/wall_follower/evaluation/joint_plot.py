@@ -1,10 +1,11 @@
 """The arm's joints against time, as the lab's rqt_plot shows them: positions above,
 velocities below, one line a joint. Drawn on a matplotlib Figure of the caller's (a live
-window) or saved as a PNG through the Agg canvas, so that no display is needed."""
-import threading
+window) or saved as a PNG through the Agg canvas, so that no display is needed.
 
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
+matplotlib is imported only by save(): a recorder stopped before anything
+came never loads it, and on a busy machine that is most of a second less
+to start and to end (a Ctrl-C should end a node at once)."""
+import threading
 
 
 class JointRecord(object):
@@ -65,6 +66,8 @@ def draw(figure, record, window=None):
 
 def save(record, filename):
     """Save the whole record as a PNG."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
     figure = Figure(figsize=(8, 6))
     FigureCanvasAgg(figure)
     draw(figure, record)
