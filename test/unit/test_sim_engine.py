@@ -89,23 +89,38 @@ def test_watchdog_timeout_is_configurable_and_zero_disables_it():
         assert len(set(poses)) == expected
 
 
-def test_a_robot_told_to_stand_still_is_driven_until_its_watchdog_time_is_up():
+def test_a_robot_held_still_is_driven_as_a_moving_one():
     # A lockstep simulator waits for the next command of a driven robot: one
-    # standing on its controller's orders is waited for as much as a moving
-    # one, so that its next move off is not late by however busy the machine is.
+    # its controller holds still, answering every step, is waited for as much
+    # as a moving one, so that its move off is not late by however busy the
+    # machine is.
     sim = Simulation(_room())
     assert sim.driven() == [False]          # nothing has commanded it yet
-    sim.set_command(0, 0.0, 0.0)
+    driven = []
+    for _ in range(4):
+        sim.set_command(0, 0.0, 0.0)
+        sim.step()
+        driven.append(sim.driven()[0])
+    assert driven == [False, True, True, True]
+    sim.step()                              # its controller fell silent
+    assert sim.driven() == [False]
+    sim.set_command(0, 0.1, 0.0)
+    assert sim.driven() == [True]
+
+
+def test_a_last_stop_is_not_waited_for():
+    # A controller that ends with a stop, sent once or a few times at once,
+    # and goes quiet is not held for: each such end would cost a time-out.
+    sim = Simulation(_room())
+    sim.set_command(0, 0.1, 0.0)
+    sim.step()
+    for _ in range(3):
+        sim.set_command(0, 0.0, 0.0)
     driven = []
     for _ in range(3):
-        driven.append(sim.driven()[0])
         sim.step()
-    assert driven == [True, True, False]
-    off = Simulation(_room(), watchdog_timeout=0.0)
-    off.set_command(0, 0.0, 0.0)
-    assert off.driven() == [False]
-    off.set_command(0, 0.1, 0.0)
-    assert off.driven() == [True]
+        driven.append(sim.driven()[0])
+    assert driven == [False, False, False]
 
 
 def test_velocity_bounds_are_honoured():

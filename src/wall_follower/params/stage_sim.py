@@ -13,9 +13,9 @@ TABLE = (
         P('late_command_share', 0.5, 'at a held speedup, a step waits at most this share of its '
           'period for the next cmd_vel of a moving robot; the steady schedule takes the delay '
           'back on the next steps', 0.0, 1.0),
-        P('lockstep', False, 'step only after every driven robot (commanded, a stop too, '
-          'within base_watchdog_timeout) has sent a new cmd_vel, so that results do not '
-          'depend on machine load'),
+        P('lockstep', False, 'step only after every driven robot (commanded to move, or held '
+          'still by a controller that told it to stand before each of the last two steps) has '
+          'sent a new cmd_vel, so that results do not depend on machine load'),
         P('lockstep_timeout', 1.0, 'in lockstep, step anyway after this long without one '
           '[wall s]', 0.0, 60.0),
         P('lockstep_grace', 0.05, 'in lockstep, the wait when nobody drives [wall s]',

@@ -53,6 +53,8 @@ _ROBOT_RANGER_RETURN = 1.0
 # Stage 4.3's default odometry scale errors (x, y, yaw) lie within +- these:
 # half its INTEGRATION_ERROR_MAX_X, _Y and _A (0.03, 0.03, 0.05).
 DEFAULT_ODOM_ERROR_LIMITS = (0.015, 0.015, 0.025)
+# Updates in a row, each after a command to stand, that make a robot held still (driven()).
+HOLDING_STEPS = 2
 
 
 class RobotState(object):
@@ -66,6 +68,8 @@ class RobotState(object):
         self.command = (0.0, 0.0)
         self.velocity = (0.0, 0.0)
         self.last_command_us = None   # sim time of the last command; None before the first
+        self.commanded = False   # whether a command came since the last update
+        self.held_steps = 0      # updates in a row before each of which it was told to stand
         self.stalled = False
         self.published_pose = None   # ground truth at the last update, for its twist
         self.odom_pose = (0.0, 0.0, 0.0)   # dead reckoning for localization "odom"
@@ -115,20 +119,22 @@ class Simulation(object):
         robot = self.robots[index]
         robot.command = (float(v), float(w))
         robot.last_command_us = self._time_us
+        robot.commanded = True
 
     def driven(self):
-        """Per robot, whether a controller is driving it: it was commanded, a stop too,
-        within the watchdog time (without a watchdog: it is commanded to move).
+        """Per robot, whether a controller is driving it: it is commanded to move, or a
+        controller holds it still, telling it to stand before each of the last
+        HOLDING_STEPS updates.
 
         A simulator in lockstep waits for the next command of these. A robot
-        told to stand still is driven as much as a moving one: a controller
-        whose next command, to move off, comes late would otherwise find the
-        world stepped on without it, and its timing shifted by the load.
+        held still is driven as much as a moving one: a controller whose next
+        command, to move off, comes late would otherwise find the world
+        stepped on without it, and its timing shifted by the load. A last stop,
+        sent once (or a few times at once) by a controller that then goes
+        quiet, is not holding: waiting for a command that never comes would
+        cost every such end a whole lockstep time-out.
         """
-        if self._watchdog_us <= 0:
-            return [robot.command != (0.0, 0.0) for robot in self.robots]
-        return [robot.last_command_us is not None
-                and self._time_us - robot.last_command_us < self._watchdog_us
+        return [robot.command != (0.0, 0.0) or robot.held_steps >= HOLDING_STEPS
                 for robot in self.robots]
 
     def reset(self):
@@ -157,6 +163,10 @@ class Simulation(object):
     def step(self, with_scans=True, with_images=False):
         """Advance one world update and return its Frame (scans None if not with_scans,
         camera images None unless with_images)."""
+        for robot in self.robots:
+            held = robot.commanded and robot.command == (0.0, 0.0)
+            robot.held_steps = robot.held_steps + 1 if held else 0
+            robot.commanded = False
         scans = [self._scan(i) if with_scans else None for i in range(len(self.robots))]
         images = [self.camera_image(i) if with_images else None
                   for i in range(len(self.robots))]
