@@ -67,7 +67,7 @@ class RobotState(object):
         self.pose = self.start_pose
         self.command = (0.0, 0.0)
         self.velocity = (0.0, 0.0)
-        self.last_command_us = None   # sim time of the last command; None before the first
+        self.last_command_us = 0
         self.commanded = False   # whether a command came since the last update
         self.held_steps = 0      # updates in a row before each of which it was told to stand
         self.stalled = False
@@ -189,8 +189,7 @@ class Simulation(object):
             frames.append(RobotFrame(robot.name, scan, odom, self._ground_truth(robot),
                                      robot.stalled, laser_mount(robot.spec), image))
         for robot in self.robots:
-            if self._watchdog_us > 0 and robot.last_command_us is not None and \
-                    self._time_us - robot.last_command_us >= self._watchdog_us:
+            if self._watchdog_us > 0 and self._time_us - robot.last_command_us >= self._watchdog_us:
                 robot.command = (0.0, 0.0)
         return Frame(self.time, frames)
 
