@@ -11,7 +11,7 @@ TABLE = (
         P('speedup', 1.0, 'simulated seconds per wall second, held steady; 0 runs as fast as '
           'possible', 0.0, 10000.0),
         P('late_command_share', 0.5, 'at a held speedup, a step waits at most this share of its '
-          'period for the next cmd_vel of a moving robot; the steady schedule takes the delay '
+          'period for the next cmd_vel of a driven robot; the steady schedule takes the delay '
           'back on the next steps', 0.0, 1.0),
         P('lockstep', False, 'step only after every driven robot (commanded to move, or held '
           'still by a controller that told it to stand before each of the last two steps) has '

@@ -67,9 +67,8 @@ class RobotState(object):
         self.pose = self.start_pose
         self.command = (0.0, 0.0)
         self.velocity = (0.0, 0.0)
-        self.last_command_us = 0
-        self.commanded = False   # whether a command came since the last update
-        self.held_steps = 0      # updates in a row before each of which it was told to stand
+        self.last_command_us = 0   # sim time of the last command
+        self.held_steps = 0        # updates in a row before each of which it was told to stand
         self.stalled = False
         self.published_pose = None   # ground truth at the last update, for its twist
         self.odom_pose = (0.0, 0.0, 0.0)   # dead reckoning for localization "odom"
@@ -119,7 +118,6 @@ class Simulation(object):
         robot = self.robots[index]
         robot.command = (float(v), float(w))
         robot.last_command_us = self._time_us
-        robot.commanded = True
 
     def driven(self):
         """Per robot, whether a controller is driving it: it is commanded to move, or a
@@ -164,9 +162,9 @@ class Simulation(object):
         """Advance one world update and return its Frame (scans None if not with_scans,
         camera images None unless with_images)."""
         for robot in self.robots:
-            held = robot.commanded and robot.command == (0.0, 0.0)
+            # Commanded since the last update (it bore this time stamp), to stand.
+            held = robot.last_command_us == self._time_us and robot.command == (0.0, 0.0)
             robot.held_steps = robot.held_steps + 1 if held else 0
-            robot.commanded = False
         scans = [self._scan(i) if with_scans else None for i in range(len(self.robots))]
         images = [self.camera_image(i) if with_images else None
                   for i in range(len(self.robots))]

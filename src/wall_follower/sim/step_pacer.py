@@ -67,8 +67,9 @@ class StepPacer(object):
     def wait_turn(self, driving):
         """Blocks until the next step may start; False once stop() was called.
 
-        driving[i] says whether robot i is being driven (its watchdog has not
-        stopped it), i.e. whether its next command is worth waiting for.
+        driving[i] says whether robot i is being driven (Simulation.driven():
+        commanded to move, or held still by a controller that answers every
+        step), i.e. whether its next command is worth waiting for.
         """
         with self._condition:
             if self._due is not None:
