@@ -23,6 +23,7 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   ros-std-srvs libstd-srvs-dev python3-std-srvs
   python3-tf2-ros python3-tf python3-tf2-msgs python3-rosgraph
   python3-numpy python3-yaml python3-pil python3-matplotlib python3-pytest
+  python3-opencv python3-cv-bridge
   python3-catkin-pkg rosbash python3-rostopic python3-rosnode
   python3-rosservice python3-rosparam python3-rosmsg python3-rosbag
   python3-hypothesis
