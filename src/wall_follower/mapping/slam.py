@@ -20,11 +20,26 @@ scans, whichever comes first.
 A scan is matched every time, but drawn into the map only once the robot
 has moved `linear_update` or turned `angular_update` since the last one
 drawn (and always the first), as gmapping does: a robot standing still
-would otherwise make every wall certain from one viewpoint. A scan whose
-match is not trusted (see matcher.py) is not drawn at all: the robot's pose
-goes on from the odometry's prediction, but a scan drawn there, where the
-map says it does not fit, would draw its walls beside the true ones, and
-those beyond the true walls would stay, since no later beam reaches them.
+would otherwise make every wall certain from one viewpoint.
+
+A scan is drawn only where its match is trusted: a good score (matcher.py),
+a correction to the odometry's prediction that the two together make
+likely, and a fused pose sure to `match_max_sigma` (tracking.py). Else the
+robot's pose goes on from the prediction, and the scan is not drawn: drawn
+where the map says it does not fit, or where a second fit put it, it would
+draw its walls beside the true ones, and those beyond the true walls would
+stay, since no later beam reaches them. Only where the prediction itself
+no longer explains the scan (the odometry slipped: a wheel, a bump) may a
+match move the robot further, and only a match that every start around the
+prediction finds alike (`_relocate`); the scans after it are drawn again
+once `SETTLE` of them in a row are trusted.
+
+Each scan drawn is a keyframe of a pose graph (posegraph.py), tied to the
+one before by the poses matching found. Once the robot is back where it
+has been, `loop_min_travel` or more before, its scan is matched against
+the map those early keyframes alone make; a match trusted there ties the
+two ends of the loop, the graph is relaxed, and the map is drawn again
+from every keyframe at its relaxed pose (`_close_loop`).
 """
 import math
 
@@ -35,12 +50,52 @@ from wall_follower.params.slam import GRID, MAPPER, RULES
 
 from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher
+from .posegraph import PoseGraph
 from .poses import between, compose, inverse
+from .tracking import FLOOR, Prediction, in_frame, surprise
 
 __all__ = ['Mapper', 'scan_points', 'joined_walls']
 
 # Odometry that moved less than this between two scans is at rest [m, rad].
 AT_REST = 1e-4
+# The fine grid's beams are sampled a cell apart (see LogOddsGrid).
+FINE_STEP = 1.0
+# A relaxed pose graph redraws the map only if it moved a keyframe this much [m, rad]:
+# half a fine cell, or a turn that moves a wall 3 m off by as much.
+REDRAW = (0.005, 0.005 / 3.0)
+# What became of a scan: its pose trusted (drawn when due), not (the pose predicted or
+# hardly sure, not drawn), or moved by a relocation (not drawn).
+TRUSTED, NOT_TRUSTED, RELOCATED = 'trusted', 'not trusted', 'relocated'
+# Scans in a row that must be trusted after a relocation before one is drawn again.
+SETTLE = 3
+# A relocation or a loop closure must come out alike from the prediction and from starts
+# this far off it (x, y [m], yaw [rad]), within AGREE (m, rad) of each other.
+STARTS = ((0.1, 0.0, 0.0), (-0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, -0.1, 0.0),
+          (0.0, 0.0, math.radians(8.0)), (0.0, 0.0, math.radians(-8.0)))
+AGREE = (0.02, math.radians(1.0))
+# A relocation's starts around the prediction, in search windows (x, y, yaw): out to one
+# window's travel and two of its turn.
+RELOCATION_STARTS = tuple((x, y, a) for x in (-1, 0, 1) for y in (-1, 0, 1)
+                          for a in (-2, -1, 0, 1, 2) if (x, y, a) != (0, 0, 0))
+# How much more of the scan the relocation's best fit must explain than any other, how
+# many of its beams may pass through a mapped wall, and how often it is tried (scans).
+RELOCATION_MARGIN = 0.02
+CROSSED = 0.01
+RELOCATION_EVERY = 5
+# Beams are sampled this far apart for walls they pass through [m].
+CROSSING_STEP = 0.02
+# The standard deviations (along, across [m], yaw [rad]) of the tie between two keyframes
+# in a row and of a loop closure: a match's own, a little more per metre and radian
+# between them.
+TIE_SIGMA = (0.005, 0.005, math.radians(0.25))
+TIE_GROWTH = 0.01
+# How far (one standard deviation) a lap matched scan by scan may have drifted from its
+# start, per metre travelled and radian turned: a loop tie further off than match_gate of
+# these is a wrong fit of the early map, not a lap's error.
+LOOP_DRIFT = 0.01
+# Loop closures are tried at most once every this many metres of travel; after one is
+# closed, the next only after loop_min_travel more.
+LOOP_EVERY = 0.3
 
 
 def scan_points(ranges, angles, range_min, range_max, max_range):
@@ -90,11 +145,24 @@ def _transform(pose, points):
                             pose[1] + s * points[:, 0] + c * points[:, 1]))
 
 
+class Keyframe(object):
+    """A scan drawn into the map: its pose (moved when the pose graph relaxes), its
+    beams' ends in the robot's frame and which hit, and how far the robot had
+    travelled and turned in all when it was taken [m, rad]."""
+
+    __slots__ = ('node', 'ends', 'hit', 'travel', 'turned')
+
+    def __init__(self, node, ends, hit, travel, turned):
+        self.node, self.ends, self.hit = node, ends.astype(np.float32), hit
+        self.travel, self.turned = travel, turned
+
+
 class Mapper(object):
     """Builds the map from (scan, odometry pose) pairs; laser: its pose on the robot.
 
     Its parameters (keyword arguments; their defaults, ranges and meanings
     are the MAPPER table) are the defaults overridden by those given.
+    `decision` says what became of the last scan, `counts` of all of them.
     """
 
     def __init__(self, laser=(0.0, 0.0, 0.0), **params):
@@ -104,17 +172,28 @@ class Mapper(object):
         self.grid = LogOddsGrid(config['delta'], *box, hit=config['hit_logodds'],
                                 miss=config['miss_logodds'])
         self.fine = LogOddsGrid(config['match_resolution'], *box, hit=config['hit_logodds'],
-                                miss=config['miss_logodds'])
+                                miss=config['miss_logodds'], step=FINE_STEP)
         self.field = DistanceField(self.fine, _field_reach(config))
-        self.matcher = ScanMatcher(self.field, _window(config), _reaches(config),
-                                   min_explained=config['match_min_explained'])
+        self.matcher = ScanMatcher(self.field, _reaches(config),
+                                   min_explained=config['match_min_explained'],
+                                   max_misfit=config['match_max_misfit'])
+        self.prediction = Prediction(config['odom_drift'])
         self.laser = tuple(laser)
         self.pose = None          # robot in the map frame
         self.odom = None          # robot in the odometry frame at the same scan
+        self._step = None         # the odometry's motion up to the last scan
         self._drawn_at = None     # map pose of the last scan drawn
+        self._settle = 0          # trusted scans still to come before one is drawn
+        self._relocate_after = 0  # the scan count from which a relocation may be tried
+        self.graph = PoseGraph()
+        self.keyframes = []
+        self.travel = self.turned = 0.0
+        self._loop_tried = None   # travel at the last loop closure tried
         self.scans = 0
         self.drawn = 0
         self.last_match = None
+        self.decision = ''
+        self.counts = {NOT_TRUSTED: 0, RELOCATED: 0, 'loops closed': 0}
         self._waiting = []        # odometry of the scans seen before the map started
 
     def reconfigure(self, **params):
@@ -131,9 +210,10 @@ class Mapper(object):
         for grid in (self.grid, self.fine):
             grid.hit, grid.miss = config['hit_logodds'], config['miss_logodds']
         self.field.set_reach(_field_reach(config))
-        self.matcher.window = _window(config)
         self.matcher.reaches = _reaches(config)
         self.matcher.min_explained = config['match_min_explained']
+        self.matcher.max_misfit = config['match_max_misfit']
+        self.prediction.drift = config['odom_drift']
 
     @property
     def started(self):
@@ -165,21 +245,122 @@ class Mapper(object):
             return None
         ends, hit = scan_points(ranges, angles, range_min, range_max, self.config['max_range'])
         base_ends = _transform(self.laser, ends)
-        if self.pose is None:
-            predicted = odom_pose
-        else:
-            predicted = compose(self.pose, between(self.odom, odom_pose))
-        pose = predicted
         self.last_match = None
-        if self.config['scan_matching'] and self.drawn:
-            self.last_match = self.matcher.match(base_ends[hit], predicted)
-            pose = self.last_match.pose
+        if self.pose is None:
+            pose, verdict, self.decision = odom_pose, TRUSTED, 'the first scan'
+        else:
+            step = between(self.odom, odom_pose)
+            self.prediction.moved(step, self._step)
+            self._step = step
+            self.travel += math.hypot(step[0], step[1])
+            self.turned += abs(step[2])
+            predicted = compose(self.pose, step)
+            if self.config['scan_matching'] and self.drawn:
+                pose, verdict = self._place(base_ends[hit], predicted)
+            else:
+                pose, verdict, self.decision = predicted, TRUSTED, 'placed by odometry'
         self.pose, self.odom = pose, odom_pose
         self.scans += 1
-        trusted = self.last_match is None or self.last_match.ok
-        if trusted and self._due(pose):
-            self._draw(pose, base_ends, hit)
-        return pose
+        if verdict != TRUSTED:
+            self.counts[verdict] += 1
+            self._settle = SETTLE if self._settle or verdict == RELOCATED else 0
+        elif self._settle:
+            self._settle -= 1
+        elif self._due(pose):
+            self._draw_keyframe(pose, base_ends, hit)
+            if self.config['loop_closure'] and self.config['scan_matching']:
+                self._close_loop(base_ends[hit])
+        return self.pose
+
+    def _place(self, points, predicted):
+        """(pose, verdict: TRUSTED, NOT_TRUSTED or RELOCATED) of a scan whose base-frame
+        hits are points, from the prediction; says why in self.decision."""
+        match = self.last_match = self.matcher.match(points, predicted,
+                                                     self.prediction.covariance())
+        if not match.ok:
+            if self.matcher.judge(predicted, points).ok:
+                self.decision = 'match not trusted: ' + match.reason
+                return predicted, NOT_TRUSTED
+            return self._relocate(points, predicted)
+        correction, distance = surprise(predicted, self.prediction, match.pose)
+        window = _window(self.config)
+        if (distance > self.config['match_gate'] or abs(correction[2]) > window[1]
+                or math.hypot(correction[0], correction[1]) > window[0]):
+            if self.matcher.judge(predicted, points).ok:
+                self.decision = ('match not trusted: %.1f cm, %.1f deg from the prediction, '
+                                 '%.1f standard deviations, where the prediction fits too'
+                                 % (100.0 * math.hypot(correction[0], correction[1]),
+                                    math.degrees(correction[2]), distance))
+                return predicted, NOT_TRUSTED
+            return self._relocate(points, predicted)
+        if not match.sigma <= self.config['match_max_sigma']:
+            self.decision = ('match not trusted: the pose stays uncertain by %.1f cm'
+                             % (100.0 * match.sigma))
+            return match.pose, NOT_TRUSTED
+        self.prediction.fixed(in_frame(match.covariance, match.pose[2]))
+        self.decision = 'matched'
+        return match.pose, TRUSTED
+
+    def _relocate(self, points, predicted):
+        """The prediction does not fit the scan, and no match near it does: the odometry
+        slipped (a wheel, a bump). The matches from RELOCATION_STARTS around the prediction compete;
+        the robot is moved to the best (the scan not drawn) only if it is sure, sends
+        no beam through a wall the map holds, and explains RELOCATION_MARGIN more of the
+        scan than any other fit found. An octagon fits itself turned 45 degrees, only
+        its pillar then amiss: the pillar's beams tell the two apart. Tried at most every
+        RELOCATION_EVERY scans while the prediction does not fit."""
+        if self.scans < self._relocate_after:
+            self.decision = 'match not trusted: the prediction does not fit the scan'
+            return predicted, NOT_TRUSTED
+        self._relocate_after = self.scans + RELOCATION_EVERY
+        window = np.array(_window(self.config))
+        fits = [self.matcher.match(points, compose(predicted, tuple(window[[0, 0, 1]] * offset)))
+                for offset in ((0, 0, 0),) + RELOCATION_STARTS]
+        fits = [fit for fit in fits if fit.ok and fit.sigma <= self.config['match_max_sigma']
+                and self._crossed(fit.pose, points) <= CROSSED]
+        fits.sort(key=lambda fit: (-fit.explained, fit.misfit))
+        best = fits[0] if fits else None
+        rivals = [fit.explained for fit in fits[1:] if not _alike(fit.pose, best.pose)]
+        if best is None or (rivals and best.explained < max(rivals) + RELOCATION_MARGIN):
+            self.decision = ('match not trusted: the prediction does not fit the scan, and no '
+                             'fit around it is sure and alone (%d good, %d rivals)'
+                             % (len(fits), len(rivals)))
+            return predicted, NOT_TRUSTED
+        self.last_match = best
+        self.prediction.fixed()
+        moved = between(predicted, best.pose)
+        self.decision = ('relocated: the odometry slipped %.1f cm, %.1f deg; not drawn'
+                         % (100.0 * math.hypot(moved[0], moved[1]), math.degrees(moved[2])))
+        return best.pose, RELOCATED
+
+    def _crossed(self, pose, points):
+        """The share of the hits (base frame) whose beam, from the laser at pose, passes
+        through an occupied cell of the fine grid short of its end."""
+        laser = compose(pose, self.laser)
+        ends = _transform(pose, points)
+        delta = ends - np.array(laser[:2])
+        length = np.hypot(delta[:, 0], delta[:, 1])
+        short = np.maximum(length - 2.0 * self.config['match_reach'], 0.0)
+        t = np.arange(0.0, float(short.max(initial=0.0)), CROSSING_STEP)
+        keep = t[None, :] < short[:, None]
+        direction = delta / np.maximum(length, 1e-12)[:, None]
+        samples = np.array(laser[:2]) + direction[:, None, :] * t[None, :, None]
+        rows, cols, inside = self.fine.cells(samples.reshape(-1, 2))
+        wall = np.zeros(len(rows), dtype=bool)
+        wall[inside] = self.fine.logodds[rows[inside], cols[inside]] > 0.0
+        crossed = (wall.reshape(keep.shape) & keep).any(axis=1)
+        return float(crossed.mean()) if len(crossed) else 0.0
+
+    def _unique(self, matcher, points, guess, match):
+        """True if the match is good, sure to match_max_sigma, and the matches from the
+        STARTS around guess that are good land where it does."""
+        if not match.ok or match.sigma > self.config['match_max_sigma']:
+            return False
+        for offset in STARTS:
+            other = matcher.match(points, compose(guess, offset))
+            if other.ok and not _alike(match.pose, other.pose):
+                return False
+        return True
 
     def _may_start(self, odom_pose):
         previous = self._waiting[-1] if self._waiting else None
@@ -197,16 +378,106 @@ class Mapper(object):
         return (math.hypot(moved[0], moved[1]) >= self.config['linear_update']
                 or abs(moved[2]) >= self.config['angular_update'])
 
-    def _draw(self, pose, base_ends, hit):
-        origin = compose(pose, self.laser)[:2]
-        ends = _transform(pose, base_ends)
-        self.grid.integrate(origin, ends, hit)
-        drawn = self.fine.integrate(origin, ends, hit)
-        self.fine.mark_hits(joined_walls(ends, hit, self.config['match_join_gap'],
-                                         self.fine.resolution / 2.0), skip=drawn)
+    def _draw_keyframe(self, pose, base_ends, hit):
+        node = self.graph.add_pose(pose)
+        if self.keyframes:
+            before = self.keyframes[-1]
+            self.graph.tie(before.node, node, between(self.graph.poses[before.node], pose),
+                           _tie_sigma(self.travel - before.travel, self.turned - before.turned))
+        self.keyframes.append(Keyframe(node, base_ends, hit, self.travel, self.turned))
+        self._draw(pose, base_ends, hit)
         self.field.update()
         self._drawn_at = pose
         self.drawn += 1
+
+    def _draw(self, pose, base_ends, hit, grids=None):
+        origin = compose(pose, self.laser)[:2]
+        ends = _transform(pose, base_ends)
+        coarse, fine = grids or (self.grid, self.fine)
+        if coarse is not None:
+            coarse.integrate(origin, ends, hit)
+        drawn = fine.integrate(origin, ends, hit)
+        fine.mark_hits(joined_walls(ends, hit, self.config['match_join_gap'],
+                                    fine.resolution / 2.0), skip=drawn)
+
+    def _close_loop(self, points):
+        """Tie the newest keyframe to the early ones it is back beside, if the map they
+        alone make places it without doubt; then relax the graph and redraw the map."""
+        newest = self.keyframes[-1]
+        if self._loop_tried is not None and newest.travel - self._loop_tried < LOOP_EVERY:
+            return
+        pose = self.graph.poses[newest.node]
+        early = [k for k in self.keyframes
+                 if newest.travel - k.travel >= self.config['loop_min_travel']]
+        near = [k for k in early if math.hypot(self.graph.poses[k.node][0] - pose[0],
+                                               self.graph.poses[k.node][1] - pose[1])
+                <= self.config['loop_radius']]
+        if not near:
+            return
+        self._loop_tried = newest.travel
+        anchor = min(near, key=lambda k: math.hypot(self.graph.poses[k.node][0] - pose[0],
+                                                    self.graph.poses[k.node][1] - pose[1]))
+        matcher = self._early_map(early, anchor)
+        match = matcher.match(points, pose)
+        loop = between(pose, match.pose)
+        allowed = self.config['match_gate'] * np.array(
+            [FLOOR[0] + LOOP_DRIFT * (newest.travel - anchor.travel),
+             FLOOR[1] + LOOP_DRIFT * (newest.turned - anchor.turned)])
+        if (math.hypot(loop[0], loop[1]) > allowed[0] or abs(loop[2]) > allowed[1]
+                or not self._unique(matcher, points, pose, match)):
+            self.decision = 'matched; no loop closed with the map of the first scans here'
+            return
+        anchor_pose = self.graph.poses[anchor.node]
+        self.graph.tie(anchor.node, newest.node, between(anchor_pose, match.pose), TIE_SIGMA)
+        self._loop_tried = newest.travel + self.config['loop_min_travel'] - LOOP_EVERY
+        moved, turned = self.graph.relax()
+        self.counts['loops closed'] += 1
+        redraw = moved >= REDRAW[0] or turned >= REDRAW[1]
+        self.decision = ('loop closed: %.1f cm, %.2f deg off; the graph relaxed (poses moved '
+                         'up to %.1f cm, %.2f deg)%s'
+                         % (100.0 * math.hypot(loop[0], loop[1]), math.degrees(loop[2]),
+                            100.0 * moved, math.degrees(turned),
+                            ', the map redrawn' if redraw else ''))
+        if redraw:
+            self._redraw()
+        self.pose = self._drawn_at = self.graph.poses[newest.node]
+
+    def _early_map(self, early, anchor):
+        """A matcher on the map the keyframes within loop_radius of the anchor's travel
+        make, among the early ones."""
+        reach = self.config['loop_radius']
+        used = [k for k in early if abs(k.travel - anchor.travel) <= 2.0 * reach]
+        ends = np.concatenate([_transform(self.graph.poses[k.node], k.ends) for k in used])
+        margin = self.field.reach + self.config['loop_radius'] + self.config['match_reach']
+        low = np.maximum(ends.min(axis=0) - margin, (self.config['xmin'], self.config['ymin']))
+        high = np.minimum(ends.max(axis=0) + margin, (self.config['xmax'], self.config['ymax']))
+        fine = LogOddsGrid(self.fine.resolution, low[0], low[1], high[0], high[1],
+                           hit=self.fine.hit, miss=self.fine.miss, step=FINE_STEP)
+        for k in used:
+            self._draw(self.graph.poses[k.node], k.ends, k.hit, (None, fine))
+        field = DistanceField(fine, self.field.reach)
+        field.update()
+        return ScanMatcher(field, self.matcher.reaches, min_explained=self.matcher.min_explained,
+                           max_misfit=self.matcher.max_misfit)
+
+    def _redraw(self):
+        """Both grids drawn anew from every keyframe at its pose in the graph."""
+        for grid in (self.grid, self.fine):
+            grid.clear()
+        for k in self.keyframes:
+            self._draw(self.graph.poses[k.node], k.ends, k.hit)
+        self.field.values.fill(self.field.reach)
+        self.field.update()
+
+
+def _alike(a, b):
+    apart = between(a, b)
+    return math.hypot(apart[0], apart[1]) <= AGREE[0] and abs(apart[2]) <= AGREE[1]
+
+
+def _tie_sigma(travel, turned):
+    grow = TIE_GROWTH * (travel + turned)
+    return (TIE_SIGMA[0] + grow, TIE_SIGMA[1] + grow, TIE_SIGMA[2] + grow)
 
 
 def _field_reach(config):

@@ -84,7 +84,6 @@ class SlamNode(object):
         self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
         self.last_published = None
         self.cpu = 0.0
-        self.rejected = 0
         rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE)
         rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
 
@@ -178,13 +177,7 @@ class SlamNode(object):
             rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still to start '
                                    'the map')
             return
-        match = self.mapper.last_match
-        if match is not None and not match.ok:
-            self.rejected += 1
-            rospy.logdebug('slam: scan of %.3f s not drawn: its match is not trusted (%s)',
-                           msg.header.stamp.to_sec(), match.reason)
-            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used, '
-                                   'scan not drawn', match.reason)
+        self._tell(msg.header.stamp.to_sec())
         try:
             self._send_transform(msg.header.stamp)
             if self.last_published is None or (msg.header.stamp - self.last_published).to_sec() \
@@ -194,6 +187,18 @@ class SlamNode(object):
             if not rospy.is_shutdown():
                 raise
             # A scan that came as the node shut down: rospy has closed the topics.
+
+    def _tell(self, stamp):
+        """What became of the scan of stamp: at debug level always; a match not trusted
+        and a relocation as a (throttled) warning, a loop closed at info level."""
+        decision = self.mapper.decision
+        rospy.logdebug('slam: scan of %.3f s: %s', stamp, decision)
+        if decision.startswith('match not trusted'):
+            rospy.logwarn_throttle(5.0, 'slam: %s; odometry used, scan not drawn' % decision)
+        elif decision.startswith('relocated'):
+            rospy.logwarn('slam: %s', decision)
+        elif decision.startswith('loop closed'):
+            rospy.loginfo('slam: %s', decision)
 
     def _send_transform(self, stamp):
         x, y, yaw = self.mapper.map_to_odom()
@@ -236,7 +241,9 @@ def main():
         return 1
     rospy.spin()
     if node.mapper.scans:
-        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, '
-                      '%.1f ms CPU per scan', node.mapper.scans, node.mapper.drawn,
-                      node.rejected, 1000.0 * node.cpu / node.mapper.scans)
+        counts = node.mapper.counts
+        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, %d '
+                      'relocations, %d loops closed, %.1f ms CPU per scan', node.mapper.scans,
+                      node.mapper.drawn, counts['not trusted'], counts['relocated'],
+                      counts['loops closed'], 1000.0 * node.cpu / node.mapper.scans)
     return 0
