@@ -164,9 +164,9 @@ def _octagon_lap(shift_early=None, at=120, **params):
     truth = octagon._lap()
     for k, pose in enumerate(truth):
         if k == at and shift_early is not None:
-            for keyframe in mapper.keyframes[:EARLY]:
-                mapper.graph.poses[keyframe.node] = compose(shift_early,
-                                                            mapper.graph.poses[keyframe.node])
+            poses = mapper.keyframes.graph.poses
+            for keyframe in mapper.keyframes.frames[:EARLY]:
+                poses[keyframe.node] = compose(shift_early, poses[keyframe.node])
         mapper.add_scan(octagon._scan(pose), octagon.BEAMS, octagon.RANGE[0], octagon.RANGE[1],
                         between(truth[0], pose))
     return mapper
@@ -175,7 +175,7 @@ def _octagon_lap(shift_early=None, at=120, **params):
 def test_back_where_it_began_the_lap_closes_its_loop_once():
     mapper = _octagon_lap()
     assert mapper.counts['loops closed'] == 1
-    graph = mapper.graph
+    graph = mapper.keyframes.graph
     assert len(graph.ties) == len(mapper.keyframes)     # a chain, and one loop tie
     (first, last), = [tie[:2] for tie in graph.ties if tie[1] - tie[0] > 1]
     assert first < 8 and last > 40                      # from the lap's end to its start
@@ -188,11 +188,11 @@ def test_a_loop_that_disagrees_is_relaxed_over_the_lap_and_the_map_redrawn_from_
     drawn anew from every keyframe at its relaxed pose."""
     mapper = _octagon_lap(shift_early=(0.04, 0.0, 0.0))
     assert mapper.counts['loops closed'] == 1
-    steps = [between(mapper.graph.poses[k - 1], mapper.graph.poses[k])
-             for k in range(1, len(mapper.graph))]
+    poses = mapper.keyframes.graph.poses
+    steps = [between(poses[k - 1], poses[k]) for k in range(1, len(poses))]
     assert max(math.hypot(s[0], s[1]) for s in steps) < 0.2      # no jump left anywhere
     redrawn = Mapper(start_patience=0)
-    redrawn.keyframes, redrawn.graph = mapper.keyframes, mapper.graph
+    redrawn.keyframes = mapper.keyframes
     redrawn._redraw()
     assert np.array_equal(redrawn.grid.logodds, mapper.grid.logodds)
 

@@ -23,23 +23,23 @@ drawn (and always the first), as gmapping does: a robot standing still
 would otherwise make every wall certain from one viewpoint.
 
 A scan is drawn only where its match is trusted: a good score (matcher.py),
-a correction to the odometry's prediction that the two together make
-likely, and a fused pose sure to `match_max_sigma` (tracking.py). Else the
+a correction to the odometry's prediction that the prediction's covariance
+makes likely, and a pose sure to `match_max_sigma` (tracking.py). Else the
 robot's pose goes on from the prediction, and the scan is not drawn: drawn
 where the map says it does not fit, or where a second fit put it, it would
 draw its walls beside the true ones, and those beyond the true walls would
 stay, since no later beam reaches them. Only where the prediction itself
-no longer explains the scan (the odometry slipped: a wheel, a bump) may a
-match move the robot further, and only a match that every start around the
-prediction finds alike (`_relocate`); the scans after it are drawn again
-once `SETTLE` of them in a row are trusted.
+no longer fits the scan (the odometry slipped: a wheel, a bump) may the
+robot move further, to the best of the fits round the prediction, if one
+is best beyond doubt (search.py); the scans after it are drawn again once
+`SETTLE` of them in a row are trusted.
 
-Each scan drawn is a keyframe of a pose graph (posegraph.py), tied to the
-one before by the poses matching found. Once the robot is back where it
-has been, `loop_min_travel` or more before, its scan is matched against
-the map those early keyframes alone make; a match trusted there ties the
-two ends of the loop, the graph is relaxed, and the map is drawn again
-from every keyframe at its relaxed pose (`_close_loop`).
+Each scan drawn is a keyframe of a pose graph (keyframes.py). Once the
+robot is back where it has been, `loop_min_travel` or more before, its
+scan is matched against the map those early keyframes alone make; a fit
+there alone and within what the lap may have drifted ties the two ends of
+the loop, the graph is relaxed, and the map is drawn again from every
+keyframe at its relaxed pose (`_close_loop`).
 """
 import math
 
@@ -49,10 +49,11 @@ from wall_follower.params import checked
 from wall_follower.params.slam import GRID, MAPPER, RULES
 
 from .grid import LogOddsGrid
+from .keyframes import REDRAW, Keyframes
 from .matcher import DistanceField, ScanMatcher
-from .posegraph import PoseGraph
 from .poses import between, compose, inverse
-from .tracking import FLOOR, Prediction, in_frame, surprise
+from .search import alone, best_fit, crossed
+from .tracking import Prediction, in_frame, surprise
 
 __all__ = ['Mapper', 'scan_points', 'joined_walls']
 
@@ -60,42 +61,13 @@ __all__ = ['Mapper', 'scan_points', 'joined_walls']
 AT_REST = 1e-4
 # The fine grid's beams are sampled a cell apart (see LogOddsGrid).
 FINE_STEP = 1.0
-# A relaxed pose graph redraws the map only if it moved a keyframe this much [m, rad]:
-# half a fine cell, or a turn that moves a wall 3 m off by as much.
-REDRAW = (0.005, 0.005 / 3.0)
 # What became of a scan: its pose trusted (drawn when due), not (the pose predicted or
 # hardly sure, not drawn), or moved by a relocation (not drawn).
 TRUSTED, NOT_TRUSTED, RELOCATED = 'trusted', 'not trusted', 'relocated'
 # Scans in a row that must be trusted after a relocation before one is drawn again.
 SETTLE = 3
-# A relocation or a loop closure must come out alike from the prediction and from starts
-# this far off it (x, y [m], yaw [rad]), within AGREE (m, rad) of each other.
-STARTS = ((0.1, 0.0, 0.0), (-0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, -0.1, 0.0),
-          (0.0, 0.0, math.radians(8.0)), (0.0, 0.0, math.radians(-8.0)))
-AGREE = (0.02, math.radians(1.0))
-# A relocation's starts around the prediction, in search windows (x, y, yaw): out to one
-# window's travel and two of its turn.
-RELOCATION_STARTS = tuple((x, y, a) for x in (-1, 0, 1) for y in (-1, 0, 1)
-                          for a in (-2, -1, 0, 1, 2) if (x, y, a) != (0, 0, 0))
-# How much more of the scan the relocation's best fit must explain than any other, how
-# many of its beams may pass through a mapped wall, and how often it is tried (scans).
-RELOCATION_MARGIN = 0.02
-CROSSED = 0.01
+# While the prediction does not fit, a relocation is tried at most every this many scans.
 RELOCATION_EVERY = 5
-# Beams are sampled this far apart for walls they pass through [m].
-CROSSING_STEP = 0.02
-# The standard deviations (along, across [m], yaw [rad]) of the tie between two keyframes
-# in a row and of a loop closure: a match's own, a little more per metre and radian
-# between them.
-TIE_SIGMA = (0.005, 0.005, math.radians(0.25))
-TIE_GROWTH = 0.01
-# How far (one standard deviation) a lap matched scan by scan may have drifted from its
-# start, per metre travelled and radian turned: a loop tie further off than match_gate of
-# these is a wrong fit of the early map, not a lap's error.
-LOOP_DRIFT = 0.01
-# Loop closures are tried at most once every this many metres of travel; after one is
-# closed, the next only after loop_min_travel more.
-LOOP_EVERY = 0.3
 
 
 def scan_points(ranges, angles, range_min, range_max, max_range):
@@ -145,18 +117,6 @@ def _transform(pose, points):
                             pose[1] + s * points[:, 0] + c * points[:, 1]))
 
 
-class Keyframe(object):
-    """A scan drawn into the map: its pose (moved when the pose graph relaxes), its
-    beams' ends in the robot's frame and which hit, and how far the robot had
-    travelled and turned in all when it was taken [m, rad]."""
-
-    __slots__ = ('node', 'ends', 'hit', 'travel', 'turned')
-
-    def __init__(self, node, ends, hit, travel, turned):
-        self.node, self.ends, self.hit = node, ends.astype(np.float32), hit
-        self.travel, self.turned = travel, turned
-
-
 class Mapper(object):
     """Builds the map from (scan, odometry pose) pairs; laser: its pose on the robot.
 
@@ -185,10 +145,8 @@ class Mapper(object):
         self._drawn_at = None     # map pose of the last scan drawn
         self._settle = 0          # trusted scans still to come before one is drawn
         self._relocate_after = 0  # the scan count from which a relocation may be tried
-        self.graph = PoseGraph()
-        self.keyframes = []
+        self.keyframes = Keyframes()
         self.travel = self.turned = 0.0
-        self._loop_tried = None   # travel at the last loop closure tried
         self.scans = 0
         self.drawn = 0
         self.last_match = None
@@ -303,28 +261,19 @@ class Mapper(object):
 
     def _relocate(self, points, predicted):
         """The prediction does not fit the scan, and no match near it does: the odometry
-        slipped (a wheel, a bump). The matches from RELOCATION_STARTS around the prediction compete;
-        the robot is moved to the best (the scan not drawn) only if it is sure, sends
-        no beam through a wall the map holds, and explains RELOCATION_MARGIN more of the
-        scan than any other fit found. An octagon fits itself turned 45 degrees, only
-        its pillar then amiss: the pillar's beams tell the two apart. Tried at most every
-        RELOCATION_EVERY scans while the prediction does not fit."""
+        slipped (a wheel, a bump). The robot is moved to the best of the fits found round
+        the prediction (search.best_fit; the scan not drawn), if one is. Tried at most
+        every RELOCATION_EVERY scans while the prediction does not fit."""
         if self.scans < self._relocate_after:
             self.decision = 'match not trusted: the prediction does not fit the scan'
             return predicted, NOT_TRUSTED
         self._relocate_after = self.scans + RELOCATION_EVERY
-        window = np.array(_window(self.config))
-        fits = [self.matcher.match(points, compose(predicted, tuple(window[[0, 0, 1]] * offset)))
-                for offset in ((0, 0, 0),) + RELOCATION_STARTS]
-        fits = [fit for fit in fits if fit.ok and fit.sigma <= self.config['match_max_sigma']
-                and self._crossed(fit.pose, points) <= CROSSED]
-        fits.sort(key=lambda fit: (-fit.explained, fit.misfit))
-        best = fits[0] if fits else None
-        rivals = [fit.explained for fit in fits[1:] if not _alike(fit.pose, best.pose)]
-        if best is None or (rivals and best.explained < max(rivals) + RELOCATION_MARGIN):
-            self.decision = ('match not trusted: the prediction does not fit the scan, and no '
-                             'fit around it is sure and alone (%d good, %d rivals)'
-                             % (len(fits), len(rivals)))
+        best, why = best_fit(self.matcher, points, predicted, _window(self.config),
+                             self.config['match_max_sigma'],
+                             lambda pose: self._crossed(pose, points))
+        if best is None:
+            self.decision = ('match not trusted: the prediction does not fit the scan, and %s'
+                             % why)
             return predicted, NOT_TRUSTED
         self.last_match = best
         self.prediction.fixed()
@@ -335,32 +284,9 @@ class Mapper(object):
 
     def _crossed(self, pose, points):
         """The share of the hits (base frame) whose beam, from the laser at pose, passes
-        through an occupied cell of the fine grid short of its end."""
-        laser = compose(pose, self.laser)
-        ends = _transform(pose, points)
-        delta = ends - np.array(laser[:2])
-        length = np.hypot(delta[:, 0], delta[:, 1])
-        short = np.maximum(length - 2.0 * self.config['match_reach'], 0.0)
-        t = np.arange(0.0, float(short.max(initial=0.0)), CROSSING_STEP)
-        keep = t[None, :] < short[:, None]
-        direction = delta / np.maximum(length, 1e-12)[:, None]
-        samples = np.array(laser[:2]) + direction[:, None, :] * t[None, :, None]
-        rows, cols, inside = self.fine.cells(samples.reshape(-1, 2))
-        wall = np.zeros(len(rows), dtype=bool)
-        wall[inside] = self.fine.logodds[rows[inside], cols[inside]] > 0.0
-        crossed = (wall.reshape(keep.shape) & keep).any(axis=1)
-        return float(crossed.mean()) if len(crossed) else 0.0
-
-    def _unique(self, matcher, points, guess, match):
-        """True if the match is good, sure to match_max_sigma, and the matches from the
-        STARTS around guess that are good land where it does."""
-        if not match.ok or match.sigma > self.config['match_max_sigma']:
-            return False
-        for offset in STARTS:
-            other = matcher.match(points, compose(guess, offset))
-            if other.ok and not _alike(match.pose, other.pose):
-                return False
-        return True
+        through a wall of the fine grid short of the reach of its end."""
+        return crossed(self.fine, compose(pose, self.laser), _transform(pose, points),
+                       2.0 * self.config['match_reach'])
 
     def _may_start(self, odom_pose):
         previous = self._waiting[-1] if self._waiting else None
@@ -379,12 +305,7 @@ class Mapper(object):
                 or abs(moved[2]) >= self.config['angular_update'])
 
     def _draw_keyframe(self, pose, base_ends, hit):
-        node = self.graph.add_pose(pose)
-        if self.keyframes:
-            before = self.keyframes[-1]
-            self.graph.tie(before.node, node, between(self.graph.poses[before.node], pose),
-                           _tie_sigma(self.travel - before.travel, self.turned - before.turned))
-        self.keyframes.append(Keyframe(node, base_ends, hit, self.travel, self.turned))
+        self.keyframes.add(pose, base_ends, hit, self.travel, self.turned)
         self._draw(pose, base_ends, hit)
         self.field.update()
         self._drawn_at = pose
@@ -402,59 +323,45 @@ class Mapper(object):
 
     def _close_loop(self, points):
         """Tie the newest keyframe to the early ones it is back beside, if the map they
-        alone make places it without doubt; then relax the graph and redraw the map."""
-        newest = self.keyframes[-1]
-        if self._loop_tried is not None and newest.travel - self._loop_tried < LOOP_EVERY:
+        alone make places it without doubt and within what the lap may have drifted;
+        then relax the graph and, where that moved a keyframe, redraw the map."""
+        loop = self.keyframes.loop(self.config['loop_min_travel'], self.config['loop_radius'])
+        if loop is None:
             return
-        pose = self.graph.poses[newest.node]
-        early = [k for k in self.keyframes
-                 if newest.travel - k.travel >= self.config['loop_min_travel']]
-        near = [k for k in early if math.hypot(self.graph.poses[k.node][0] - pose[0],
-                                               self.graph.poses[k.node][1] - pose[1])
-                <= self.config['loop_radius']]
-        if not near:
-            return
-        self._loop_tried = newest.travel
-        anchor = min(near, key=lambda k: math.hypot(self.graph.poses[k.node][0] - pose[0],
-                                                    self.graph.poses[k.node][1] - pose[1]))
-        matcher = self._early_map(early, anchor)
+        anchor, early = loop
+        pose = self.pose
+        matcher = self._early_map(early)
         match = matcher.match(points, pose)
-        loop = between(pose, match.pose)
-        allowed = self.config['match_gate'] * np.array(
-            [FLOOR[0] + LOOP_DRIFT * (newest.travel - anchor.travel),
-             FLOOR[1] + LOOP_DRIFT * (newest.turned - anchor.turned)])
-        if (math.hypot(loop[0], loop[1]) > allowed[0] or abs(loop[2]) > allowed[1]
-                or not self._unique(matcher, points, pose, match)):
-            self.decision = 'matched; no loop closed with the map of the first scans here'
+        error = between(pose, match.pose)
+        allowed = self.keyframes.allowed(anchor, self.config['match_gate'])
+        if (math.hypot(error[0], error[1]) > allowed[0] or abs(error[2]) > allowed[1]
+                or not alone(matcher, points, pose, match, self.config['match_max_sigma'])):
+            self.decision = 'matched; no loop closed with the map of the early scans here'
             return
-        anchor_pose = self.graph.poses[anchor.node]
-        self.graph.tie(anchor.node, newest.node, between(anchor_pose, match.pose), TIE_SIGMA)
-        self._loop_tried = newest.travel + self.config['loop_min_travel'] - LOOP_EVERY
-        moved, turned = self.graph.relax()
+        moved, turned = self.keyframes.close(anchor, between(self.keyframes.pose(anchor),
+                                                             match.pose),
+                                             self.config['loop_min_travel'])
         self.counts['loops closed'] += 1
         redraw = moved >= REDRAW[0] or turned >= REDRAW[1]
         self.decision = ('loop closed: %.1f cm, %.2f deg off; the graph relaxed (poses moved '
                          'up to %.1f cm, %.2f deg)%s'
-                         % (100.0 * math.hypot(loop[0], loop[1]), math.degrees(loop[2]),
+                         % (100.0 * math.hypot(error[0], error[1]), math.degrees(error[2]),
                             100.0 * moved, math.degrees(turned),
                             ', the map redrawn' if redraw else ''))
         if redraw:
             self._redraw()
-        self.pose = self._drawn_at = self.graph.poses[newest.node]
+        self.pose = self._drawn_at = self.keyframes.pose(self.keyframes.frames[-1])
 
-    def _early_map(self, early, anchor):
-        """A matcher on the map the keyframes within loop_radius of the anchor's travel
-        make, among the early ones."""
-        reach = self.config['loop_radius']
-        used = [k for k in early if abs(k.travel - anchor.travel) <= 2.0 * reach]
-        ends = np.concatenate([_transform(self.graph.poses[k.node], k.ends) for k in used])
+    def _early_map(self, early):
+        """A matcher on the map the early keyframes alone make."""
+        ends = np.concatenate([_transform(self.keyframes.pose(k), k.ends) for k in early])
         margin = self.field.reach + self.config['loop_radius'] + self.config['match_reach']
         low = np.maximum(ends.min(axis=0) - margin, (self.config['xmin'], self.config['ymin']))
         high = np.minimum(ends.max(axis=0) + margin, (self.config['xmax'], self.config['ymax']))
         fine = LogOddsGrid(self.fine.resolution, low[0], low[1], high[0], high[1],
                            hit=self.fine.hit, miss=self.fine.miss, step=FINE_STEP)
-        for k in used:
-            self._draw(self.graph.poses[k.node], k.ends, k.hit, (None, fine))
+        for k in early:
+            self._draw(self.keyframes.pose(k), k.ends, k.hit, (None, fine))
         field = DistanceField(fine, self.field.reach)
         field.update()
         return ScanMatcher(field, self.matcher.reaches, min_explained=self.matcher.min_explained,
@@ -465,19 +372,9 @@ class Mapper(object):
         for grid in (self.grid, self.fine):
             grid.clear()
         for k in self.keyframes:
-            self._draw(self.graph.poses[k.node], k.ends, k.hit)
+            self._draw(self.keyframes.pose(k), k.ends, k.hit)
         self.field.values.fill(self.field.reach)
         self.field.update()
-
-
-def _alike(a, b):
-    apart = between(a, b)
-    return math.hypot(apart[0], apart[1]) <= AGREE[0] and abs(apart[2]) <= AGREE[1]
-
-
-def _tie_sigma(travel, turned):
-    grow = TIE_GROWTH * (travel + turned)
-    return (TIE_SIGMA[0] + grow, TIE_SIGMA[1] + grow, TIE_SIGMA[2] + grow)
 
 
 def _field_reach(config):

@@ -20,6 +20,8 @@ import random
 import shutil
 import tempfile
 
+import rospkg
+
 from wall_follower.evaluation import world_generator
 from wall_follower.evaluation.benchmarks.launching import fmt, print_table, run_rostest
 
@@ -63,9 +65,8 @@ def write_odom_world(seed, index, directory, robot_include):
 
 def _gmapping_installed():
     try:
-        import rospkg
         rospkg.RosPack().get_path('gmapping')
-    except (ImportError, rospkg.ResourceNotFound):
+    except rospkg.ResourceNotFound:
         return False
     return True
 
