@@ -5,7 +5,7 @@ Between scans the odometry's motion is nearly right: its scale errors
 travel and the turn. So the robot's pose predicted from the last one by
 that motion is uncertain by a little that grows with the motion since a
 match last fixed the pose (`Prediction`, a covariance carried through each
-motion as an extended Kalman filter carries it). A heading error also grows into
+motion as an extended Kalman filter carries it). A heading error grows into
 a sideways error as the robot drives on, and the odometry may be read a
 step apart from the scan (Stage's `odom` localization reports the pose
 after the step its laser has not seen yet; a real robot's stamps differ
@@ -35,10 +35,10 @@ __all__ = ['Prediction', 'in_frame', 'surprise']
 # on a grid of its `resolution`, 2 cm in the generated worlds, and matches jitter by up to
 # that from scan to scan).
 FLOOR = (0.01, math.radians(0.5))
-# The most a robot's motion from one scan to the next may change [m, rad]: a TurtleBot3's
-# top speeds (0.22 m/s, 2.84 rad/s, clamped further by the package's nodes) at a laser of
-# 5 Hz (the LDS-01's), near enough. A larger change of the odometry's step is a slip, not
-# a scan a step away from its odometry.
+# The most a robot's motion from one scan to the next may change [m, rad]: at a laser of
+# 5 Hz (the LDS-01's), a TurtleBot3's top speed (0.22 m/s), and the turn the course's
+# robot allows (0.49 rad/s), near enough. A larger change of the odometry's step is a
+# slip (or a faster turn than that), not a scan a step away from its odometry.
 LAG = (0.044, math.radians(6.0))
 
 
