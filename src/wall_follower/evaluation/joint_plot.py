@@ -1,11 +1,18 @@
 """The arm's joints against time, as the lab's rqt_plot shows them: positions above,
 velocities below, one line a joint. Drawn on a matplotlib Figure of the caller's (a live
-window) or saved as a PNG through the Agg canvas, so that no display is needed.
+window) or saved as a PNG through the Agg canvas, so that no display is needed; with
+how long a recording has run (RecordingSpan), where its picture goes (output_path) and
+a save that loses no recording to a path it cannot write (save_somewhere).
 
 matplotlib is imported only by save(): a recorder stopped before anything
 came never loads it, and on a busy machine that is most of a second less
 to start and to end (a Ctrl-C should end a node at once)."""
+import os
+import tempfile
 import threading
+
+# The file a recording is saved as in a directory given as its ~file.
+DEFAULT_NAME = 'joint_states.png'
 
 
 class JointRecord(object):
@@ -73,3 +80,63 @@ def save(record, filename):
     draw(figure, record)
     figure.tight_layout()
     figure.savefig(filename, dpi=100)
+
+
+def save_somewhere(record, filename):
+    """Save the record as filename or, where that cannot be written, next to it under a
+    fresh name, or else in the temporary directory: (the path saved, or None if none could
+    be written; [(path tried, error)] of the tries that failed)."""
+    failures = []
+    try:
+        save(record, filename)
+        return filename, failures
+    except (OSError, ValueError) as error:    # ValueError: a format matplotlib lacks
+        failures.append((filename, error))
+    stem = os.path.splitext(os.path.basename(filename))[0] or 'joint_states'
+    for directory in (os.path.dirname(filename), tempfile.gettempdir()):
+        try:
+            handle, path = tempfile.mkstemp(prefix=stem + '-', suffix='.png', dir=directory)
+            os.close(handle)
+        except OSError as error:
+            failures.append((os.path.join(directory, stem + '-*.png'), error))
+            continue
+        try:
+            save(record, path)
+            return path, failures
+        except (OSError, ValueError) as error:
+            failures.append((path, error))
+            os.unlink(path)
+    return None, failures
+
+
+def output_path(name):
+    """The absolute path a recording given ~file name is saved as: a directory (one that
+    exists, or a name ending in a separator) holds it as DEFAULT_NAME; a name with no
+    extension gets .png (as matplotlib would add it)."""
+    path = os.path.abspath(os.path.expanduser(name))
+    if os.path.isdir(path) or name.endswith(os.sep):
+        return os.path.join(path, DEFAULT_NAME)
+    if not os.path.splitext(path)[1]:
+        return path + '.png'
+    return path
+
+
+class RecordingSpan(object):
+    """How long a recording has run, against the duration it is to run [s] (0: until
+    stopped): ROS time (simulated time under /use_sim_time) where it goes forward, and
+    wall time while it does not (no /clock yet, a paused or frozen simulation, a clock
+    set back), so that a recording ends after its duration whatever comes."""
+
+    def __init__(self, duration, ros_now, wall_now):
+        self.duration = duration
+        self.elapsed = 0.0
+        self._ros, self._wall = ros_now, wall_now
+
+    def update(self, ros_now, wall_now):
+        """Count the time since the last call (ROS and wall time now [s]); True once the
+        duration has passed."""
+        ros_step, wall_step = ros_now - self._ros, wall_now - self._wall
+        # ROS time 0 is no time yet: its first jump to the clock's value is not run time
+        self.elapsed += ros_step if self._ros > 0.0 and ros_step > 0.0 else max(wall_step, 0.0)
+        self._ros, self._wall = ros_now, wall_now
+        return self.duration > 0.0 and self.elapsed >= self.duration

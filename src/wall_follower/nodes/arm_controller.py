@@ -3,10 +3,17 @@ joint_trajectory_controller and joint_state_controller for the arm of robot_desc
 
 Follows trajectory_msgs/JointTrajectory on arm_controller/command by the rules of
 wall_follower.arm.trajectory (a rejected one is named in a warning, with the reason,
-and the arm goes on as before), moves the joints as wall_follower.sim.arm_joints does
-(never past a limit of the URDF) and publishes joint_states at ~rate. Where
-control_msgs is installed it also serves arm_controller/follow_joint_trajectory
-(control_msgs/FollowJointTrajectory), the interface MoveIt drives.
+and the arm goes on as before; one stamped ahead is named in the log, with when it
+starts), moves the joints as wall_follower.sim.arm_joints does (never past a limit of
+the URDF) and publishes joint_states at ~rate. Where control_msgs is installed it also
+serves arm_controller/follow_joint_trajectory (control_msgs/FollowJointTrajectory), the
+interface MoveIt drives.
+
+Its one stop, as JointTrajectoryController's: an empty command, a cancelled goal of the
+action, or ROS time running backwards brakes the arm from its actual state to rest
+within the acceleration limits of robot_description_planning (wall_follower.arm.
+trajectory.stop), and holds it there. A command that replaces the trajectory of an
+action goal ends that goal as pre-empted, as JTC does.
 
 With ~publish_clock it drives /clock itself, one step of 1/~rate at a time, so that on
 /use_sim_time a loaded machine slows simulated time instead of making the arm jump
@@ -22,8 +29,8 @@ from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory
 
 from wall_follower.arm.trajectory import (Command, Rejected, Trajectory, TrajectoryPoint,
-                                          accept)
-from wall_follower.nodes.arm_description import arm_model
+                                          accept, stop)
+from wall_follower.nodes.arm_description import arm_model, stop_acceleration
 from wall_follower.nodes.common import init_node
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.arm_controller import TABLE
@@ -62,6 +69,7 @@ class ArmController(object):
             raise SystemExit(1)
         self.joints = ArmJoints([float(initial.get(name, 0.0)) for name in model.names],
                                 model.lower, model.upper, model.velocity)
+        self.acceleration = stop_acceleration(model)
         self._lock = threading.Lock()
         self._clock = rospy.Publisher('/clock', Clock, queue_size=1) if self.own_clock else None
         self.now = self.period if self.own_clock else rospy.Time.now().to_sec()
@@ -78,22 +86,36 @@ class ArmController(object):
                       else 'control_msgs not installed: no %s' % rospy.resolve_name(ACTION))
 
     def follow(self, msg, source):
-        """Take a JointTrajectory; the Trajectory now followed, or None if rejected (warned)."""
+        """Take a JointTrajectory (an empty one: stop); the Trajectory now followed, or None
+        if rejected (warned)."""
+        command = command_of(msg)
         with self._lock:
+            if not command.points:
+                self._stop()
+                return self.trajectory
             try:
-                self.trajectory = accept(self.model, command_of(msg), self.now, self.trajectory)
+                self.trajectory = accept(self.model, command, self.now, self.trajectory)
             except Rejected as error:
                 rospy.logwarn('%s: trajectory on %s rejected: %s', rospy.get_name(), source,
                               error)
                 return None
+            if command.stamp > self.now:
+                rospy.loginfo('%s: trajectory on %s is stamped %.3f s ahead: it starts then, '
+                              'and until then the arm goes on as before', rospy.get_name(),
+                              source, command.stamp - self.now)
             return self.trajectory
+
+    def _stop(self):
+        """Brake the arm from where it is and how fast it moves to rest (with the lock held)."""
+        self.trajectory = stop(self.joints.positions, self.joints.velocities, self.now,
+                               self.acceleration)
 
     def on_command(self, msg):
         self.follow(msg, rospy.resolve_name(COMMAND))
 
     def on_goal(self, goal):
-        """FollowJointTrajectory: follow the goal's trajectory until its end, a preemption, or
-        another trajectory taking over."""
+        """FollowJointTrajectory: follow the goal's trajectory until its end, a cancel (the arm
+        stops), or another trajectory or goal taking over (pre-empted, as JTC has it)."""
         result = FollowJointTrajectoryResult()
         followed = self.follow(goal.trajectory, rospy.resolve_name(ACTION))
         if followed is None:
@@ -104,11 +126,15 @@ class ArmController(object):
         rate = rospy.Rate(1.0 / self.period)
         while not rospy.is_shutdown() and self.now < followed.end:
             if self._server.is_preempt_requested():
-                self.follow(JointTrajectory(joint_names=self.model.names), 'a cancel')
-                self._server.set_preempted(result, 'stopped')
+                if self._server.is_new_goal_available():
+                    self._server.set_preempted(result, 'replaced by a new goal')
+                    return
+                with self._lock:
+                    self._stop()
+                self._server.set_preempted(result, 'cancelled: the arm stops')
                 return
             if self.trajectory is not followed:
-                self._server.set_aborted(result, 'replaced by another trajectory')
+                self._server.set_preempted(result, 'replaced by another trajectory')
                 return
             rate.sleep()
         result.error_code = FollowJointTrajectoryResult.SUCCESSFUL
@@ -136,11 +162,11 @@ class ArmController(object):
             try:
                 rate.sleep()
             except rospy.ROSTimeMovedBackwardsException:
-                rospy.logwarn('%s: ROS time moved backwards: holding the arm where it is',
+                rospy.logwarn('%s: ROS time moved backwards: stopping the arm where it is',
                               rospy.get_name())
                 with self._lock:
                     self.now = rospy.Time.now().to_sec()
-                    self.trajectory = Trajectory.hold(self.joints.positions, self.now)
+                    self._stop()
                 return
             now = rospy.Time.now().to_sec()
         self.step(now)

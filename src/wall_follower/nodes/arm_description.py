@@ -1,7 +1,9 @@
 """The arm's description from the parameter server, as MoveIt keeps it: the URDF in
 robot_description, the SRDF in robot_description_semantic, joint_limits.yaml under
 robot_description_planning. A missing or unusable one stops the node with one line
-saying which (arm.launch loads them all)."""
+saying which (arm.launch loads them all); arm_controller alone can do without the last.
+"""
+import numpy as np
 import rospy
 
 from wall_follower.arm.model import (ModelError, read_acceleration_limits, read_srdf, read_urdf,
@@ -43,5 +45,19 @@ def arm_semantics(model):
     try:
         return semantics, read_velocity_limits(limits, model), \
             read_acceleration_limits(limits, model)
+    except ModelError as error:
+        _fail('%s: %s' % (rospy.resolve_name(PLANNING), error))
+
+
+def stop_acceleration(model):
+    """The acceleration limits [rad/s^2] the arm brakes within when stopped: those of
+    robot_description_planning; where it is not set (a controller started without the
+    planning parameters), inf, stopping the arm at once, with a warning saying so."""
+    if not rospy.has_param(PLANNING):
+        rospy.logwarn('%s: no %s: no acceleration limits to brake within, so a stop holds the '
+                      'arm at once where it is', rospy.get_name(), rospy.resolve_name(PLANNING))
+        return np.full(len(model.names), np.inf)
+    try:
+        return read_acceleration_limits(rospy.get_param(PLANNING), model)
     except ModelError as error:
         _fail('%s: %s' % (rospy.resolve_name(PLANNING), error))

@@ -1,17 +1,25 @@
 """The arm_plot node: the lab's `rqt_plot` of the arm's joint positions (rqt_plot is not
 packaged on every system): records joint_states and saves positions and velocities
-against time as a PNG (~file) when stopped or after ~duration; where a display exists
-and ~live is true, also shows them in a live window.
+against time as a PNG (~file; a directory: joint_states.png in it) when stopped or after
+~duration; where a display exists and ~live is true, also shows them in a live window.
+
+~duration is counted in ROS time, and in wall time while ROS time stands still (no
+/clock, a paused simulation): the node ends after it whatever comes, joint_states or
+not. A joint_states stamped 0 is placed at the time it came. A file that cannot be
+written is named in an error, and the picture saved next to it (or in the temporary
+directory) instead.
 
     rosrun wall_follower arm_plot _file:=joints.png _duration:=20
 """
 import os
 import threading
+import time
 
 import rospy
 from sensor_msgs.msg import JointState
 
-from wall_follower.evaluation.joint_plot import JointRecord, draw, save
+from wall_follower.evaluation.joint_plot import (JointRecord, RecordingSpan, draw,
+                                                 output_path, save_somewhere)
 from wall_follower.nodes.common import init_node
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.arm_plot import TABLE
@@ -23,14 +31,15 @@ REFRESH = 0.5
 def main():
     init_node('arm_plot')
     values = NodeParameters(TABLE).snapshot()
-    filename = os.path.abspath(os.path.expanduser(values['file']))
+    filename = output_path(values['file'])
     if not os.path.isdir(os.path.dirname(filename)):
         rospy.logfatal('%s: cannot start: no directory %s for ~file', rospy.get_name(),
                        os.path.dirname(filename))
         return 1
     record = JointRecord()
     rospy.Subscriber('joint_states', JointState, lambda msg: record.add(
-        msg.header.stamp.to_sec(), msg.name, msg.position, msg.velocity), queue_size=100)
+        msg.header.stamp.to_sec() or rospy.get_time(), msg.name, msg.position, msg.velocity),
+        queue_size=100)
     stopped = threading.Event()
     rospy.on_shutdown(stopped.set)   # a Ctrl-C saves at once, not after the rest of a wait
     figure = None
@@ -41,24 +50,28 @@ def main():
     rospy.loginfo('%s: recording joint_states into %s%s', rospy.get_name(), filename,
                   ' for %.1f s' % values['duration'] if values['duration'] else
                   ' until stopped')
-    started = None
+    span = RecordingSpan(values['duration'], rospy.get_time(), time.time())
     while not rospy.is_shutdown():
         if figure is not None:
             draw(figure, record, values['window'])
             plt.pause(REFRESH)
         else:
             stopped.wait(REFRESH)
-        if record.times and started is None:
-            started = record.times[0]
-        if values['duration'] and started is not None and \
-                record.times[-1] - started >= values['duration']:
+        if span.update(rospy.get_time(), time.time()):
             break
     if not record.times:
         # Nothing to draw: an empty plot would only cost a stopped node a
         # second of a busy machine's time before it exits.
         rospy.logwarn('%s: no joint_states came; nothing saved', rospy.get_name())
         return 0
-    save(record, filename)
-    rospy.loginfo('%s: saved %d joint states to %s', rospy.get_name(), len(record.times),
-                  filename)
+    saved, failures = save_somewhere(record, filename)
+    for path, error in failures:
+        rospy.logerr('%s: cannot write %s: %s', rospy.get_name(), path, error)
+    if saved is None:
+        rospy.logerr('%s: %d joint states recorded, but nowhere to save them',
+                     rospy.get_name(), len(record.times))
+        return 1
+    (rospy.logwarn if failures else rospy.loginfo)(
+        '%s: saved %d joint states to %s%s', rospy.get_name(), len(record.times), saved,
+        ' instead' if failures else '')
     return 0

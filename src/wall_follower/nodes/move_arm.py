@@ -5,17 +5,22 @@ A goal names an SRDF group state, or a point for the origin of the tool frame (`
 in any frame tf knows. The node plans it with wall_follower.arm.planning (inverse
 kinematics nearest the joints' current positions, the collision check of the
 joint-space line, the timing within the velocity and acceleration limits of
-robot_description_planning, scaled by the goal's velocity_scaling) and sends it as one
-trajectory on arm_controller/command, the arm controller's topic (ros_control's or the
-built-in arm_controller). A goal that cannot be planned ends aborted, with success false
-and the reason, and nothing is sent. A new goal pre-empts the running one, and a cancel
-ends it: either way the arm brakes to a stop within its acceleration limits, from where
-it is. The result's position_error is measured from tf (robot_state_publisher's `hand`).
+robot_description_planning, scaled by the goal's velocity_scaling, which must be 0 (full
+speed) or within wall_follower.arm.planning.MIN_VELOCITY_SCALING and 1) and sends it as
+one trajectory on arm_controller/command, the arm controller's topic (ros_control's or the
+built-in arm_controller). A goal that cannot be planned (a point that is not finite or has
+no frame among them) ends aborted, with success false and the reason, and nothing is sent.
+A new goal pre-empts the running one, and a cancel ends it: either way move_arm asks the
+controller for its stop, an empty trajectory (JointTrajectoryController holds the arm's
+actual position; the built-in controller brakes it to rest within the acceleration
+limits), and the result says where the arm came to rest, from joint_states once it has
+settled. The result's position_error is measured from tf (robot_state_publisher's `hand`).
 
 Parameters: the table in wall_follower.params.move_arm, tunable live
 (`rosrun dynamic_reconfigure dynparam set /move_arm floor_margin 0.02`), in force from
 the next goal.
 """
+import collections
 import threading
 import time
 
@@ -27,8 +32,7 @@ from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from wall_follower.arm.kinematics import tool_position
-from wall_follower.arm.planning import Planner, PlanningError
-from wall_follower.arm.timing import stopping
+from wall_follower.arm.planning import Planner, PlanningError, velocity_factor
 from wall_follower.cfg import MoveArmConfig
 from wall_follower.msg import MoveArmAction, MoveArmFeedback, MoveArmResult
 from wall_follower.nodes.arm_description import arm_model, arm_semantics
@@ -37,6 +41,11 @@ from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.move_arm import TABLE
 
 COMMAND = 'arm_controller/command'
+
+
+ArmState = collections.namedtuple('ArmState', 'stamp positions velocities')
+"""One joint_states of the arm: stamp [s]; positions [rad] and velocities [rad/s], arrays in
+the model's joint order."""
 
 
 class GoalFailed(Exception):
@@ -56,7 +65,7 @@ class JointStates(object):
     def __init__(self, names):
         self.names = names
         self._arrived = threading.Condition()
-        self.latest = None    # (stamp [s], positions, velocities, wall time of arrival)
+        self.latest = None    # the newest ArmState
         rospy.Subscriber('joint_states', JointState, self._on_state, queue_size=10)
 
     def _on_state(self, msg):
@@ -67,11 +76,11 @@ class JointStates(object):
         velocities = np.array([msg.velocity[i] if len(msg.velocity) == len(msg.name) else 0.0
                                for i in order])
         with self._arrived:
-            self.latest = (msg.header.stamp.to_sec(), positions, velocities, time.time())
+            self.latest = ArmState(msg.header.stamp.to_sec(), positions, velocities)
             self._arrived.notify_all()
 
     def next(self, seen, timeout):
-        """The first state newer than seen (a latest tuple, or None), waiting at most timeout
+        """The first ArmState newer than seen (an ArmState, or None), waiting at most timeout
         wall seconds for it; None if none came."""
         deadline = time.time() + timeout
         with self._arrived:
@@ -93,7 +102,6 @@ class MoveArmServer(object):
         self.command = rospy.Publisher(COMMAND, JointTrajectory, queue_size=1)
         self.buffer = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.buffer)
-        self.braking_until = 0.0
         self.server = actionlib.SimpleActionServer('move_arm', MoveArmAction, self.execute,
                                                    auto_start=False)
         self.server.start()
@@ -120,35 +128,34 @@ class MoveArmServer(object):
 
     def _move(self, goal, values):
         """Plan and follow one goal: (message, position error [m]); GoalFailed if it ends early."""
-        scaling = goal.velocity_scaling
-        if not 0.0 <= scaling <= 1.0:
-            raise GoalFailed('velocity_scaling %r is not within 0 to 1' % scaling)
-        state = self._settled_state(values)
+        try:
+            scaling = velocity_factor(goal.velocity_scaling)
+        except PlanningError as error:
+            raise GoalFailed(str(error))
+        state = self._current_state(values)
         planner = Planner(self.model, self.semantics, self.acceleration, self.velocity,
                           values['floor_margin'], values['self_margin'],
                           values['collision_step'])
         try:
             if goal.named_target:
-                plan = planner.to_state(goal.named_target, state[1], scaling)
+                plan = planner.to_state(goal.named_target, state.positions, scaling)
                 target = tool_position(self.model, plan.goal)
                 what = 'named target %s' % goal.named_target
             else:
                 target = self._in_root_frame(goal.target, values['tf_timeout'])
-                plan = planner.to_point(target, state[1], scaling)
+                plan = planner.to_point(target, state.positions, scaling)
                 what = 'point (%.3f, %.3f, %.3f) in %s' % (tuple(target) + (self.model.root,))
         except PlanningError as error:
             raise GoalFailed(str(error))
         self._wait_for_controller(values['controller_timeout'])
         self.command.publish(self._trajectory(plan.move, values['waypoint_spacing']))
         final = self._follow(plan, state, values)
-        error = np.linalg.norm(self._tool_in_tf(final[0], values['tf_timeout']) - target)
+        error = np.linalg.norm(self._tool_in_tf(final.stamp, values['tf_timeout']) - target)
         return 'reached %s in %.2f s' % (what, plan.move.duration), float(error)
 
-    def _settled_state(self, values):
-        """The newest joint state, once any braking of the last goal is over."""
+    def _current_state(self, values):
+        """The newest joint state (the last goal's stop has settled before it ended)."""
         state = self.states.next(None, values['state_timeout'])
-        while state is not None and state[0] < self.braking_until:
-            state = self.states.next(state, values['state_timeout'])
         if state is None:
             raise GoalFailed('no joint_states from the arm for %.1f s: is arm_controller '
                              'running?' % values['state_timeout'])
@@ -169,44 +176,65 @@ class MoveArmServer(object):
 
     def _follow(self, plan, state, values):
         """Wait, joint state by joint state, until the arm is at the plan's goal: the final
-        state; brakes and raises GoalFailed on a pre-emption, a cancel, stale joint_states or
-        a goal not reached in time."""
-        sent = state[0]
+        ArmState; stops the arm and raises GoalFailed on a pre-emption, a cancel, stale
+        joint_states or a goal not reached in time."""
+        sent = state.stamp
         end = sent + plan.move.duration
         while True:
             newer = self.states.next(state, values['state_timeout'])
             if newer is None:
-                self._brake(state)
-                raise GoalFailed('joint_states stopped coming: the arm was told to stop')
+                self._ask_to_stop()
+                raise GoalFailed('joint_states stopped coming: the arm was told to stop, last '
+                                 'heard at %s' % self._joints(state))
             state = newer
             if self.server.is_preempt_requested():
-                self._brake(state)
-                raise GoalFailed('pre-empted: the arm braked to a stop at %s' % ', '.join(
-                    '%s %.3f' % pair for pair in zip(self.model.names, state[1])))
+                why = 'pre-empted by a new goal' if self.server.is_new_goal_available() \
+                    else 'cancelled'
+                raise GoalFailed('%s: %s' % (why, self._stopped(values)))
             progress = 1.0 if plan.move.duration == 0.0 else \
-                min(1.0, max(0.0, (state[0] - sent) / plan.move.duration))
+                min(1.0, max(0.0, (state.stamp - sent) / plan.move.duration))
             self.server.publish_feedback(MoveArmFeedback(progress=progress))
-            if state[0] >= end and np.all(np.abs(state[1] - plan.goal) <=
-                                          values['goal_tolerance']) and \
-                    np.all(np.abs(state[2]) < values['stopped_velocity']):
+            if state.stamp >= end and np.all(np.abs(state.positions - plan.goal) <=
+                                             values['goal_tolerance']) and \
+                    np.all(np.abs(state.velocities) < values['stopped_velocity']):
                 return state
-            if state[0] > end + values['settle_timeout']:
+            if state.stamp > end + values['settle_timeout']:
                 raise GoalFailed('the arm did not reach its goal within %.1f s of the '
-                                 'trajectory\'s end (joints at %s)' % (
-                                     values['settle_timeout'], np.round(state[1], 3).tolist()))
+                                 'trajectory\'s end (%s): %s' % (
+                                     values['settle_timeout'], self._joints(state),
+                                     self._stopped(values)))
 
-    def _brake(self, state):
-        """Send the arm a stop from state within its acceleration limits."""
-        place, duration = stopping(state[1], state[2], self.acceleration)
-        stop = JointTrajectory(joint_names=self.model.names)
-        if duration > 1e-3:
-            place = np.clip(place, self.model.lower, self.model.upper)
-            zero = [0.0] * len(place)
-            stop.points = [JointTrajectoryPoint(positions=place.tolist(), velocities=zero,
-                                                accelerations=zero,
-                                                time_from_start=rospy.Duration(duration))]
-        self.braking_until = state[0] + duration
-        self.command.publish(stop)
+    def _ask_to_stop(self):
+        """Ask the arm controller for its stop: an empty trajectory, as JointTrajectoryController
+        takes one (it holds the arm's actual position; the built-in controller brakes to it
+        within the acceleration limits). Returns when it was asked, in ROS time [s]."""
+        asked = rospy.Time.now().to_sec()
+        self.command.publish(JointTrajectory(joint_names=self.model.names))
+        return asked
+
+    def _stopped(self, values):
+        """Stop the arm and wait for it to settle: where it came to rest, in words, from the
+        first joint state after the request in which every joint is slower than
+        stopped_velocity (or, in words, why that was not seen within settle_timeout)."""
+        asked = self._ask_to_stop()
+        state = None
+        while True:
+            newer = self.states.next(state, values['state_timeout'])
+            if newer is None:
+                return 'the arm was told to stop, but joint_states stopped coming%s' % (
+                    '' if state is None else ' (last heard at %s)' % self._joints(state))
+            state = newer
+            if state.stamp < asked:
+                continue
+            if np.all(np.abs(state.velocities) < values['stopped_velocity']):
+                return 'the arm stopped at %s' % self._joints(state)
+            if state.stamp > asked + values['settle_timeout']:
+                return 'the arm was told to stop, but still moved %.1f s later (at %s)' % (
+                    values['settle_timeout'], self._joints(state))
+
+    def _joints(self, state):
+        """An ArmState's positions in words: 'hip 0.532, shoulder ...' [rad]."""
+        return ', '.join('%s %.3f' % pair for pair in zip(self.model.names, state.positions))
 
     def _trajectory(self, move, spacing):
         """The JointTrajectory of a TimedMove, from now (a zero stamp)."""
@@ -219,9 +247,14 @@ class MoveArmServer(object):
         return msg
 
     def _in_root_frame(self, target, timeout):
-        """A PointStamped's point in the model's root frame (its frame empty: already in it)."""
+        """A PointStamped's point in the model's root frame; GoalFailed if it names no frame
+        (refused rather than guessed: a point meant in another frame would move the arm
+        elsewhere)."""
         point = np.array([target.point.x, target.point.y, target.point.z])
-        frame = target.header.frame_id or self.model.root
+        frame = target.header.frame_id
+        if not frame.strip('/ '):
+            raise GoalFailed('target has no frame_id: name the frame its point is given in '
+                             '(the arm\'s base frame is %s)' % self.model.root)
         if frame.lstrip('/') == self.model.root:
             return point
         try:
