@@ -318,7 +318,7 @@ def run_cases(solution, options, indices):
     """
     runner = CaseRunner(solution, options)
     previous = signal.signal(signal.SIGTERM, _interrupt)
-    pool = ThreadPoolExecutor(max_workers=options.jobs)
+    pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
     try:
         settings = Settings(room=tuple(options.room))
         worlds = [generate(options.seed, index, settings) for index in indices]
