@@ -101,7 +101,7 @@ def test_an_out_that_is_a_file_is_refused(capsys, tmp_path, no_case_runs, soluti
     afile = tmp_path / 'grades'
     afile.write_text('')
     status, err = refusal(capsys, GOOD + ['--out', str(afile)])
-    assert (status, err) == (2, 'grade: --out %s: not a directory\n' % afile)
+    assert (status, err) == (2, 'grade: --out %s: %s is not a directory\n' % (afile, afile))
 
 
 def test_an_out_that_cannot_be_made_is_refused(capsys, tmp_path, no_case_runs,
@@ -128,6 +128,13 @@ def test_a_solution_roslaunch_cannot_start_is_named_before_any_case(capsys, tmp_
     status, err = refusal(capsys, words + ['--out', str(tmp_path)])
     assert status == 2
     assert named in err
+
+
+def test_a_refused_command_makes_no_out_directory(capsys, tmp_path, no_case_runs,
+                                                  solution_loads):
+    out = tmp_path / 'new' / 'grades'
+    status, _ = refusal(capsys, GOOD + ['--jobs', '0', '--out', str(out)])
+    assert status == 2 and os.listdir(str(tmp_path)) == []
 
 
 @pytest.mark.ros

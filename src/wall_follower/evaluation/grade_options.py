@@ -105,7 +105,7 @@ def parser():
 def option_problems(options):
     """Sentences naming each option (all but the solution) grade cannot run with; [] if none."""
     if options.collect:
-        found = _directory_problems('--collect', options.collect, create=False)
+        found = _directory_problems('--collect', options.collect, may_create=False)
         if options.solution:
             found.append('--collect takes no solution (got %s)' % ' '.join(options.solution))
         return found
@@ -134,7 +134,7 @@ def option_problems(options):
         found += _stage_problems()
     if not options.list:
         # A listed case runs elsewhere, and checks its own --out there.
-        found += _directory_problems('--out', options.out, create=True)
+        found += _directory_problems('--out', options.out, may_create=True)
     return found
 
 
@@ -166,17 +166,23 @@ def _stage_problems():
     return found
 
 
-def _directory_problems(flag, path, create):
-    """[] when path is a directory grade can write in (made first when create), else why not."""
-    try:
-        if create:
-            os.makedirs(path, exist_ok=True)
-        elif not os.path.isdir(path):
+def _directory_problems(flag, path, may_create):
+    """[] when path is a directory grade can write in, or (may_create) one it can make; else
+    why not. Tried, not guessed from permissions, and nothing is left behind: a command
+    refused for another reason makes no directory."""
+    path = os.path.abspath(path)
+    existing = path
+    while not os.path.exists(existing):
+        if not may_create:
             return ['%s %s: no such directory' % (flag, path)]
-        with tempfile.TemporaryFile(dir=path):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing):
+        return ['%s %s: %s is not a directory' % (flag, path, existing)]
+    try:
+        # What grade will write there: a file, or (not there yet) the directories down to it.
+        with tempfile.TemporaryFile(dir=path) if existing == path else \
+                tempfile.TemporaryDirectory(dir=existing):
             pass
-    except FileExistsError:
-        return ['%s %s: not a directory' % (flag, path)]
     except OSError as err:
         return ['%s %s: cannot write there (%s)' % (flag, path, err.strerror or err)]
     return []
