@@ -5,9 +5,12 @@
 passes every criterion, graded case by case as on many machines (--list,
 each case's command, --collect). ~suite broken: each deliberately broken solution
 of test/solutions fails the criteria its fault breaks, with the reason in
-words, and passes the ones it does not. Either way, once grade has
-returned, no process it started is left. The graders run on masters of
-their own; this test's master is not used.
+words, and passes the ones it does not. ~suite harness: a case whose own
+harness fails (grade's grade_case node refuses the time limit grade hands
+it, injected here) is reported as the grader's error, not graded, and grade
+exits non-zero. Either way, once grade has returned, no process it started
+is left. The graders run on masters of their own; this test's master is
+not used.
 """
 import json
 import os
@@ -17,10 +20,12 @@ import sys
 import tempfile
 import unittest
 from concurrent.futures import ThreadPoolExecutor
+from unittest import mock
 
 import rospy
 import rostest
 
+from wall_follower.evaluation import grade_report, grader
 from wall_follower.evaluation.processes import TOKEN_VARIABLE
 
 SOLUTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'solutions')
@@ -172,8 +177,36 @@ class GradeBroken(unittest.TestCase):
             self.assertEqual(left_behind(pid), [], name)
 
 
+class GradeHarness(unittest.TestCase):
+    """grade run in this process, so that its own harness can be broken: a time limit of 0,
+    which grade_case refuses (it ends, and grade_case.launch with it, before any record)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.out = tempfile.mkdtemp(prefix='grade_harness-')
+        with mock.patch.object(grader, 'lap_limit', return_value=0.0):
+            cls.status = grader.main(['wall_follower', 'main.launch', '--worlds', '1'] + SMALL +
+                                     ['--out', cls.out])
+        cls.grades = read_grades(cls.out)
+
+    def test_grade_exits_saying_it_failed(self):
+        self.assertEqual(self.status, grade_report.NOT_GRADED)
+
+    def test_the_case_is_the_graders_error_not_the_solutions(self):
+        self.assertEqual(self.grades['summary']['not_graded'], 1, self.grades)
+        (case,) = self.grades['cases']
+        self.assertIn("grade's simulator or grade_case node ended", case['grader_error'])
+        self.assertTrue(case['reason'].startswith('not graded: the grader failed ('), case)
+        for verdict in case['criteria'].values():
+            self.assertNotIn('crashed or ended', verdict['reason'])
+
+    def test_nothing_left_running(self):
+        self.assertEqual(left_behind(os.getpid()), [])
+
+
 if __name__ == '__main__':
     rospy.init_node('check_grade')
     suite = rospy.get_param('~suite')
     rostest.rosrun('wall_follower', 'check_grade_' + suite,
-                   {'package': GradePackage, 'broken': GradeBroken}[suite], sys.argv)
+                   {'package': GradePackage, 'broken': GradeBroken, 'harness': GradeHarness}[suite],
+                   sys.argv)

@@ -168,11 +168,21 @@ def test_a_robot_that_never_moved_fails_find_wall():
 
 
 def test_a_case_without_a_record_fails_with_its_error():
-    graded = grades([{'world': 'w', 'error': 'the case wrote no record'}])
-    assert graded['summary'] == {'cases': 1, 'laps': 0, 'passed': 0}
+    graded = grades([{'world': 'w', 'error': 'it ran out of its 900 wall seconds'}])
+    assert graded['summary'] == {'cases': 1, 'laps': 0, 'passed': 0, 'not_graded': 0}
     case = graded['cases'][0]
-    assert case['reason'] == 'the case wrote no record'
+    assert case['reason'] == 'it ran out of its 900 wall seconds'
     assert case['in_band'] is None and not case['lap_genuine']
+
+
+def test_a_case_the_grader_failed_is_not_graded():
+    graded = grades([{'world': 'w', 'grader_error': 'its master did not start'}, run()])
+    assert graded['summary'] == {'cases': 2, 'laps': 1, 'passed': 1, 'not_graded': 1}
+    case = graded['cases'][0]
+    assert case['grader_error'] == 'its master did not start'
+    assert case['reason'] == 'not graded: the grader failed (its master did not start)'
+    assert not any(verdict['passed'] for verdict in case['criteria'].values())
+    assert graded['cases'][1]['grader_error'] is None
 
 
 def test_grades_json_fields(genuine):

@@ -12,6 +12,8 @@ import os
 from wall_follower.evaluation.benchmarks.launching import fmt, print_table as _print_rows
 from wall_follower.evaluation.grading import CRITERIA, grades
 
+# grade's exit status when a case could not be graded (its harness failed).
+NOT_GRADED = 3
 HEADER = ['world', 'lap', 'in band %', 'RMS cm', 'find_wall', 'contact', 'max v', 'max w',
           'reason']
 
@@ -37,7 +39,8 @@ def case_records(directory, names=None):
         record = read_record(path)
         if record is None:
             name = os.path.splitext(os.path.basename(path))[0]
-            record = {'name': name, 'world': name, 'error': 'no record of this case in %s' % cases}
+            record = {'name': name, 'world': name,
+                      'grader_error': 'no record of this case in %s' % cases}
         records.append(record)
     return records
 
@@ -70,6 +73,9 @@ def print_table(records):
     summary = graded['summary']
     print('\n%d cases: %d genuine laps, %d passed every criterion'
           % (summary['cases'], summary['laps'], summary['passed']))
+    if summary['not_graded']:
+        print('%d case(s) NOT GRADED: the grader itself failed (see the reason, and the '
+              "case's log in cases/)" % summary['not_graded'])
     return graded
 
 
@@ -111,7 +117,10 @@ def write_html(path, records, graded):
 
 
 def collect(directory, names=None):
-    """Print the table and write grades.json and report.html of DIR's cases; 0, 1 if none."""
+    """Print the table and write grades.json and report.html of DIR's cases.
+
+    Returns 0, 1 when DIR holds no case, NOT_GRADED when the grader failed a case.
+    """
     records = case_records(directory, names)
     if not records:
         print('grade: no case records in %s' % os.path.join(directory, 'cases'))
@@ -122,4 +131,4 @@ def collect(directory, names=None):
     write_html(os.path.join(directory, 'report.html'), records, graded)
     print('%s and %s written' % (os.path.join(directory, 'grades.json'),
                                  os.path.join(directory, 'report.html')))
-    return 0
+    return NOT_GRADED if graded['summary']['not_graded'] else 0

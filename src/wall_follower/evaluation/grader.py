@@ -17,8 +17,14 @@ A launch file given by its path, in a directory that is no package's
 root, is run with that directory as a package named like the directory
 (made for the run in a temporary overlay), so that a solution kept outside
 any catkin workspace can name its scripts pkg="<that directory's name>".
+
+Before any case runs, every option and the solution itself are checked
+(evaluation/grade_options.py): a mistake in how grade is called ends it at
+once with exit status 2. A case whose own harness fails (its master, the
+simulator or the grade_case node does not start, or its record cannot be
+written) is the grader's error, not the solution's: its record holds
+'grader_error', grading gives it no verdict, and grade exits with status 3.
 """
-import argparse
 import json
 import os
 import shlex
@@ -36,14 +42,13 @@ from concurrent.futures import ThreadPoolExecutor
 import rospkg
 
 from wall_follower.control.motion import MAX_LINEAR
-from wall_follower.evaluation import grade_report
+from wall_follower.evaluation import grade_options, grade_report
 from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
 from wall_follower.evaluation.processes import ProcessGroup
-from wall_follower.evaluation.world_generator import (Settings, free_space_of, generate,
-                                                      world_name, write_world)
-from wall_follower.sim.laser_profiles import PROFILES
+from wall_follower.evaluation.grade_options import parser
+from wall_follower.evaluation.world_generator import (GenerationError, Settings, free_space_of,
+                                                      generate, world_name, write_world)
 
-DEFAULT_LASER = 'course720'
 # Simulated seconds a case may last without a lap: a start, then two laps of the
 # world's walls at the speed bound.
 LAP_ALLOWANCE = (30.0, 2.0)
@@ -69,7 +74,10 @@ class Solution(object):
         self.args = [w for w in words if ':=' in w]
         self.words = list(words)
         self.overlay = None
-        if len(launch) == 1 and launch[0].endswith('.launch'):
+        if launch and launch[0].endswith('.launch'):
+            if len(launch) > 1:
+                raise ValueError('after the launch file %s come only ARG:=VALUE arguments, '
+                                 'not %s' % (launch[0], ' '.join(launch[1:])))
             path = os.path.abspath(launch[0])
             if not os.path.isfile(path):
                 raise ValueError('no launch file %s' % launch[0])
@@ -78,9 +86,21 @@ class Solution(object):
                 self.overlay = os.path.dirname(path)
         elif len(launch) == 2:
             self.launch = launch
+        elif len(launch) > 2:
+            raise ValueError('after PACKAGE LAUNCH_FILE (%s %s) come only ARG:=VALUE arguments, '
+                             'not %s' % (launch[0], launch[1], ' '.join(launch[2:])))
         else:
             raise ValueError('expected PACKAGE LAUNCH_FILE or a .launch path, then ARG:=VALUE '
-                             'arguments; got %s' % ' '.join(words))
+                             'arguments; got %s' % (' '.join(words) or 'nothing'))
+
+    def problems(self, base):
+        """Why roslaunch could not start the solution in environment base; [] when it can."""
+        scratch = tempfile.mkdtemp(prefix='grade-check-')
+        try:
+            return grade_options.solution_problems(self.launch, self.args,
+                                                   self.environment(base, scratch))
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
 
     def command(self):
         return ['roslaunch', '--wait'] + self.launch + self.args
@@ -140,23 +160,14 @@ class CaseRunner(object):
         self._lock = threading.Lock()
         self._stopping = False
 
-    def settings(self):
-        return Settings(room=tuple(self.options.room))
+    def run(self, index, world):
+        """Run case index in world (generated); returns its record, None once stopping.
 
-    def run(self, index):
-        """Run case index; returns its record (with 'error' when it wrote none)."""
+        The record holds 'grader_error' when the case's own harness failed,
+        'error' when the case ran out of wall time before a record was written.
+        """
         options = self.options
-        world = generate(options.seed, index, self.settings())
-        worlds = os.path.join(options.out, 'worlds')
-        include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds', 'burger.inc')
-        world_file = write_world(world, worlds, include, options.seed, index)
         paths = case_paths(options.out, world.name)
-        os.makedirs(os.path.dirname(paths['json']), exist_ok=True)
-        for stale in (paths['json'], paths['plot']):
-            if os.path.exists(stale):
-                os.unlink(stale)
-        port = free_port()
-        base = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
         group = ProcessGroup('%d-%s' % (os.getpid(), uuid.uuid4().hex))
         with self._lock:
             if self._stopping:
@@ -164,8 +175,14 @@ class CaseRunner(object):
             self._running.add(group)
         scratch = tempfile.mkdtemp(prefix='grade-')
         try:
-            ended = self._run_processes(group, base, port, world_file, paths, lap_limit(world),
-                                        scratch)
+            world_file = self._prepare(world, index, paths)
+            port = free_port()
+            base = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+            ended, harness_failed = self._run_processes(group, base, port, world_file, paths,
+                                                        lap_limit(world), scratch)
+        except OSError as err:
+            world_file = None
+            ended, harness_failed = 'grade could not start it: %s' % err, True
         finally:
             group.stop()
             shutil.rmtree(scratch, ignore_errors=True)
@@ -173,17 +190,39 @@ class CaseRunner(object):
                 self._running.discard(group)
         record = grade_report.read_record(paths['json'])
         if record is None:
-            record = {'world': world_file, 'error': 'the case wrote no record (%s; see %s)' % (
-                ended, paths['log'])}
+            record = {'grader_error' if harness_failed else 'error':
+                      'the case wrote no record (%s; see %s)' % (ended, paths['log'])}
         record.update(name=world.name, world=world_file, index=index, seed=options.seed,
                       laser=options.laser, solution_command=' '.join(self.solution.words),
                       plot=paths['plot'] if os.path.exists(paths['plot']) else None)
-        with open(paths['json'], 'w') as stream:
-            json.dump(record, stream, indent=1)
+        try:
+            with open(paths['json'], 'w') as stream:
+                json.dump(record, stream, indent=1)
+        except (IOError, OSError) as err:
+            record['grader_error'] = 'its record could not be written to %s: %s' % (
+                paths['json'], err)
         return record
 
+    def _prepare(self, world, index, paths):
+        """Write the case's world file, and clear what an earlier run of it left; its path."""
+        options = self.options
+        include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds', 'burger.inc')
+        world_file = write_world(world, os.path.join(options.out, 'worlds'), include,
+                                 options.seed, index)
+        os.makedirs(os.path.dirname(paths['json']), exist_ok=True)
+        for stale in (paths['json'], paths['plot']):
+            if os.path.exists(stale):
+                os.unlink(stale)
+        return world_file
+
     def _run_processes(self, group, base, port, world_file, paths, limit, scratch):
-        """Start the case's processes and wait for its end; returns how it ended, in words."""
+        """Start the case's processes and wait for its end.
+
+        Returns how it ended, in words, and whether the case's own harness
+        (its master, simulator or grade_case node: grade_case.launch) is what
+        ended it: that launch ends by itself only once grade_case has ended,
+        which writes the record first unless the harness failed.
+        """
         options = self.options
         case_args = {'world': world_file, 'json': paths['json'], 'plot': paths['plot'],
                      'simulator': options.simulator, 'laser_profile': options.laser,
@@ -197,14 +236,14 @@ class CaseRunner(object):
         with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
             watcher = group.start(grading, base, log)
             if not _wait_for_port(port, MASTER_LIMIT, watcher):
-                return 'its master did not start'
+                return 'its master did not start', True
             group.start(self.solution.command(), self.solution.environment(base, scratch),
                         solution_log)
             try:
                 watcher.wait(timeout=options.timeout)
             except subprocess.TimeoutExpired:
-                return 'it ran out of its %.0f wall seconds' % options.timeout
-        return 'it ended'
+                return 'it ran out of its %.0f wall seconds' % options.timeout, False
+        return "grade's simulator or grade_case node ended", True
 
     def stop_all(self):
         with self._lock:
@@ -217,7 +256,8 @@ class CaseRunner(object):
 def case_command(solution_words, options, index):
     """The command line of one case, for --list."""
     words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + [
-        '--seed', str(options.seed), '--case', str(index), '--laser', options.laser,
+        '--worlds', str(options.worlds), '--seed', str(options.seed), '--case', str(index),
+        '--laser', options.laser,
         '--speedup', str(options.speedup), '--action-ns', options.action_ns,
         '--timeout', str(options.timeout), '--start-limit', str(options.start_limit),
         '--simulator', options.simulator,
@@ -225,87 +265,64 @@ def case_command(solution_words, options, index):
     return ' '.join(shlex.quote(w) for w in words)
 
 
-def parser():
-    p = argparse.ArgumentParser(
-        prog='grade', description=__doc__.split('\n\n')[0],
-        epilog='examples: grade my_course main.launch; grade ~/sub/alice.launch --worlds 20 '
-               '--jobs 2; grade my_course main.launch --list > cases.txt; '
-               'grade --collect DIR')
-    p.add_argument('solution', nargs='*',
-                   help='PACKAGE LAUNCH_FILE, or the path of a launch file, then ARG:=VALUE')
-    p.add_argument('--worlds', type=int, default=10, help='generated worlds (default 10)')
-    p.add_argument('--seed', type=int, default=0, help='seed of the generated worlds (default 0)')
-    p.add_argument('--jobs', type=int, default=1, help='cases run at once (default 1)')
-    p.add_argument('--laser', default=DEFAULT_LASER, choices=PROFILES,
-                   help='laser profile of the scan (default %s, the course robot\'s)'
-                   % DEFAULT_LASER)
-    p.add_argument('--speedup', type=float, default=0.0,
-                   help='simulated seconds per wall second at most; 0 (default): as fast as '
-                   'the solution answers (lockstep); 1 for solutions that time with time.sleep')
-    p.add_argument('--action-ns', default='record_odom',
-                   help='namespace of the record_odom action (default record_odom)')
-    p.add_argument('--timeout', type=float, default=900.0,
-                   help='wall seconds a case may take (default 900)')
-    p.add_argument('--start-limit', type=float, default=30.0,
-                   help='wall seconds the solution has to start its nodes (default 30)')
-    p.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
-                   help='builtin (default) or stage: real stageros in its window')
-    p.add_argument('--room', type=float, nargs=2, default=list(Settings().room),
-                   metavar=('SHORTEST', 'LONGEST'),
-                   help='sides of the generated main rooms [m] (default %.1f %.1f)'
-                   % Settings().room)
-    p.add_argument('--out', default='grades', help='output directory (default ./grades)')
-    p.add_argument('--list', action='store_true',
-                   help='print one command per case, to run anywhere, then --collect')
-    p.add_argument('--case', type=int, help='run only this case (0 .. worlds-1)')
-    p.add_argument('--collect', metavar='DIR',
-                   help='build DIR/grades.json and DIR/report.html from its finished cases')
-    return p
-
-
 def _interrupt(_number, _frame):
     raise KeyboardInterrupt
 
 
 def main(argv=None):
+    """grade's command line; its exit status: 0 graded (whatever the grades), 2 a mistake in
+    the command (nothing ran), 3 a case the grader itself failed to grade, 130 interrupted."""
     options = parser().parse_args(argv)
+    problems = grade_options.option_problems(options)
     if options.collect:
-        return grade_report.collect(options.collect)
+        return _refused(problems) if problems else grade_report.collect(options.collect)
     options.out = os.path.abspath(options.out)
     try:
         solution = Solution(options.solution)
     except ValueError as err:
-        sys.stderr.write('grade: %s\n' % err)
-        return 2
+        problems.append(str(err))
+    else:
+        problems += solution.problems(os.environ)
+    if problems:
+        return _refused(problems)
     if options.list:
         for index in range(options.worlds):
             print(case_command(options.solution, options, index))
         return 0
-    if options.simulator == 'stage' and display_wrapper() is None:
-        sys.stderr.write('grade: real Stage needs a display: no DISPLAY and no xvfb-run\n')
-        return 2
     indices = [options.case] if options.case is not None else list(range(options.worlds))
-    records = run_cases(solution, options, indices)
+    try:
+        records = run_cases(solution, options, indices)
+    except GenerationError as err:
+        return _refused(['--room %g %g: %s' % (options.room[0], options.room[1], err)])
     if records is None:
         sys.stderr.write('grade: interrupted; every case it started has ended\n')
         return 130
     if options.case is not None:
-        grade_report.print_table([r for r in records if r])
-        return 0
+        graded = grade_report.print_table(records)
+        return grade_report.NOT_GRADED if graded['summary']['not_graded'] else 0
     return grade_report.collect(options.out, [world_name(options.seed, i) for i in indices])
+
+
+def _refused(problems):
+    for problem in problems:
+        sys.stderr.write('grade: %s\n' % problem)
+    return 2
 
 
 def run_cases(solution, options, indices):
     """The records of cases indices, options.jobs at a time; None when interrupted.
 
-    SIGINT or SIGTERM ends every case still running (and every process it
-    started) before this returns.
+    Every case's world is generated first (GenerationError, before any case
+    runs, when --room allows none). SIGINT or SIGTERM ends every case still
+    running (and every process it started) before this returns.
     """
     runner = CaseRunner(solution, options)
     previous = signal.signal(signal.SIGTERM, _interrupt)
     pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
     try:
-        futures = [pool.submit(runner.run, index) for index in indices]
+        settings = Settings(room=tuple(options.room))
+        worlds = [generate(options.seed, index, settings) for index in indices]
+        futures = [pool.submit(runner.run, index, world) for index, world in zip(indices, worlds)]
         return [future.result() for future in futures]
     except KeyboardInterrupt:
         runner.stop_all()

@@ -16,6 +16,12 @@ words:
 - safety: no contact, and no command above the robot's limits;
 - recording: a point every second and feedback within FEEDBACK_ERROR of
   the true distance travelled.
+
+A case whose own harness failed ('grader_error' in its record: grade's
+master, simulator or grade_case node did not start, or its record could not
+be written) is not graded: every criterion fails with the grader's reason,
+and the summary counts it as not graded, so that it is never taken for the
+solution's failure.
 """
 import math
 from collections import OrderedDict
@@ -158,8 +164,11 @@ _JUDGES = OrderedDict([('find_wall', judge_find_wall), ('lap', judge_lap),
 
 def grade_case(case):
     """A case's grade: grades.json's fields for it, with every criterion's verdict."""
-    if case.get('error'):
-        criteria = OrderedDict((name, {'passed': False, 'reason': case['error']})
+    grader_error = case.get('grader_error')
+    unjudged = 'not graded: the grader failed (%s)' % grader_error if grader_error else \
+        case.get('error')
+    if unjudged:
+        criteria = OrderedDict((name, {'passed': False, 'reason': unjudged})
                                for name in CRITERIA)
         outcome = 'never'
     else:
@@ -176,6 +185,7 @@ def grade_case(case):
             reasons.append(verdict['reason'])
     return OrderedDict([
         ('world', case.get('world')),
+        ('grader_error', grader_error),
         ('lap_genuine', outcome == 'genuine'),
         ('premature', outcome == 'premature'),
         ('find_wall_ok', criteria['find_wall']['passed']),
@@ -201,6 +211,7 @@ def grades(cases):
     return OrderedDict([
         ('summary', OrderedDict([('cases', len(graded)),
                                  ('laps', sum(1 for g in graded if g['lap_genuine'])),
-                                 ('passed', sum(1 for g in graded if not g['reason']))])),
+                                 ('passed', sum(1 for g in graded if not g['reason'])),
+                                 ('not_graded', sum(1 for g in graded if g['grader_error']))])),
         ('cases', graded),
     ])

@@ -18,6 +18,11 @@ plot of the true path (~plot), and ends, which ends the launch.
 Everything scored comes from the simulator's ground truth and the world
 map (CourseMonitor), never from the solution's own topics; from the
 solution only the action's messages count, as what it declared.
+
+When the run cannot even begin for the grader's own reasons (the world
+file unreadable, no ground truth from the simulator), the record says so
+in 'grader_error', and grading counts the case as not graded rather than
+as the solution's failure.
 """
 import json
 import math
@@ -262,20 +267,37 @@ def _json_safe(value):
     return value
 
 
+def write_record(path, record):
+    """Write the record; False (with an error logged) when it cannot be written."""
+    try:
+        with open(path, 'w') as stream:
+            json.dump(_json_safe(record), stream, indent=1)
+    except (IOError, OSError) as err:
+        rospy.logerr('grade_case: cannot write the record %s: %s', path, err)
+        return False
+    return True
+
+
+def grader_failed(params, reason):
+    """End a run that the grader itself could not hold: log it, and record it as such."""
+    rospy.logerr('grade_case: %s', reason)
+    write_record(params['json'], {'world': params['world'], 'grader_error': reason})
+    return 1
+
+
 def main():
     init_node('grade_case')
     params = NodeParameters(TABLE).snapshot()
     try:
         course_map = CourseMap(params['world'])
     except (WorldFileError, EnvironmentError) as err:
-        rospy.logerr('grade_case: cannot read world %s: %s', params['world'], err)
-        return 1
+        return grader_failed(params, 'cannot read world %s: %s' % (params['world'], err))
     monitor = CourseMonitor(course_map, start_on_goal=True, action_ns=params['action_ns'])
     clock = RunClock()
     graph = Graph(params['action_ns'])
     if not wait_for_simulator(monitor, SIMULATOR_LIMIT):
-        rospy.logerr('grade_case: no ground truth from the simulator')
-        return 1
+        return grader_failed(params, 'no ground truth from the simulator (it did not start '
+                             'within %.0f wall s, or ended: see the case log)' % SIMULATOR_LIMIT)
     try:
         rospy.wait_for_service('unpause_physics', timeout=10.0)
         rospy.ServiceProxy('unpause_physics', Empty)()
@@ -294,8 +316,8 @@ def main():
         keep_watching(monitor, params['after_result'])
     freeze(monitor)
     record = case_record(monitor, params, seen, end_reason, start, start_pose, clock)
-    with open(params['json'], 'w') as stream:
-        json.dump(_json_safe(record), stream, indent=1)
+    if not write_record(params['json'], record):
+        return 1
     if params['plot']:
         plot_course(course_map, monitor.trail, monitor.result, params['plot'],
                     title=params['world'].rsplit('/', 1)[-1])

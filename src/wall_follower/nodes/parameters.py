@@ -16,7 +16,9 @@ instead of a traceback or a default silently left in force. Then the
 dynamic_reconfigure server starts (`rosrun dynamic_reconfigure dynparam
 set /wall_following target_distance 0.22`, or rqt_reconfigure); it calls
 back in its own thread, so a change is only stored here, under a lock, and
-the node picks it up in its own thread at its next scan.
+the node picks it up in its own thread at its next scan. A change that
+cannot be used (not one of a parameter's choices, against a rule) fails
+the set_parameters call, so that the client that asked is told too.
 """
 import threading
 
@@ -70,14 +72,19 @@ class NodeParameters(object):
             return dict(self._values)
 
     def _on_reconfigure(self, config, _level):
-        """dynamic_reconfigure's callback (its thread): keep the new values for the node."""
+        """dynamic_reconfigure's callback (its thread): keep the new values for the node.
+
+        A change that cannot be used is refused as a failed service call:
+        dynamic_reconfigure checks no enum value and no rule, and a config
+        handed back with the old values would let `dynparam set` report
+        success. The server then keeps and publishes nothing new.
+        """
         try:
             given = dict((name, config[name]) for name in names(self._table))
             values = checked(self._table, given, self._rules)
         except ParameterError as error:
             rospy.logerr('%s: reconfiguration refused: %s', rospy.get_name(), error)
-            config.update(self.snapshot())   # the values still in force
-            return config
+            raise rospy.ServiceException('reconfiguration refused: %s' % error)
         with self._lock:
             kept = [name for name in self._read_at_start if values[name] != self._values[name]]
             if kept:

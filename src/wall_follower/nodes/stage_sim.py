@@ -60,7 +60,6 @@ from wall_follower.params.stage_sim import TABLE
 from wall_follower.sim import compiled_camera, compiled_raytrace
 from wall_follower.sim.camera import camera_intrinsics, camera_mount
 from wall_follower.sim.engine import Simulation
-from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.start_check import start_problems
 from wall_follower.sim.simulator_choice import BUILTIN, SIMULATORS, STAGE, choose_simulator
 from wall_follower.sim.worldfile import WorldFileError, load_world
@@ -419,10 +418,6 @@ def run_node(world, argv):
     # reading it back; that self-subscription cost 90% of a free-running step.
     rospy.init_node('stage_sim', argv=argv, disable_signals=True, disable_rostime=True)
     params = NodeParameters(TABLE).snapshot()
-    if params['laser_profile'] not in PROFILES:
-        rospy.logerr('~laser_profile %r is not one of %s', params['laser_profile'],
-                     ', '.join(PROFILES))
-        return 1
     try:
         node = StageSimNode(world, params,
                             params['quit_time'] if params['quit_time'] >= 0.0 else world.quit_time,

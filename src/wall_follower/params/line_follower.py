@@ -5,14 +5,20 @@ import math
 from wall_follower.params import Parameter as P, Section, driving
 from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
+CONTROLLERS = ('pursuit', 'pixel_p')
+CONVENTIONS = ('auto', 'optical', 'stageros')
+"""The choices of controller and frame_convention (vision.floor's AUTO, OPTICAL, STAGEROS)."""
+
 NODE = (
     driving.camera_loop(image_timeout=0.3),
     driving.LIMITS,
     Section('camera', (
         P('controller', 'pursuit', "pursuit: follow the line's remembered path with the base; "
-          "pixel_p: the lab's follower_p.py (a baseline, it cuts bends)"),
+          "pixel_p: the lab's follower_p.py (a baseline, it cuts bends)",
+          choices=CONTROLLERS),
         P('frame_convention', 'auto', "the camera frame's tf: optical (REP 103), stageros (as "
-          'stageros publishes it), or auto (optical if its name says so)'),
+          'stageros publishes it), or auto (optical if its name says so)',
+          choices=CONVENTIONS),
         P('floor_frame', 'base_footprint', 'the frame whose z = 0 plane is the floor, on the '
           "robot's base"),
         P('odom_frame', 'odom', 'the frame in which the path is remembered'),
@@ -79,21 +85,6 @@ PIXEL_P = (
 )
 """The lab's baseline (vision.pixel_p.PixelP), on the lab's slice (params.line_mask.SLICE)."""
 
-CONTROLLERS = ('pursuit', 'pixel_p')
-CONVENTIONS = ('auto', 'optical', 'stageros')
-"""The choices of controller and frame_convention (vision.floor's AUTO, OPTICAL, STAGEROS)."""
-
-
-def _known_choices(values):
-    if values['controller'] not in CONTROLLERS:
-        return 'controller must be one of %s, not %r' % (
-            ', '.join(CONTROLLERS), values['controller'])
-    if values['frame_convention'] not in CONVENTIONS:
-        return 'frame_convention must be one of %s, not %r' % (
-            ', '.join(CONVENTIONS), values['frame_convention'])
-    return None
-
-
-RULES = HSV_RULES + (_known_choices,)
+RULES = HSV_RULES
 
 TABLE = NODE + IMAGE + HSV + SLICE + PATH + PURSUIT + PIXEL_P
