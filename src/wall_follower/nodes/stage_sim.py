@@ -448,6 +448,8 @@ def run_node(world, argv):
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
     if not node.running:
         rospy.loginfo('paused: call unpause_physics to start the world')
+    for warning in world.warnings:
+        rospy.logwarn('stage_sim: %s', warning)
     if world.unknown_keywords:
         rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
     try:
