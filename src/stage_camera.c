@@ -172,14 +172,14 @@ static double raster_side(const struct camera_scene *scene, int64_t s, const dou
     }
 }
 
-/* The nearest hit on one scene's solids closer than *best; updates *best and *color. */
+/* The nearest hit on one scene's solids closer than *best; updates *best and *color.
+ * horizontal: the length of the ray's x, y. */
 static void shade(const struct camera_scene *scene, const struct camera_view *view,
                   const uint8_t *hidden_sides, const double *reach, const double *ray,
-                  double *best, const uint8_t **color)
+                  double horizontal, double *best, const uint8_t **color)
 {
     const double ex = view->eye[0], ey = view->eye[1], ez = view->eye[2];
     const double dx = ray[0], dy = ray[1], dz = ray[2];
-    const double horizontal = hypot(dx, dy);
     for (int64_t s = 0; s < scene->solid_count; ++s) {
         if (reach[s] >= view->far_clip || reach[s] > *best * horizontal)
             continue;
@@ -213,6 +213,9 @@ static void shade(const struct camera_scene *scene, const struct camera_view *vi
                     continue;
                 }
             }
+        } else if (ez <= zmin && dz <= 0.0) {
+            /* From level with its base or below, only a ray going up meets a solid. */
+            continue;
         } else if (dz != 0.0) {
             const double t = (zmax - ez) / dz;
             if (t >= view->near_clip && t < view->far_clip && t < *best &&
@@ -304,6 +307,7 @@ void camera_render(const struct camera_scene *scenes, int64_t scene_count,
         const double u = view->u[p % view->width], v = view->v[p / view->width];
         const double ray[3] = {b[0] + u * b[3] + v * b[6], b[1] + u * b[4] + v * b[7],
                                b[2] + u * b[5] + v * b[8]};
+        const double horizontal = sqrt(ray[0] * ray[0] + ray[1] * ray[1]);
         double best = INFINITY;
         const uint8_t *color = view->background;
         if (ray[2] < 0.0) {
@@ -317,7 +321,8 @@ void camera_render(const struct camera_scene *scenes, int64_t scene_count,
         }
         offset = 0;
         for (int64_t k = 0; k < scene_count; ++k) {
-            shade(scenes + k, view, hidden_sides + offset, reach + offset, ray, &best, &color);
+            shade(scenes + k, view, hidden_sides + offset, reach + offset, ray, horizontal,
+                  &best, &color);
             offset += scenes[k].solid_count;
         }
         uint8_t *out = view->rgba + 4 * p;
