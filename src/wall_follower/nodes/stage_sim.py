@@ -33,7 +33,11 @@ are not left waiting for a /clock that no longer comes.
 
 A world whose robots cannot start where they are put (none at all, one
 inside a wall or outside the map: sim.start_check) is refused with an error
-naming the world file and the robot, and exit status 1.
+naming the world file and the robot, and exit status 1. What a world file
+asks and gets otherwise than it likely meant (a camera capped at the
+window's size as real Stage caps it, a camera no robot carries, a robot's
+second camera, a pantilt beyond a half or a quarter turn) is logged as a
+warning at start, each naming its file and line.
 """
 import argparse
 import math
