@@ -5,8 +5,9 @@
  * What is drawn, and why, is in wall_follower/sim/camera.py, which prepares the
  * rays and the tables here. Each model ("solid") is its outline edges extruded
  * from zmin to zmax: its top is the even-odd interior of the edges (looked up
- * in a filled raster when it has many edges), its sides the edges themselves.
- * A pixel takes the colour of the nearest hit whose depth (the ray parameter:
+ * in a filled raster when it has many edges), its sides the edges themselves
+ * (for a flat solid with a raster: the boundaries between its filled and empty
+ * cells, met by walking the cells along the ray). A pixel takes the colour of the nearest hit whose depth (the ray parameter:
  * rays have a forward component of 1) lies in [near, far).
  */
 #include <math.h>
