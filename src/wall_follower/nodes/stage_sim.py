@@ -33,7 +33,11 @@ are not left waiting for a /clock that no longer comes.
 
 A world whose robots cannot start where they are put (none at all, one
 inside a wall or outside the map: sim.start_check) is refused with an error
-naming the world file and the robot, and exit status 1.
+naming the world file and the robot, and exit status 1. What a world file
+asks and gets otherwise than it likely meant (a camera capped at the
+window's size as real Stage caps it, a camera no robot carries, a robot's
+second camera, a pantilt beyond a half or a quarter turn) is logged as a
+warning at start, each naming its file and line.
 """
 import argparse
 import math
@@ -443,6 +447,8 @@ def run_node(world, argv):
                   params['laser_profile'], ', lockstep' if params['lockstep'] else '')
     if not node.running:
         rospy.loginfo('paused: call unpause_physics to start the world')
+    for warning in world.warnings:
+        rospy.logwarn('stage_sim: %s', warning)
     if world.unknown_keywords:
         rospy.logdebug('world keywords skipped: %s', ', '.join(world.unknown_keywords))
     try:

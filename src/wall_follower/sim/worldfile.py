@@ -2,10 +2,14 @@
 
 Only what a 2D wall-following simulation needs is interpreted: the world's
 timing and raytrace resolution, static obstacles (bitmaps, boxes, block
-polygons) with their colours, and differential-drive `position` robots
-carrying one ranger and at most one camera.
+polygons) with their colours, differential-drive `position` robots
+carrying one ranger and at most one camera, and the window's size (real
+Stage draws the camera in it).
 Everything else is skipped and listed in `World.unknown_keywords`, so that a
-world written for real Stage still loads. Geometry follows what real Stage
+world written for real Stage still loads. What loads but is not what its
+author likely meant (a camera capped at the window's size, a camera that
+no robot carries, a second camera on a robot, a pan or tilt beyond a half
+turn or a quarter turn) is said in `World.warnings`. Geometry follows what real Stage
 does (see Stage's blockgroup.cc / model.cc): the bounding box of a model's
 blocks, or of a bitmap's black pixels, is scaled to the model's `size` and
 centred on the model's pose.
@@ -13,7 +17,9 @@ centred on the model's pose.
 A malformed file raises WorldFileError("<file>:<line>: <problem>") and never
 a traceback from deep inside the parser; so does a world whose obstacles
 span more cells of its `resolution` than the simulator's grid may hold
-(MAX_GRID_CELLS), before anything that size is allocated.
+(MAX_GRID_CELLS), or whose camera would still draw more than
+MAX_CAMERA_PIXELS once capped at the window, before anything that size is
+allocated.
 """
 import math
 import os
@@ -37,6 +43,16 @@ _SKIPPED_MODEL_TYPES = frozenset((
     'laser', 'lightindicator', 'powerpack'))
 _TOP_LEVEL_IGNORED = frozenset(('window', 'gui'))
 
+# Real Stage draws a camera's frame in its window's drawing area, below a menu bar of this
+# height, and caps the camera's resolution at that area's width and height (worldgui.cc,
+# model_camera.cc); stageros opens a window of STAGEROS_WINDOW unless `window size` says.
+STAGE_MENU_BAR = 30
+STAGEROS_WINDOW = (600, 400)
+# The most pixels a camera may draw (1920 x 1080): the simulator draws a frame on the CPU
+# at about 0.1 us a pixel, a quarter of a second at this size (two and a half world steps
+# of 0.1 s), and the step, and the node's answer to Ctrl-C, wait for it.
+MAX_CAMERA_PIXELS = 1920 * 1080
+
 # Black pixels: Stage treats a pixel as free when its first channel is above 127.
 _BITMAP_THRESHOLD = 127
 
@@ -52,6 +68,7 @@ _CAMERA_RESOLUTION = (32.0, 32.0)
 _CAMERA_RANGE = (0.2, 8.0)
 _CAMERA_FOV = (70.0, 40.0)
 _CAMERA_SIZE = (0.1, 0.07, 0.05)
+_CAMERA_COLOR = (0.0, 0.0, 0.0)
 _RANGER_SIZE = (0.15, 0.15, 0.2)
 _RANGER_COLOR = (0.0, 0.0, 0.5)
 _MODEL_COLOR = (1.0, 0.0, 0.0)   # Stage's Model colour and unknown colour names: red
@@ -82,6 +99,7 @@ RangerSpec = namedtuple('RangerSpec', [
 CameraSpec = namedtuple('CameraSpec', [
     'pose',        # (x, y, z, yaw) of the camera model in base_link
     'size',        # (length, width, height) of the camera model's box
+    'color',       # (r, g, b) in [0, 1] of that box
     'resolution',  # (width, height) [px]
     'range',       # (near, far) clip distances [m] along the optical axis
     'fov',         # (horizontal, vertical) [rad]
@@ -117,7 +135,9 @@ Obstacle = namedtuple('Obstacle', [
 
 World = namedtuple('World', [
     'path', 'resolution', 'interval_sim', 'speedup', 'quit_time', 'paused',
-    'obstacles', 'robots', 'unknown_keywords'])
+    'obstacles', 'robots', 'unknown_keywords',
+    'warnings',    # '<file>:<line>: <what>' of what loads but likely not as meant
+])
 
 _Token = namedtuple('_Token', ['kind', 'text', 'path', 'line'])
 _Prop = namedtuple('_Prop', ['values', 'path', 'line'])
@@ -334,6 +354,8 @@ class _Interpreter(object):
         self.obstacles = []
         self.robots = []
         self.counts = {}
+        self.warnings = []
+        self.window_area = STAGEROS_WINDOW[0], STAGEROS_WINDOW[1] - STAGE_MENU_BAR
 
     # -- define chains -------------------------------------------------------------------
     def resolve(self, entity):
@@ -407,6 +429,9 @@ class _Interpreter(object):
             if key not in known:
                 self.unknown.append(key)
         for child in self.root.children:
+            if child.kind == 'window':
+                self.window(self.resolve(child))
+        for child in self.root.children:
             self.top_level_entity(child)
         cells = _cells_spanned(self.obstacles, resolution)
         if cells > MAX_GRID_CELLS:
@@ -419,7 +444,8 @@ class _Interpreter(object):
             path=self.path, resolution=resolution, interval_sim=int(interval_ms) / 1000.0,
             speedup=self.number(top, 'speedup', 1.0), quit_time=self.number(top, 'quit_time', 0.0),
             paused=bool(self.number(top, 'paused', 0.0)), obstacles=self.obstacles,
-            robots=self.robots, unknown_keywords=sorted(set(self.unknown)))
+            robots=self.robots, unknown_keywords=sorted(set(self.unknown)),
+            warnings=self.warnings)
 
     def top_level_entity(self, entity):
         if entity.kind in _TOP_LEVEL_IGNORED:
@@ -429,8 +455,30 @@ class _Interpreter(object):
             self.model(resolved, parent_pose=None, parent_height=0.0)
         elif resolved.base == 'position':
             self.robot(resolved)
+        elif resolved.base == 'camera':
+            self.stray_camera(resolved, 'the world')
         else:
             self.unknown.append(entity.kind)
+
+    def window(self, resolved):
+        """The drawing area of Stage's window, where real Stage draws (and caps) cameras."""
+        width, height = self.numbers(resolved, 'size', 2, STAGEROS_WINDOW)
+        if width < 1 or height <= STAGE_MENU_BAR:
+            prop = resolved.props['size']
+            raise WorldFileError(prop.path, prop.line, 'window size [%g %g] leaves no area to '
+                                 'draw a camera in (Stage draws it in the window, below a %d px '
+                                 'menu bar; the screen\'s size, asked by a negative size, is not '
+                                 'known here)' % (width, height, STAGE_MENU_BAR))
+        self.window_area = int(width), int(height) - STAGE_MENU_BAR
+
+    def warn(self, resolved, message):
+        self.warnings.append('%s:%d: %s' % (resolved.path, resolved.line, message))
+
+    def stray_camera(self, resolved, where):
+        """A camera that is no position's own child: stageros publishes none of it."""
+        self.warn(resolved, 'camera "%s" is in %s, not directly in a robot\'s position: it is '
+                  'not drawn or published (stageros publishes only the cameras of positions)'
+                  % (resolved.name or 'camera', where))
 
     def _default_name(self, base):
         count = self.counts.get(base, 0)
@@ -460,6 +508,8 @@ class _Interpreter(object):
             sub = self.resolve(child)
             if sub.base == 'model':
                 self.model(sub, pose, size[2])
+            elif sub.base == 'camera':
+                self.stray_camera(sub, 'model "%s"' % name)
             elif sub.base != 'block':
                 self.unknown.append(child.kind)
         self.note_unknown_props(resolved, _MODEL_KEYS)
@@ -536,6 +586,10 @@ class _Interpreter(object):
                 ranger = self.ranger(sub, size)
             elif sub.base == 'camera' and camera is None:
                 camera = self.camera(sub, size)
+            elif sub.base == 'camera':
+                self.warn(sub, 'robot "%s" has a second camera: this simulator draws and '
+                          'publishes only its first (as image, depth, camera_info), where '
+                          'stageros would number them all (image_0, image_1, ...)' % name)
             elif sub.base != 'block':
                 self.unknown.append(child.kind)
         self.robots.append(RobotSpec(
@@ -547,6 +601,10 @@ class _Interpreter(object):
         self.note_unknown_props(resolved, _POSITION_KEYS)
 
     def ranger(self, resolved, robot_size):
+        for child in resolved.children:
+            sub = self.resolve(child)
+            if sub.base == 'camera':
+                self.stray_camera(sub, 'a ranger')
         sensors = [self.resolve(child) for child in resolved.children if child.kind == 'sensor']
         if not sensors:
             raise WorldFileError(resolved.path, resolved.line, 'ranger has no sensor( ... )')
@@ -572,11 +630,7 @@ class _Interpreter(object):
     def camera(self, resolved, robot_size):
         """A Stage `camera` model; its defaults are Stage 4.3's ModelCamera ones."""
         pose = self.pose(resolved)
-        width, height = self.numbers(resolved, 'resolution', 2, _CAMERA_RESOLUTION)
-        if width < 1 or height < 1 or width != int(width) or height != int(height):
-            prop = resolved.props['resolution']
-            raise WorldFileError(prop.path, prop.line, 'camera resolution must be two positive '
-                                 'whole numbers, got [%g %g]' % (width, height))
+        width, height = self.camera_resolution(resolved)
         near, far = self.numbers(resolved, 'range', 2, _CAMERA_RANGE, 'll')
         if not 0.0 < near < far:
             prop = resolved.props['range']
@@ -588,12 +642,54 @@ class _Interpreter(object):
             prop = resolved.props['fov']
             raise WorldFileError(prop.path, prop.line, 'camera fov must lie between 0 and 180 '
                                  'degrees')
-        pan, tilt = (math.radians(v) for v in self.numbers(resolved, 'pantilt', 2, (0.0, 0.0)))
+        pan, tilt = self.pantilt(resolved)
         self.note_unknown_props(resolved, _CAMERA_KEYS)
         return CameraSpec(pose=pose, size=self.numbers(resolved, 'size', 3, _CAMERA_SIZE, 'lll'),
-                          resolution=(int(width), int(height)), range=(near, far),
+                          color=self.color(resolved, _CAMERA_COLOR), resolution=(width, height),
+                          range=(near, far),
                           fov=(hfov, vfov), pantilt=(pan, tilt),
                           height=robot_size[2] + pose[2])
+
+    def camera_resolution(self, resolved):
+        """(width, height) of a camera's frames: its `resolution`, capped at the window's
+        drawing area as real Stage caps it (a warning says so), and refused beyond
+        MAX_CAMERA_PIXELS even so."""
+        width, height = self.numbers(resolved, 'resolution', 2, _CAMERA_RESOLUTION)
+        prop = resolved.props.get('resolution') or _Prop((), resolved.path, resolved.line)
+        if width < 1 or height < 1 or width != int(width) or height != int(height):
+            raise WorldFileError(prop.path, prop.line, 'camera resolution must be two positive '
+                                 'whole numbers, got [%g %g]' % (width, height))
+        area_width, area_height = self.window_area
+        capped = min(int(width), area_width), min(int(height), area_height)
+        if capped[0] * capped[1] > MAX_CAMERA_PIXELS:
+            raise WorldFileError(prop.path, prop.line, 'camera resolution [%d %d] is more than '
+                                 'the %d pixels (1920 x 1080) this simulator draws: it draws '
+                                 'on the CPU, about 0.1 us a pixel, and a world step waits for '
+                                 'the frame' % (capped + (MAX_CAMERA_PIXELS,)))
+        if capped != (width, height):
+            self.warnings.append(
+                '%s:%d: camera resolution [%d %d] is capped at [%d %d], as real Stage caps it: '
+                'it draws the frame in its window, whose drawing area is %d x %d (window size '
+                'less the %d px menu bar; stageros opens %d x %d unless `window( size [w h] )` '
+                'says)' % ((prop.path, prop.line, width, height) + capped + self.window_area
+                           + (STAGE_MENU_BAR,) + STAGEROS_WINDOW))
+        return capped
+
+    def pantilt(self, resolved):
+        """(pan, tilt) [rad] of a camera. Real Stage turns the view by any angle (a pan
+        of 370 deg is one of 10 deg, a tilt beyond 90 deg looks backwards, upside down),
+        and so does this simulator; beyond a half turn of pan or a quarter turn of tilt a
+        warning says what the angles come to."""
+        pan, tilt = self.numbers(resolved, 'pantilt', 2, (0.0, 0.0))
+        if abs(pan) > 180.0 or abs(tilt) > 90.0:
+            prop = resolved.props['pantilt']
+            self.warnings.append(
+                '%s:%d: camera pantilt [%g %g] is beyond [-180, 180] x [-90, 90] deg: real '
+                'Stage turns by it all the same, and so does this simulator (a pan of %g deg, '
+                'a tilt of %g deg%s)' % (prop.path, prop.line, pan, tilt, _half_turn(pan),
+                                         _half_turn(tilt), ', looking backwards and upside down'
+                                         if abs(_half_turn(tilt)) > 90.0 else ''))
+        return math.radians(pan), math.radians(tilt)
 
     def color(self, resolved, default=_MODEL_COLOR):
         """A model's `color` (a colour name) or `color_rgba`, as (r, g, b) in [0, 1]."""
@@ -625,6 +721,12 @@ _CAMERA_KEYS = _COMMON_KEYS | frozenset(('resolution', 'range', 'fov', 'pantilt'
 _POSITION_KEYS = _COMMON_KEYS | frozenset((
     'drive', 'localization', 'velocity_bounds', 'acceleration_bounds', 'localization_origin',
     'odom_error', 'wheelbase', 'velocity', 'bitmap'))
+
+
+def _half_turn(degrees):
+    """The same angle in (-180, 180] degrees."""
+    turned = (degrees + 180.0) % 360.0 - 180.0
+    return 180.0 if turned == -180.0 else turned + 0.0
 
 
 def _is_base_type(kind):
