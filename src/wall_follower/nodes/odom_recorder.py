@@ -14,7 +14,9 @@ ends the goal when the lap closes (succeeded), when the client cancels
 What the node survives, with one warning each: odometry that jumps (a
 simulator's reset_positions, a robot's odometry reset) is not counted as
 travel (see wall_follower.control.lap); a pose that is not finite or whose
-orientation is no unit quaternion is skipped; and ROS time moving backwards
+orientation is no unit quaternion is skipped, and so is one stamped far
+ahead of this node's clock (control.stamps: it would shift the goal's start
+onto a clock that no pose reaches, and end the sampling); and ROS time moving backwards
 (a simulator restarted, a bag looped) drops every pose heard on the old
 clock, aborts the goal recorded on it, and the node goes on serving: its
 goal status keeps coming, and the next goal starts from fresh odometry.
@@ -35,6 +37,7 @@ from nav_msgs.msg import Odometry, Path
 from wall_follower.cfg import OdomRecorderConfig
 from wall_follower.control.lap import LapRecorder
 from wall_follower.control.odom_check import odometry_problem
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
 from wall_follower.nodes.common import init_node, pose_message, pose_of
 from wall_follower.nodes.parameters import NodeParameters
@@ -156,6 +159,11 @@ class OdomRecorderNode(object):
         with self._lock:
             now = self._now()
             stamp = msg.header.stamp.to_sec() or now
+            ahead = ahead_problem(stamp, now)
+            if ahead is not None:
+                rospy.logwarn_throttle(MALFORMED_WARNING_PERIOD, 'record_odom: odometry on %s '
+                                       'skipped: %s' % (rospy.resolve_name('odom'), ahead))
+                return
             self._frame_id = msg.header.frame_id
             self._recent.append((stamp, pose, now - stamp))
             if self._recording is not None:
