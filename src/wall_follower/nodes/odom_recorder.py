@@ -15,11 +15,12 @@ What the node survives, with one warning each: odometry that jumps (a
 simulator's reset_positions, a robot's odometry reset) is not counted as
 travel (see wall_follower.control.lap); a pose that is not finite or whose
 orientation is no unit quaternion is skipped, and so is one stamped far
-ahead of this node's clock (control.stamps: it would shift the goal's start
-onto a clock that no pose reaches, and end the sampling); and ROS time moving backwards
-(a simulator restarted, a bag looped) drops every pose heard on the old
-clock, aborts the goal recorded on it, and the node goes on serving: its
-goal status keeps coming, and the next goal starts from fresh odometry.
+ahead of this node's clock (control.stamps: heard before a goal, it would
+move the recording's start decades ahead, and recorded, it would be the
+last point sampled); and ROS time moving backwards (a simulator
+restarted, a bag looped) drops every pose heard on the old clock, aborts
+the goal recorded on it, and the node goes on serving: its goal status
+keeps coming, and the next goal starts from fresh odometry.
 
 Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
