@@ -178,11 +178,15 @@ def registered(name):
         return False
 
 
+# Busy until stopped, or until this test's process is gone (killed at its time limit, say).
+BUSY = 'import os\nparent = os.getppid()\nwhile os.getppid() == parent:\n    pass\n'
+
+
 class Load(object):
     """A process per core that keeps it busy, until stop()."""
 
     def __init__(self):
-        self.processes = [subprocess.Popen([sys.executable, '-c', 'while True: pass'])
+        self.processes = [subprocess.Popen([sys.executable, '-c', BUSY])
                           for _ in range(os.cpu_count() or 1)]
 
     def stop(self):
