@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """The record_odom action server node."""
+import _signal; _signal.signal(_signal.SIGINT, _signal.SIG_DFL)  # noqa: E702 (nodes/signals.py)
 import sys
 
 from wall_follower.nodes.odom_recorder import main

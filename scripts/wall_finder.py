@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """The find_wall service node."""
+import _signal; _signal.signal(_signal.SIGINT, _signal.SIG_DFL)  # noqa: E702 (nodes/signals.py)
 import sys
 
 from wall_follower.nodes.wall_finder import main

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
 """The wall following node: find_wall, then record_odom, then follow the right wall."""
+import _signal; _signal.signal(_signal.SIGINT, _signal.SIG_DFL)  # noqa: E702 (nodes/signals.py)
 import sys
 
 from wall_follower.nodes.wall_following import main

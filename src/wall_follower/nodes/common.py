@@ -11,6 +11,7 @@ from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.nodes import signals
 
 
@@ -182,7 +183,7 @@ class LatestScan(object):
             if self._latest[0] is seen:
                 self._arrived.wait(timeout)
 
-    def _arrival_dated(self):
+    def _arrival_dated(self, now):
         """The newest (check, arrival, taken), a scan that came before this node's
         clock first ran dated from now.
 
@@ -193,7 +194,6 @@ class LatestScan(object):
         """
         with self._arrived:
             check, arrival, taken = self._latest
-            now = rospy.Time.now()
             if check is not None and arrival.is_zero() and not now.is_zero():
                 arrival, taken = now, (now if taken.is_zero() else taken)
                 self._latest = (check, arrival, taken)
@@ -201,14 +201,23 @@ class LatestScan(object):
 
     def latest(self, timeout):
         """The newest scan as a Reading: its view and time taken [s] if usable and fresh,
-        else None for both and the problem, in words."""
-        check, arrival, taken = self._arrival_dated()
-        if check is None or (rospy.Time.now() - arrival).to_sec() > timeout:
+        else None for both and the problem, in words.
+
+        A scan stamped far ahead of this node's clock (control.stamps) is
+        stale, however fresh its arrival: its stamp would time a controller's
+        work on a moment that never comes.
+        """
+        now = rospy.Time.now()
+        check, arrival, taken = self._arrival_dated(now)
+        if check is None or (now - arrival).to_sec() > timeout:
             problem = 'no scan on %s for %.1f s' % (self.topic, timeout)
             return Reading(check, None, None, problem)
         if check.view is None:
             problem = 'the scan on %s is unusable: %s' % (self.topic, check.problem)
             return Reading(check, None, None, problem)
+        ahead = ahead_problem(taken.to_sec(), now.to_sec())
+        if ahead is not None:
+            return Reading(check, None, None, 'the scan on %s is stale: %s' % (self.topic, ahead))
         return Reading(check, check.view, taken.to_sec(), None)
 
 

@@ -14,10 +14,13 @@ ends the goal when the lap closes (succeeded), when the client cancels
 What the node survives, with one warning each: odometry that jumps (a
 simulator's reset_positions, a robot's odometry reset) is not counted as
 travel (see wall_follower.control.lap); a pose that is not finite or whose
-orientation is no unit quaternion is skipped; and ROS time moving backwards
-(a simulator restarted, a bag looped) drops every pose heard on the old
-clock, aborts the goal recorded on it, and the node goes on serving: its
-goal status keeps coming, and the next goal starts from fresh odometry.
+orientation is no unit quaternion is skipped, and so is one stamped far
+ahead of this node's clock (control.stamps: heard before a goal, it would
+move the recording's start decades ahead, and recorded, it would be the
+last point sampled); and ROS time moving backwards (a simulator
+restarted, a bag looped) drops every pose heard on the old clock, aborts
+the goal recorded on it, and the node goes on serving: its goal status
+keeps coming, and the next goal starts from fresh odometry.
 
 Each point is a geometry_msgs/Point holding x and y (m) in the odometry
 frame and, in z, the yaw (rad): the course's (x, y, theta).
@@ -35,6 +38,7 @@ from nav_msgs.msg import Odometry, Path
 from wall_follower.cfg import OdomRecorderConfig
 from wall_follower.control.lap import LapRecorder
 from wall_follower.control.odom_check import odometry_problem
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
 from wall_follower.nodes.common import init_node, pose_message, pose_of
 from wall_follower.nodes.parameters import NodeParameters
@@ -156,6 +160,11 @@ class OdomRecorderNode(object):
         with self._lock:
             now = self._now()
             stamp = msg.header.stamp.to_sec() or now
+            ahead = ahead_problem(stamp, now)
+            if ahead is not None:
+                rospy.logwarn_throttle(MALFORMED_WARNING_PERIOD, 'record_odom: odometry on %s '
+                                       'skipped: %s' % (rospy.resolve_name('odom'), ahead))
+                return
             self._frame_id = msg.header.frame_id
             self._recent.append((stamp, pose, now - stamp))
             if self._recording is not None:

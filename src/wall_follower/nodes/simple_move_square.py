@@ -9,10 +9,11 @@ Each scan is answered from the odometry of the same moment, waited for
 briefly when it has not come yet (in lockstep simulation the scan may come
 first), and the robot stands while odometry lags the scan by more than
 ~odom_timeout, while it cannot be trusted (control.odom_check: not finite,
-no unit quaternion), and for good once it has jumped further than
-~max_speed allows or its time went back: the square was laid out in a
-frame that no longer holds. Its parameters (params/simple_move_square.py) are tuned
-live: a change is applied at the next scan, to the square already laid out.
+no unit quaternion; control.stamps: stamped far ahead), and for good once
+it has jumped further than ~max_speed allows or its time went back: the
+square was laid out in a frame that no longer holds. Its parameters
+(params/simple_move_square.py) are tuned live: a change is applied at the
+next scan, to the square already laid out.
 """
 import math
 import threading
@@ -24,6 +25,7 @@ from nav_msgs.msg import Odometry
 from wall_follower.cfg import SimpleMoveSquareConfig
 from wall_follower.control.motion import STOP
 from wall_follower.control.odom_check import OdomCheck
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.exercises.move_square import SquareDriver
 from wall_follower.nodes.common import init_node, pose_of
 from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
@@ -48,11 +50,15 @@ class LatestOdom(object):
         self.name = self._sub.resolved_name
 
     def _on_odom(self, msg):
-        stamp = msg.header.stamp if not msg.header.stamp.is_zero() else rospy.Time.now()
+        now = rospy.get_time()
+        stamp = msg.header.stamp.to_sec() or now
         p, q = msg.pose.pose.position, msg.pose.pose.orientation
         with self._arrived:
-            problem = self.check.problem(stamp.to_sec(), p.x, p.y, q.x, q.y, q.z, q.w)
-            self._latest = (pose_of(msg), stamp.to_sec(), problem)
+            # Stamped far ahead: stale, and kept from OdomCheck, which would take
+            # the good odometry after it for time going back.
+            problem = ahead_problem(stamp, now) or self.check.problem(
+                stamp, p.x, p.y, q.x, q.y, q.z, q.w)
+            self._latest = (pose_of(msg), stamp, problem)
             self._arrived.notify_all()
 
     def forget(self):

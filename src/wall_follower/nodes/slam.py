@@ -3,8 +3,9 @@
 Subscribes `scan` and `odom` (nav_msgs/Odometry): the robot's odometry pose
 at each scan's stamp is interpolated between the odometry messages around
 it, and the laser's mount (base_frame -> the scan's frame) read from tf
-once. Publishes `map` (nav_msgs/OccupancyGrid, latched) and `map_metadata`
-every ~map_update_interval seconds of ROS time, and the tf map_frame ->
+once (tf is not listened to after that). Publishes `map`
+(nav_msgs/OccupancyGrid, latched) and `map_metadata` every
+~map_update_interval seconds of ROS time, and the tf map_frame ->
 odom_frame that puts the robot where scan matching found it. Every scan is
 processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
@@ -12,10 +13,13 @@ run in simulated time gives the same map however busy the machine is.
 What it cannot trust it says, with a warning, and does not draw: a scan
 that control.scan_check finds malformed or unusable, odometry that
 control.odom_check finds not finite or with no unit quaternion (a scan
-that only such odometry could place is skipped). Odometry whose time went
-back (a simulator restarted, a bag looped) starts its history afresh, and
-one that jumped further than the robot can drive is warned of: the map is
-drawn on at the jumped pose only after the warning.
+that only such odometry could place is skipped), a scan or odometry
+stamped far ahead of the node's clock (control.stamps: a map -> odom
+transform broadcast at such a stamp would abort every tf listener, this
+node's own included). Odometry whose time went back (a simulator
+restarted, a bag looped) starts its history afresh, and one that jumped
+further than the robot can drive is warned of: the map is drawn on at the
+jumped pose only after the warning.
 
 Parameters: the table in wall_follower.params.slam. A mapping run is long
 and tuned while it runs (`rosrun dynamic_reconfigure dynparam set /slam
@@ -39,6 +43,7 @@ import numpy as np
 from wall_follower.cfg import SlamConfig
 from wall_follower.control.odom_check import OdomCheck, odometry_problem
 from wall_follower.control.scan_check import check_scan
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.mapping.slam import Mapper
 from wall_follower.mapping.poses import wrap
 from wall_follower.nodes.common import init_node, pose_message, pose_of, quaternion_z, yaw_of
@@ -92,7 +97,8 @@ class SlamNode(object):
         p, q = msg.pose.pose.position, msg.pose.pose.orientation
         stamp = msg.header.stamp.to_sec()
         with self.odom_arrived:
-            self.odom_problem = odometry_problem(p.x, p.y, q.x, q.y, q.z, q.w)
+            self.odom_problem = ahead_problem(stamp, rospy.get_time()) or odometry_problem(
+                p.x, p.y, q.x, q.y, q.z, q.w)
             if self.odom_problem is not None:
                 rospy.logwarn_throttle(5.0, 'slam: odometry on %s cannot be trusted: %s; skipped'
                                        % (rospy.resolve_name('odom'), self.odom_problem))
@@ -153,12 +159,20 @@ class SlamNode(object):
             rospy.logwarn_throttle(5.0, 'slam: the scan on %s is unusable: %s; skipped'
                                    % (rospy.resolve_name('scan'), problem))
             return
+        problem = ahead_problem(msg.header.stamp.to_sec(), rospy.get_time())
+        if problem is not None:
+            rospy.logwarn_throttle(5.0, 'slam: the scan on %s is stale: %s; skipped'
+                                   % (rospy.resolve_name('scan'), problem))
+            return
         if not self.laser_known:
             mount = self._laser_mount(msg.header.frame_id)
             if mount is None:
                 return
             self.mapper.laser = _pose_of(mount)
             self.laser_known = True
+            # tf is read no more: a transform stamped far ahead, from any node,
+            # would abort this process inside tf2's listener.
+            self.listener.unregister()
             rospy.loginfo('slam: mapping at %.3f m per cell, laser at (%.3f, %.3f, %.1f deg) '
                           'on %s', self.p['delta'], *(self.mapper.laser[:2] + (
                               math.degrees(self.mapper.laser[2]), self.p['base_frame'])))
