@@ -15,6 +15,7 @@ from cv_bridge import CvBridge, CvBridgeError
 from sensor_msgs.msg import CompressedImage, Image
 
 from wall_follower.nodes.common import Reading
+from wall_follower.params.driving import CAMERA_INPUT
 from wall_follower.vision.image_check import decode_compressed, raw_image_problem
 
 Frame = namedtuple('Frame', ['image', 'frame_id', 'stamp', 'problem'])
@@ -56,6 +57,8 @@ class LatestImage(object):
     scan's; the time it was taken is its header stamp (its arrival if the
     stamp is zero). compressed: read CompressedImage (image_topics).
     """
+
+    parameters = CAMERA_INPUT   # the node's parameters that set a DriveLoop on it
 
     def __init__(self, compressed=False):
         self._latest = (None, None)      # (Frame, arrival), replaced as one

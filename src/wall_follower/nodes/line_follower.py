@@ -19,12 +19,12 @@ from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 
 from wall_follower.cfg import LineFollowerConfig
-from wall_follower.control.motion import STOP
+from wall_follower.control.motion import STOP, Answer
 from wall_follower.nodes.camera_floor import CameraFloor
-from wall_follower.nodes.common import VelocityCommander, init_node, pose_message
-from wall_follower.nodes.drive_loop import DriveLoop
+from wall_follower.nodes.common import init_node, pose_message
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
 from wall_follower.nodes.image_input import LatestImage
-from wall_follower.nodes.parameters import NodeParameters, input_timeout, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.line_follower import PATH, PURSUIT, RULES, TABLE
 from wall_follower.vision.line_image import hsv_bounds, line_mask, line_pixels
@@ -48,17 +48,13 @@ class LineFollowerNode(object):
         self.params = NodeParameters(TABLE, LineFollowerConfig, rules=RULES,
                                      read_at_start=('compressed',))
         values = self.params.snapshot()
-        commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
         self.images = LatestImage(values['compressed'])
-        self.loop = DriveLoop(NAME, self.images, commander, values['rate'], values['keepalive'],
-                              input_timeout(values), values['ahead_half_width'],
-                              ahead_known=self._ahead_known, ahead_missing='no line known')
+        self.loop = drive_loop(NAME, values, self.images, ahead_missing='no line known')
         self.camera = CameraFloor(values)
         self.memory = LinePath(**pick(values, PATH))
         self.pursuit = LinePursuit(**pick(values, PURSUIT))
         self.path_pub = rospy.Publisher('line_path', Path, queue_size=1)
         self._configure(values)
-        self._ahead = False
         self._state = None
 
     def _configure(self, values):
@@ -80,10 +76,6 @@ class LineFollowerNode(object):
         """ROS time moved back (a simulator restarted): forget the path and start afresh."""
         self.memory.forget()
         self.pursuit = LinePursuit(**pick(self.values, PURSUIT))
-        self._ahead = False
-
-    def _ahead_known(self, _frame, _half_width):
-        return self._ahead
 
     def _answer(self, frame, _taken):
         values = take_retuned(self.params, self.loop)
@@ -92,16 +84,14 @@ class LineFollowerNode(object):
         mask = line_mask(frame.image, self.bounds)
         if self.values['controller'] == 'pixel_p':
             command = self.pixel_p.update(mask)
-            self._ahead = command != STOP
-            return command
+            return Answer(command, command != STOP)
         projection, problem = self.camera.projection(frame.frame_id, frame.stamp)
         base = None
         if projection is not None:
             base, problem = self.camera.base_pose(frame.stamp)
         if base is None:
-            self._ahead = False
             self.loop.warn('%s; stopped' % problem)
-            return STOP
+            return Answer(STOP, False)
         margin = self.values['view_margin']
 
         def in_view(points):
@@ -111,10 +101,10 @@ class LineFollowerNode(object):
             line_pixels(mask, self.values['pixel_stride'])), base)
         path = self.memory.update(seen, in_view, base, lambda point: in_view(point)[0])
         command = self.pursuit.update(path, self.memory.end_seen, base)
-        self._ahead = known_ahead(path, base, self.loop.ahead_half_width) if len(path) else False
+        known = known_ahead(path, base, self.loop.ahead_half_width) if len(path) else False
         self._tell_state()
         self._publish_path(path, frame.stamp)
-        return command
+        return Answer(command, known)
 
     def _tell_state(self):
         if self.pursuit.state != self._state:
