@@ -1,9 +1,11 @@
-"""Every bad frame is named in words: wrong size, unknown encoding, truncated data, empty."""
+"""Every bad frame is named in words: wrong size, unknown encoding, truncated data, empty, a size
+camera_info does not give."""
 import cv2
 import numpy as np
 import pytest
 
-from wall_follower.vision.image_check import decode_compressed, pixel_bytes, raw_image_problem
+from wall_follower.vision.image_check import (
+    decode_compressed, pixel_bytes, raw_image_problem, size_problem)
 
 
 @pytest.mark.parametrize('encoding,size', [
@@ -43,3 +45,11 @@ def test_compressed_frames_decode_or_are_named():
     assert decode_compressed(b'')[1] == 'an empty compressed image'
     assert 'cannot be decoded' in decode_compressed(data.tobytes()[:40])[1]
     assert 'cannot be decoded' in decode_compressed(b'not an image at all')[1]
+
+
+def test_the_image_must_be_the_size_camera_info_gives():
+    assert size_problem(np.zeros((240, 320, 3)), 320, 240) is None
+    assert size_problem(np.zeros((240, 320, 3)), 640, 480) == (
+        'the image is 320x240 but camera_info says 640x480')
+    assert size_problem(np.zeros((1080, 1920, 3)), 320, 240) == (
+        'the image is 1920x1080 but camera_info says 320x240')

@@ -4,14 +4,16 @@ Each new frame (nodes.image_input.LatestImage, answered through the
 DriveLoop every driving node shares) goes through the line-following step
 of vision.line_step, with the camera's floor projection from its
 camera_info and tf and the base's pose at the frame's time
-(nodes.camera_floor): the line's colour is masked; then the pursuit steers
-the base along the line's remembered path (~controller pursuit), or, as
-the lab's baseline, the slice centroid's pixel offset steers (~controller
-pixel_p). Safe as every driving node: clamped to ~max_linear and
-~max_angular, stopped while the newest image is older than ~image_timeout
-or unreadable (a warning says why), never forward without the line known
-ahead of the base, a zero Twist on shutdown. A lost line is searched for
-by turning in place only; at the line's end the robot stops for good. Its
+(nodes.camera_floor): the line's colour is masked and must look like a
+line on the floor (vision.line_check); then the pursuit steers the base
+along the line's remembered path (~controller pursuit), or, as the lab's
+baseline, the slice centroid's pixel offset steers (~controller pixel_p).
+Safe as every driving node: clamped to ~max_linear and ~max_angular,
+stopped while the newest image is older than ~image_timeout, unreadable,
+of another size than camera_info says, or not a line (a throttled warning
+says why), never forward without the line known ahead of the base, a zero
+Twist on shutdown. A lost line is searched for by turning in place only,
+on frames of clear floor; at the line's end the robot stops for good. Its
 parameters (params/line_follower.py) are tuned live (dynparam), the change
 applied at the next frame.
 """

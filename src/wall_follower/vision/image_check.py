@@ -56,3 +56,12 @@ def decode_compressed(data):
     if image is None or image.size == 0:
         return None, 'a compressed image that cannot be decoded (%d bytes)' % len(data)
     return image, None
+
+
+def size_problem(image, width, height):
+    """What is wrong with an image (an array, rows first) that camera_info says is width x
+    height pixels, or None if it is that size."""
+    rows, columns = image.shape[:2]
+    if (columns, rows) != (width, height):
+        return 'the image is %dx%d but camera_info says %dx%d' % (columns, rows, width, height)
+    return None
