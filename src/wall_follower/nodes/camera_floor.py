@@ -9,9 +9,11 @@ the floor frame in the odometry frame.
 
 tf waits are counted in wall time and polled: on simulated time, in
 lockstep, the clock stands still until the node commands again, and a
-wait counted in ROS time would never end. The projection is kept while
+wait counted in ROS time would never end. tf is never asked for a time
+beyond its buffer's reach of now (tf2 aborts the process on a stamp far
+from the data it holds: nodes.stamps). The projection is kept while
 camera_info, the camera's tf and the settings stay the same, so that what
-is worked out from it once is kept too.
+is worked out from it once (vision.line_check's floor grid) is kept too.
 """
 import threading
 import time
@@ -21,10 +23,12 @@ import tf2_ros
 from sensor_msgs.msg import CameraInfo
 
 from wall_follower.nodes.common import yaw_of
+from wall_follower.nodes.stamps import stamp_problem
 from wall_follower.vision.floor import (
     FloorProjection, Intrinsics, camera_pose, convention_of)
 
 POLL = 0.002          # wall s between two looks at the tf buffer
+CACHE = 10.0          # s of tf the buffer keeps
 
 
 class CameraFloor(object):
@@ -36,7 +40,7 @@ class CameraFloor(object):
 
     def __init__(self, values):
         self.values = values
-        self._buffer = tf2_ros.Buffer(cache_time=rospy.Duration(10.0))
+        self._buffer = tf2_ros.Buffer(cache_time=rospy.Duration(CACHE))
         self._listener = tf2_ros.TransformListener(self._buffer)
         self._lock = threading.Lock()
         self._intrinsics = None
@@ -93,6 +97,9 @@ class CameraFloor(object):
                 yaw_of(transform.rotation)), None
 
     def _lookup(self, target, source, stamp):
+        far = stamp_problem(stamp, rospy.Time.now(), ahead=CACHE, behind=CACHE)
+        if not stamp.is_zero() and far is not None:
+            return None, 'no tf from %s to %s for an image %s' % (target, source, far)
         deadline = time.monotonic() + self.values['tf_timeout']
         while True:
             try:

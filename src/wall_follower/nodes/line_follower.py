@@ -10,12 +10,12 @@ along the line's remembered path (~controller pursuit), or, as the lab's
 baseline, the slice centroid's pixel offset steers (~controller pixel_p).
 Safe as every driving node: clamped to ~max_linear and ~max_angular,
 stopped while the newest image is older than ~image_timeout, unreadable,
-of another size than camera_info says, or not a line (a throttled warning
-says why), never forward without the line known ahead of the base, a zero
-Twist on shutdown. A lost line is searched for by turning in place only,
-on frames of clear floor; at the line's end the robot stops for good. Its
-parameters (params/line_follower.py) are tuned live (dynparam), the change
-applied at the next frame.
+stamped in the future, of another size than camera_info says, or not a
+line (a throttled warning says why), never forward without the line
+known ahead of the base, a zero Twist on shutdown. A lost line is
+searched for by turning in place only, on frames of clear floor; at the
+line's end the robot stops for good. Its parameters (params/line_follower.py)
+are tuned live (dynparam), the change applied at the next frame.
 """
 import rospy
 from geometry_msgs.msg import PoseStamped
