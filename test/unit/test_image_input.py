@@ -72,15 +72,6 @@ def test_compressed_frames():
     assert read_compressed(msg) == (None, 'an empty compressed image')
 
 
-@pytest.fixture
-def clock(monkeypatch):
-    """A settable ROS clock: clock.now = t (seconds)."""
-    class Clock(object):
-        now = 0.0
-    monkeypatch.setattr(rospy.Time, 'now', staticmethod(lambda: rospy.Time.from_sec(Clock.now)))
-    return Clock
-
-
 def frame_stamped(secs, nsecs=0):
     msg = image_msg(np.zeros((6, 8, 4), np.uint8), 'rgba8')
     msg.header.stamp = rospy.Time(secs, nsecs)
