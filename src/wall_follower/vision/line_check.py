@@ -166,8 +166,9 @@ class LineCheck(object):
             return Verdict(EMPTY, nothing, None)
         if keep[1:].all():
             return Verdict(LINE, inside * np.uint8(255), None)
-        return Verdict(LINE, cv2.LUT(labels, np.where(np.arange(256) < count, 255 * np.resize(
-            keep, 256), 0).astype(np.uint8)), None)
+        kept = np.zeros(256, np.uint8)          # label -> 255 for the pieces kept
+        kept[:count] = np.where(keep, 255, 0)
+        return Verdict(LINE, cv2.LUT(labels, kept), None)
 
     def _widths(self, grid, cells, count):
         """(count,) the least and the most width [m] each piece (label) may have, from the
