@@ -10,15 +10,6 @@ from sensor_msgs.msg import LaserScan
 from wall_follower.nodes.common import LatestScan
 
 
-@pytest.fixture
-def clock(monkeypatch):
-    """A settable ROS clock: clock.now = t (seconds)."""
-    class Clock(object):
-        now = 0.0
-    monkeypatch.setattr(rospy.Time, 'now', staticmethod(lambda: rospy.Time.from_sec(Clock.now)))
-    return Clock
-
-
 def scan_taken_at(stamp):
     msg = LaserScan(angle_min=-3.14, angle_max=3.14, angle_increment=6.28 / 359,
                     range_min=0.12, range_max=3.5, ranges=[1.0] * 360)

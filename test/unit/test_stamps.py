@@ -1,7 +1,7 @@
 """control.stamps: which stamps lie too far ahead of a node's clock, and the words that say so."""
 import pytest
 
-from wall_follower.control.stamps import AHEAD_LIMIT, ahead_problem
+from wall_follower.control.stamps import AHEAD_LIMIT, ahead_problem, outside_problem
 
 NOW = 1795878000.0               # a clock of 2026
 YEAR_2100 = 4102444800.0         # 2100-01-01, as a header's seconds
@@ -37,3 +37,17 @@ def test_the_words_stay_the_same_while_the_stamps_stay_as_far_ahead():
     """A clock set to 2100 stamps each message a little later; the warning repeats the same."""
     words = set(ahead_problem(YEAR_2100 + t, NOW + t) for t in range(0, 3600, 7))
     assert len(words) == 1
+
+
+@pytest.mark.parametrize('stamp, words', [
+    (1000.2, None),
+    (995.0, None),
+    (1010.5, 'more than 10 s ahead'),
+    (YEAR_2100, 'more than 10 s ahead'),
+    (LARGEST, 'more than 10 s ahead'),
+    (1e-9, 'more than 10 s before'),
+    (0.0, None),                                      # not set: as of its arrival
+])
+def test_a_stamp_outside_a_span_either_way_is_named_by_the_span(stamp, words):
+    problem = outside_problem(stamp, 1000.0, 10.0)
+    assert problem is None if words is None else words in problem

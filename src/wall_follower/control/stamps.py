@@ -23,7 +23,13 @@ node's clock is never refused here: a robot whose clock has no battery (a
 Raspberry Pi's) runs days behind, and such messages are aged by their
 arrival, not by their stamp.
 
+A node that looks up tf at a message's stamp must also keep away from
+stamps its buffer cannot hold, either way (outside_problem): tf2 aborts
+on those too.
+
 Seconds as floats, no ROS: callers pass stamp.to_sec() and rospy.get_time().
+Floats hold any stamp a header can carry, where the difference of two
+such stamps need not fit a Duration's 32-bit seconds.
 """
 AHEAD_LIMIT = 24 * 3600.0   # s a stamp may lie ahead of the node's clock
 
@@ -52,3 +58,15 @@ def _span(seconds):
         return '%d year%s' % (years, '' if years == 1 else 's')
     days = int(seconds // _DAY)
     return '%d day%s' % (days, '' if days == 1 else 's')
+
+
+def outside_problem(stamp, now, span):
+    """Why a message stamped `stamp` is more than span s from `now` either way (both in s),
+    in words that name the bound, not the stamp; None when it is within, or unset (0)."""
+    if stamp == 0.0:
+        return None
+    if stamp - now > span:
+        return 'stamped more than %.3g s ahead of ROS time' % span
+    if now - stamp > span:
+        return 'stamped more than %.3g s before ROS time' % span
+    return None

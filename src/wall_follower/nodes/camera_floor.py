@@ -9,7 +9,11 @@ the floor frame in the odometry frame.
 
 tf waits are counted in wall time and polled: on simulated time, in
 lockstep, the clock stands still until the node commands again, and a
-wait counted in ROS time would never end.
+wait counted in ROS time would never end. tf is never asked for a time
+beyond its buffer's reach of now (tf2 aborts the process on a stamp far
+from the data it holds: control.stamps). The projection is kept while
+camera_info, the camera's tf and the settings stay the same, so that what
+is worked out from it once (vision.line_check's floor grid) is kept too.
 """
 import threading
 import time
@@ -18,11 +22,13 @@ import rospy
 import tf2_ros
 from sensor_msgs.msg import CameraInfo
 
+from wall_follower.control.stamps import outside_problem
 from wall_follower.nodes.common import yaw_of
 from wall_follower.vision.floor import (
     FloorProjection, Intrinsics, camera_pose, convention_of)
 
 POLL = 0.002          # wall s between two looks at the tf buffer
+CACHE = 10.0          # s of tf the buffer keeps
 
 
 class CameraFloor(object):
@@ -34,11 +40,12 @@ class CameraFloor(object):
 
     def __init__(self, values):
         self.values = values
-        self._buffer = tf2_ros.Buffer(cache_time=rospy.Duration(10.0))
+        self._buffer = tf2_ros.Buffer(cache_time=rospy.Duration(CACHE))
         self._listener = tf2_ros.TransformListener(self._buffer)
         self._lock = threading.Lock()
         self._intrinsics = None
         self._info_problem = 'no camera_info yet'
+        self._kept = (None, None)     # (what a projection was made from, the projection)
         self._sub = rospy.Subscriber('camera_info', CameraInfo, self._on_info, queue_size=1)
 
     def retune(self, values):
@@ -53,9 +60,9 @@ class CameraFloor(object):
         with self._lock:
             self._intrinsics, self._info_problem = intrinsics, problem
 
-    def projection(self, frame_id, stamp):
-        """(FloorProjection, None) for a frame from the camera frame_id taken at stamp
-        (rospy.Time), or (None, what is missing)."""
+    def projection(self, frame_id):
+        """(FloorProjection, None) for a frame from the camera frame_id, at its newest tf, or
+        (None, what is missing)."""
         with self._lock:
             intrinsics, problem = self._intrinsics, self._info_problem
         if intrinsics is None:
@@ -67,11 +74,17 @@ class CameraFloor(object):
             return None, problem
         convention = convention_of(frame_id, self.values['frame_convention'])
         t, q = transform.translation, transform.rotation
-        axes, centre = camera_pose((t.x, t.y, t.z), (q.x, q.y, q.z, q.w), convention)
-        try:
-            return FloorProjection(intrinsics, axes, centre, self.values['max_distance']), None
-        except ValueError as error:
-            return None, 'camera frame %s: %s' % (frame_id, error)
+        made_from = (intrinsics, (t.x, t.y, t.z), (q.x, q.y, q.z, q.w), convention,
+                     self.values['max_distance'])
+        if made_from != self._kept[0]:
+            axes, centre = camera_pose(made_from[1], made_from[2], convention)
+            try:
+                projection = FloorProjection(intrinsics, axes, centre,
+                                             self.values['max_distance'])
+            except ValueError as error:
+                return None, 'camera frame %s: %s' % (frame_id, error)
+            self._kept = (made_from, projection)
+        return self._kept[1], None
 
     def base_pose(self, stamp):
         """((x, y, yaw) of the floor frame in the odometry frame at stamp, None), or (None,
@@ -84,6 +97,9 @@ class CameraFloor(object):
                 yaw_of(transform.rotation)), None
 
     def _lookup(self, target, source, stamp):
+        far = outside_problem(stamp.to_sec(), rospy.get_time(), CACHE)
+        if far is not None:
+            return None, 'no tf from %s to %s for an image %s' % (target, source, far)
         deadline = time.monotonic() + self.values['tf_timeout']
         while True:
             try:

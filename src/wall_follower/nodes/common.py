@@ -13,6 +13,7 @@ from wall_follower.control.motion import STOP, Command, clamp
 from wall_follower.control.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.nodes import signals
+from wall_follower.params.driving import LASER_INPUT
 
 
 FLUSH_WAIT = 0.5    # wall s a node's last stop may take to leave, at most
@@ -146,6 +147,8 @@ class LatestScan(object):
     time would race the /clock message of the same simulated step, and
     jitter by a step.
     """
+
+    parameters = LASER_INPUT   # the node's parameters that set a DriveLoop on it
 
     def __init__(self, topic='scan'):
         self._latest = (None, None, None)   # (ScanCheck, arrival, taken), replaced as one

@@ -14,8 +14,9 @@ import rospy
 
 from wall_follower.cfg import ForwardStopConfig
 from wall_follower.exercises.forward_stop import BLOCKED, ForwardStop, nearest_ahead
-from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
+from wall_follower.nodes.common import LatestScan, init_node
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.forward_stop import FORWARD_STOP, TABLE
 
@@ -25,7 +26,7 @@ class ForwardStopNode(object):
     def __init__(self):
         self.params = NodeParameters(TABLE, ForwardStopConfig)
         values = self.params.snapshot()
-        self.loop = drive_loop('forward_stop', values)
+        self.loop = drive_loop('forward_stop', values, LatestScan('scan'))
         self.behaviour = ForwardStop(**pick(values, FORWARD_STOP))
         self.state = None
         self.taken = None   # stamp of the last scan answered [s]

@@ -5,7 +5,10 @@ sensor_msgs/CompressedImage (the real Waffle Pi's raspicam publishes
 compressed, on `<image>/compressed` as image_transport names it). A frame
 that cannot be read is held with the reason in words, never handed on,
 as LatestScan holds a bad scan; LatestImage offers what a DriveLoop asks
-of LatestScan, so that the loop runs on images as it runs on scans.
+of LatestScan, so that the loop runs on images as it runs on scans. A
+frame stamped ahead of ROS time by more than the loop's timeout is stale
+input too (a camera whose clock runs ahead, or a stamp years away, which
+no time arithmetic downstream must meet).
 """
 import threading
 from collections import namedtuple
@@ -14,7 +17,9 @@ import rospy
 from cv_bridge import CvBridge, CvBridgeError
 from sensor_msgs.msg import CompressedImage, Image
 
+from wall_follower.control.stamps import ahead_problem
 from wall_follower.nodes.common import Reading
+from wall_follower.params.driving import CAMERA_INPUT
 from wall_follower.vision.image_check import decode_compressed, raw_image_problem
 
 Frame = namedtuple('Frame', ['image', 'frame_id', 'stamp', 'problem'])
@@ -57,6 +62,8 @@ class LatestImage(object):
     stamp is zero). compressed: read CompressedImage (image_topics).
     """
 
+    parameters = CAMERA_INPUT   # the node's parameters that set a DriveLoop on it
+
     def __init__(self, compressed=False):
         self._latest = (None, None)      # (Frame, arrival), replaced as one
         self._arrived = threading.Condition()
@@ -96,7 +103,8 @@ class LatestImage(object):
                 self._latest = (frame, arrival)
         if frame is None or (now - arrival).to_sec() > timeout:
             return Reading(frame, None, None, 'no image on %s for %.1f s' % (self.topic, timeout))
-        if frame.image is None:
+        problem = frame.problem or ahead_problem(frame.stamp.to_sec(), now.to_sec())
+        if problem is not None:
             return Reading(frame, None, None, 'the image on %s is unusable: %s' % (
-                self.topic, frame.problem))
+                self.topic, problem))
         return Reading(frame, frame, frame.stamp.to_sec(), None)

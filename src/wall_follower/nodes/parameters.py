@@ -25,8 +25,6 @@ import threading
 import rospy
 from dynamic_reconfigure.server import Server
 
-from wall_follower.nodes.common import LatestScan, VelocityCommander
-from wall_follower.nodes.drive_loop import DriveLoop
 from wall_follower.params import ParameterError, checked, names
 
 
@@ -139,38 +137,3 @@ def _checked_or_exit(table, known, rules):
         rospy.logfatal('%s: cannot start: %s (check the launch file and config/*.yaml)',
                        rospy.get_name(), '; '.join('~' + problem for problem in error.problems))
         raise SystemExit(1)
-
-
-def input_timeout(values):
-    """The age [s] at which a driving node's input is stale: its scan_timeout, or the
-    image_timeout of one that drives by its camera (params.driving.camera_loop)."""
-    return values['image_timeout'] if 'image_timeout' in values else values['scan_timeout']
-
-
-def drive_loop(name, values, tick=None):
-    """A DriveLoop on scan and cmd_vel, set up from a driving node's parameters (name -> value:
-    those of params.driving's sections); tick as DriveLoop's."""
-    commander = VelocityCommander('cmd_vel', values['max_linear'], values['max_angular'])
-    return DriveLoop(name, LatestScan('scan'), commander, values['rate'], values['keepalive'],
-                     values['scan_timeout'], values['ahead_half_width'],
-                     values['ahead_min_known'], tick=tick)
-
-
-def tune_drive_loop(loop, values):
-    """Put a driving node's loop and speed limits (rate, keepalive, scan_timeout or a camera
-    node's image_timeout, ahead_half_width, ahead_min_known where the laser has one,
-    max_linear, max_angular) in force; in the loop's own thread."""
-    loop.tune(values['rate'], values['keepalive'], input_timeout(values),
-              values['ahead_half_width'], values.get('ahead_min_known', loop.ahead_min_known))
-    loop.commander.max_linear = values['max_linear']
-    loop.commander.max_angular = values['max_angular']
-
-
-def take_retuned(params, loop):
-    """params.take_update() for a driving node: the values changed since the last call,
-    with its loop and clamp already put on them (tune_drive_loop); None if none changed.
-    In the loop's own thread, at a scan."""
-    values = params.take_update()
-    if values is not None:
-        tune_drive_loop(loop, values)
-    return values

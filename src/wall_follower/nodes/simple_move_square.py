@@ -27,8 +27,9 @@ from wall_follower.control.motion import STOP
 from wall_follower.control.odom_check import OdomCheck
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.exercises.move_square import SquareDriver
-from wall_follower.nodes.common import init_node, pose_of
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
+from wall_follower.nodes.common import LatestScan, init_node, pose_of
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import names, odometry, pick
 from wall_follower.params.simple_move_square import SQUARE, TABLE
 
@@ -85,7 +86,7 @@ class SimpleMoveSquareNode(object):
         values = self.params.snapshot()
         self.odom_timeout, self.odom_wait = values['odom_timeout'], values['odom_wait']
         # max_linear and max_angular are the square's speeds and the clamp alike.
-        self.loop = drive_loop('simple_move_square', values)
+        self.loop = drive_loop('simple_move_square', values, LatestScan('scan'))
         self.driver = SquareDriver(**pick(values, SQUARE))
         self.odom = LatestOdom('odom', values['max_speed'], values['jump_allowance'])
         self._started = False

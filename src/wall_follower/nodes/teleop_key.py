@@ -23,8 +23,9 @@ import rospy
 
 from wall_follower.cfg import TeleopKeyConfig
 from wall_follower.exercises.teleop import USAGE, Teleop
-from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
+from wall_follower.nodes.common import LatestScan, init_node
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.teleop_key import TABLE, TELEOP
 
@@ -107,7 +108,7 @@ class TeleopKeyNode(object):
     def __init__(self):
         self.params = NodeParameters(TABLE, TeleopKeyConfig)
         values = self.params.snapshot()
-        self.loop = drive_loop('teleop_key', values, tick=values['tick'])
+        self.loop = drive_loop('teleop_key', values, LatestScan('scan'), tick=values['tick'])
         self.teleop = Teleop(**pick(values, TELEOP))
         self.keys = KeyReader(sys.stdin)
 

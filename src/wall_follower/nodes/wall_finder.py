@@ -13,10 +13,10 @@ import rospy
 
 from wall_follower.cfg import WallFinderConfig
 from wall_follower.control.finder import WallFinder
-from wall_follower.nodes.common import init_node
+from wall_follower.nodes.common import LatestScan, init_node
 from wall_follower.nodes.laser_mount import laser_x
-from wall_follower.nodes.parameters import (NodeParameters, drive_loop, take_retuned,
-                                            tune_drive_loop)
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned, tune_drive_loop
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
@@ -31,7 +31,7 @@ class WallFinderNode(object):
         values = self.params.snapshot()
         # max_linear and max_angular are the behaviour's limits and the clamp
         # alike, so the behaviour never asks for more than the node will send.
-        self.loop = drive_loop('find_wall', values)
+        self.loop = drive_loop('find_wall', values, LatestScan('scan'))
         self.commander = self.loop.commander
         self._busy = threading.Lock()
         self.service = rospy.Service('find_wall', FindWall, self.handle)
@@ -58,7 +58,7 @@ class WallFinderNode(object):
         tune_drive_loop(self.loop, values)
         rospy.loginfo('find_wall: searching for the nearest wall')
         return self.loop.run(lambda view, taken: self._answer(search, view, taken),
-                             search.outcome, patience=values['scan_timeout'],
+                             search.outcome, patience=self.loop.input_timeout,
                              on_clock_reset=search.restart) is True
 
     def _answer(self, search, view, taken):

@@ -20,10 +20,11 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.common import init_node, wait_in_wall_time
+from wall_follower.nodes.common import LatestScan, init_node, wait_in_wall_time
 from wall_follower.nodes.course_markers import CourseMarkers
 from wall_follower.nodes.laser_mount import laser_x
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
@@ -45,7 +46,7 @@ class WallFollowingNode(object):
         self.node = pick(values, NODE)
         self.controller = WallFollower(FollowerParams(**pick(values, FOLLOWER)))
         self._state = None
-        self.loop = drive_loop('wall_following', values)
+        self.loop = drive_loop('wall_following', values, LatestScan('scan'))
         self.ended = None   # LAP_RECORDED or RECORDING_FAILED, set by the action's thread
         self._recorder = None
         self._recording = None
@@ -90,7 +91,7 @@ class WallFollowingNode(object):
         if on_sim_time and not wait_in_wall_time(self._clock_at_newest_scan,
                                                  self.node['service_wait']):
             rospy.logerr('wall_following: no scan on %s, or ROS time short of its stamp, after '
-                         '%.0f s; not recording', self.loop.scan.topic,
+                         '%.0f s; not recording', self.loop.source.topic,
                          self.node['service_wait'])
             return False
         # The goal handle is kept so that the goal stays tracked; the callbacks
@@ -126,7 +127,7 @@ class WallFollowingNode(object):
         """
         warned = False
         while not rospy.is_shutdown():
-            taken = self.loop.scan.taken()
+            taken = self.loop.source.taken()
             if taken is not None:
                 now = rospy.Time.now()
                 if now >= taken:

@@ -13,8 +13,9 @@ import rospy
 
 from wall_follower.cfg import WanderConfig
 from wall_follower.exercises.wander import TURN, Wanderer, nearest_in_cone
-from wall_follower.nodes.common import init_node
-from wall_follower.nodes.parameters import NodeParameters, drive_loop, take_retuned
+from wall_follower.nodes.common import LatestScan, init_node
+from wall_follower.nodes.drive_loop import drive_loop, take_retuned
+from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params import pick
 from wall_follower.params.wander import RULES, TABLE, WANDER
 
@@ -24,7 +25,7 @@ class WanderNode(object):
     def __init__(self):
         self.params = NodeParameters(TABLE, WanderConfig, rules=RULES)
         values = self.params.snapshot()
-        self.loop = drive_loop('wander', values)
+        self.loop = drive_loop('wander', values, LatestScan('scan'))
         self.wanderer = Wanderer(**pick(values, WANDER))
 
     def run(self):

@@ -32,6 +32,17 @@ NODE = (
 )
 """The node's own parameters (wall_follower.nodes.line_follower)."""
 
+CHECK = (
+    Section('line', (
+        P('line_width', 0.045, "width of the course's line on the floor [m] (the line worlds': "
+          '4.5 cm): line colour is acted on only where it is about this wide', 0.005, 0.5),
+        P('line_width_tolerance', 2.0, 'line colour from line_width / this to line_width x '
+          'this wide counts as the line; a wider patch stops the robot (not a line), a '
+          'narrower thread is left out', 1.2, 10.0),
+    )),
+)
+"""What counts as the line (vision.line_check.LineCheck)."""
+
 PATH = (
     Section('path', (
         P('step', 0.02, 'tracing step along the line [m]', 0.005, 0.2),
@@ -87,4 +98,4 @@ PIXEL_P = (
 
 RULES = HSV_RULES
 
-TABLE = NODE + IMAGE + HSV + SLICE + PATH + PURSUIT + PIXEL_P
+TABLE = NODE + IMAGE + HSV + SLICE + CHECK + PATH + PURSUIT + PIXEL_P

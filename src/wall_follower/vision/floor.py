@@ -98,9 +98,35 @@ class FloorProjection(object):
             raise ValueError('the camera is %.3f m above the floor: it cannot see it'
                              % self.centre[2])
 
+    def key(self):
+        """A value equal for two projections that map every pixel alike (for caches)."""
+        return (tuple(self.intrinsics), self.axes.tobytes(), self.centre.tobytes(),
+                self.max_distance)
+
     def to_floor(self, pixels):
         """(M, 2) floor points (x, y) of the (N, 2) pixels (column, row) whose rays meet the
         floor within max_distance; the others are left out."""
+        points, on_floor = self.floor_points(pixels)
+        return points[on_floor]
+
+    def floor_view(self):
+        """(height, width) bool image: which pixels see the floor within max_distance."""
+        k = self.intrinsics
+        columns, rows = np.meshgrid(np.arange(k.width), np.arange(k.height))
+        _, on_floor = self.floor_points(np.column_stack((columns.ravel(), rows.ravel())))
+        return on_floor.reshape(k.height, k.width)
+
+    def homography(self):
+        """3x3 matrix taking floor points (x, y, 1) to pixels (column, row, 1), up to scale
+        (valid for points in front of the camera)."""
+        k = self.intrinsics
+        camera = np.array([[k.fx, 0.0, k.cx], [0.0, k.fy, k.cy], [0.0, 0.0, 1.0]])
+        local = self.axes.T
+        return camera.dot(np.column_stack((local[:, 0], local[:, 1], -local.dot(self.centre))))
+
+    def floor_points(self, pixels):
+        """(N, 2) floor points of the (N, 2) pixels, and (N,) whether each ray meets the floor
+        within max_distance (the point is meaningless where not)."""
         k = self.intrinsics
         pixels = np.asarray(pixels, float).reshape(-1, 2)
         rays = np.column_stack(((pixels[:, 0] - k.cx) / k.fx, (pixels[:, 1] - k.cy) / k.fy,
@@ -111,7 +137,7 @@ class FloorProjection(object):
         scale = self.centre[2] / np.where(hits, down, 1.0)
         points = self.centre[:2] + directions[:, :2] * scale[:, None]
         near = np.hypot(*(points - self.centre[:2]).T) <= self.max_distance
-        return points[hits & near]
+        return points, hits & near
 
     def to_pixels(self, points):
         """(N, 2) pixels (column, row) of (N, 2) floor points, and (N,) whether each lies in

@@ -20,12 +20,16 @@ and the line's end was not seen: the line is lost, and the robot only
 turns in place (toward the side the line went), at most `search_angle`
 [rad], never driving on blind; LOST: that search found nothing; it stays
 stopped until the line is seen again.
+
+Each command comes with whether the line is known ahead of the base (a
+point of the path within the drive loop's half width of its heading):
+the loop drives forward on nothing less.
 """
 import math
 
 import numpy as np
 
-from wall_follower.control.motion import STOP, Command
+from wall_follower.control.motion import STOP, Answer, Command
 from wall_follower.vision.line_path import path_length
 
 FOLLOW = 'follow'
@@ -121,9 +125,14 @@ class LinePursuit(object):
         self.search_rate = search_rate
         self.search_angle = search_angle
 
-    def update(self, path, end_seen, base):
-        """The Command for the path (odometry frame, LinePath's), whether it ends at the
-        line's end, and the base's pose (x, y, yaw) in the same frame."""
+    def update(self, path, end_seen, base, half_width):
+        """The Answer for the path (odometry frame, LinePath's), whether it ends at the
+        line's end, and the base's pose (x, y, yaw) in the same frame: the command, and
+        whether the path is known ahead within half_width [rad] of the heading."""
+        known = bool(len(path)) and known_ahead(path, base, half_width)
+        return Answer(self._command(path, end_seen, base), known)
+
+    def _command(self, path, end_seen, base):
         turned = 0.0 if self._last_yaw is None else abs(
             math.atan2(math.sin(base[2] - self._last_yaw), math.cos(base[2] - self._last_yaw)))
         self._last_yaw = base[2]
