@@ -39,7 +39,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image
 from tf2_msgs.msg import TFMessage
 
-from real_stage_session import stage_session, start, stop
+from real_stage_session import stage_session
 from stage_camera_frames import DATA, make_unseen_worlds, world_at
 
 # (world, x, y, yaw_deg, camera): the robot's pose (None: the world file's own) and what
@@ -132,19 +132,19 @@ class Catch(object):
             sub.unregister()
 
 
-def record_frame(index, frame, wrapper, log, env, out):
+def record_frame(index, frame, wrapper, log, env, group, out):
     world, x, y, yaw_deg, camera = frame
     directory = tempfile.mkdtemp(prefix='stage-camera-world-')
     pose = None if x is None else (x, y, yaw_deg)
     path = world_at(world, pose, camera, directory)
     catch = Catch()
-    stageros = start(wrapper + ['rosrun', 'stage_ros', 'stageros', path], log, env)
+    stageros = group.start(wrapper + ['rosrun', 'stage_ros', 'stageros', path], env, log)
     try:
         if not catch.done.wait(60.0):
             raise RuntimeError('frame %d: no image, camera_info and camera tf within 60 s'
                                % index)
     finally:
-        stop(stageros)
+        group.end(stageros)
         catch.close()
         shutil.rmtree(directory)
     image = catch.image
@@ -178,12 +178,12 @@ def main():
         os.makedirs(args.out)
     for path in make_unseen_worlds():
         print('redrew %s' % os.path.relpath(path))
-    with stage_session('record_stage_camera') as (wrapper, log, env):
+    with stage_session('record_stage_camera') as (wrapper, log, env, group):
         rospy.set_param('/use_sim_time', True)
         frames = []
         for index, frame in enumerate(FRAMES):
             print('== frame %d: %s at %s, camera %s' % (index, frame[0], frame[1:4], frame[4]))
-            frames.append(record_frame(index, frame, wrapper, log, env, args.out))
+            frames.append(record_frame(index, frame, wrapper, log, env, group, args.out))
     document = {
         'schema': 'stage_camera/2',
         'description': 'Real Stage camera frames of line worlds (and one calibration world) '

@@ -20,7 +20,7 @@ from drive_guard import DriveGuard
 
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.evaluation.scoring import CourseMap, taken_every, true_lap_length
+from wall_follower.evaluation.scoring.course import CourseMap, taken_every, true_lap_length
 from wall_follower.params import defaults
 from wall_follower.params.wall_finder import FINDER
 

@@ -14,7 +14,7 @@ from drive_guard import DriveGuard
 
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
 
 
 class FollowLap(unittest.TestCase):

@@ -25,8 +25,10 @@ from unittest import mock
 import rospy
 import rostest
 
-from wall_follower.evaluation import grade_report, grader
-from wall_follower.evaluation.processes import TOKEN_VARIABLE
+from wall_follower.evaluation.grading import report as grade_report
+
+from wall_follower.evaluation.grading import grader
+from wall_follower.evaluation.launching import TOKEN_VARIABLE
 
 SOLUTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'solutions')
 # Small worlds, and a short start limit: every case takes seconds, not minutes.

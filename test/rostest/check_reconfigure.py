@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
 from waiting import wait_until
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.common import pose_of
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.params import defaults

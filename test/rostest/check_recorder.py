@@ -19,7 +19,7 @@ from std_srvs.srv import Empty
 
 from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecordGoal
 from wall_follower.nodes.common import pose_of
-from wall_follower.evaluation.scoring import stretches_on_trail, taken_every
+from wall_follower.evaluation.scoring.course import stretches_on_trail, taken_every
 
 from waiting import wait_until
 

@@ -4,7 +4,7 @@ runs and status 0 (find, follow, wander). Needs the package on ROS_PACKAGE_PATH 
 are found through rospkg), no master."""
 import pytest
 
-from wall_follower.evaluation.benchmark import main
+from wall_follower.evaluation.benchmarks.cli import main
 
 # Parts are imported by name on demand: all of them, and each refusal, come before any run.
 CASES = [

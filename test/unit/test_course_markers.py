@@ -2,7 +2,7 @@
 import pytest
 import rospy
 
-from wall_follower.evaluation.scoring import BAND
+from wall_follower.evaluation.scoring.course import BAND
 from wall_follower.nodes.course_markers import band_marker, find_wall_marker
 
 

@@ -9,9 +9,11 @@ import sys
 
 import pytest
 
-from wall_follower.evaluation import grade_report, grader
-from wall_follower.evaluation.processes import ProcessGroup, marked_processes
-from wall_follower.evaluation.world_generator import GenerationError
+from wall_follower.evaluation.grading import report as grade_report
+
+from wall_follower.evaluation.grading import grader
+from wall_follower.evaluation.launching import marked_processes, ProcessGroup
+from wall_follower.evaluation.worlds.generator import GenerationError
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
 SOLUTIONS = os.path.join(REPO, 'test', 'solutions')
@@ -247,7 +249,7 @@ def test_collect_without_cases_fails(tmp_path):
 
 
 def test_a_case_ends_processes_that_left_its_session():
-    group = ProcessGroup('%d-test' % os.getpid())
+    group = ProcessGroup('%d-test' % os.getpid(), grace=0.5)
     # A shell that starts a process in a session of its own (as roslaunch does
     # its nodes), which ignores SIGINT, and then waits for ever itself.
     script = 'setsid sh -c "trap \\"\\" INT; sleep 300" & sleep 300'
@@ -258,5 +260,5 @@ def test_a_case_ends_processes_that_left_its_session():
         subprocess.call(['sleep', '0.1'])
         deadline -= 1
     assert len(marked_processes(group.token)) >= 3
-    group.stop(grace=0.5)
+    group.stop()
     assert marked_processes(group.token) == []

@@ -17,8 +17,8 @@ from actionlib_msgs.msg import GoalID, GoalStatus
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry
 
-from wall_follower.evaluation.grading import grade_case, grades
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.grading.criteria import grade_case, grades
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
 from wall_follower.nodes.course_monitor import CourseMonitor

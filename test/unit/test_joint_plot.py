@@ -9,8 +9,8 @@ import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
-from wall_follower.evaluation.joint_plot import (DEFAULT_NAME, JointRecord, RecordingSpan, draw,
-                                                 output_path, save, save_somewhere)
+from wall_follower.evaluation.pictures.joint_plot import (DEFAULT_NAME, JointRecord, RecordingSpan,
+                                                          draw, output_path, save, save_somewhere)
 
 
 def test_the_record_keeps_each_joint_by_name_whatever_the_order():

@@ -16,7 +16,7 @@ import os
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.stage_odometry import step_scale_errors
+from wall_follower.evaluation.scoring.stage_odometry import step_scale_errors
 from wall_follower.sim.engine import DEFAULT_ODOM_ERROR_LIMITS, Simulation, _dead_reckoning
 from wall_follower.sim.kinematics import diff_drive_step
 from wall_follower.sim.worldfile import load_world

@@ -18,8 +18,8 @@ import time
 import rospy
 from sensor_msgs.msg import JointState
 
-from wall_follower.evaluation.joint_plot import (JointRecord, RecordingSpan, draw,
-                                                 output_path, save_somewhere)
+from wall_follower.evaluation.pictures.joint_plot import (JointRecord, RecordingSpan, draw,
+                                                          output_path, save_somewhere)
 from wall_follower.nodes.common import init_node
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.params.arm_plot import TABLE

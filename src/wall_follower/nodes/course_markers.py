@@ -4,7 +4,7 @@ Both are visualization_msgs/Marker in base_link, which every robot and
 simulator here has, published latched by wall_following:
 
 - the band (`~band`): two lines beside the robot at the edges of the
-  course's band (evaluation.scoring.BAND) right of the laser, frame-locked
+  course's band (evaluation.scoring.course.BAND) right of the laser, frame-locked
   so that they move with the robot: the wall should run between them;
 - find_wall's answer (`~find_wall_result`): an arrow where the robot stood
   when find_wall answered, green for a wall found, red for none; not
@@ -15,7 +15,7 @@ from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker
 
-from wall_follower.evaluation.scoring import BAND
+from wall_follower.evaluation.scoring.course import BAND
 
 FRAME = 'base_link'
 BAND_LENGTH = 0.5          # m of each line, centred on the laser

@@ -3,7 +3,7 @@
 It listens to what the simulator knows and the robot does not (ground
 truth, and stalls where the built-in simulator reports them) and to what the
 nodes say (cmd_vel, the record_odom action's goal, feedback and result), and
-scores the run with wall_follower.evaluation.scoring. Contact is judged from
+scores the run with wall_follower.evaluation.scoring.course. Contact is judged from
 ground truth and the map too, so the score works on real stageros, which
 publishes no `stalled`.
 """
@@ -23,7 +23,7 @@ from std_srvs.srv import Empty
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 
 from wall_follower.nodes.common import pose_of
-from wall_follower.evaluation.scoring import RunScore, stretches_on_trail
+from wall_follower.evaluation.scoring.course import RunScore, stretches_on_trail
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.

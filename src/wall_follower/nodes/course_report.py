@@ -24,8 +24,8 @@ from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.outputs import output_problem
-from wall_follower.evaluation.plot import plot_course
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.pictures.course_plot import plot_course
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.params.course_report import TABLE
 from wall_follower.sim.worldfile import WorldFileError
 

@@ -20,7 +20,7 @@ from wall_follower.sim.stage_interface import world_path
 from wall_follower.nodes.course_monitor import CourseMonitor
 from wall_follower.nodes.parameters import NodeParameters
 from wall_follower.evaluation.outputs import output_problem
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.params.find_trials import TABLE
 from wall_follower.sim.worldfile import WorldFileError
 from wall_follower.srv import FindWall

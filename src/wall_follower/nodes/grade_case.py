@@ -12,7 +12,7 @@ where the robot truly went), or when the solution cannot finish any more:
 stalled against an obstacle) for ~idle_limit,
 or none of its nodes alive for ~gone_limit wall seconds (once its launch
 file has had ~start_limit wall seconds to start them). Then it writes
-the record (~json) that wall_follower.evaluation.grading grades, and the
+the record (~json) that wall_follower.evaluation.grading.criteria grades, and the
 plot of the true path (~plot), and ends, which ends the launch.
 
 Everything scored comes from the simulator's ground truth and the world
@@ -36,8 +36,8 @@ from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus
 
-from wall_follower.evaluation.plot import plot_course
-from wall_follower.evaluation.scoring import CourseMap, true_lap_length
+from wall_follower.evaluation.pictures.course_plot import plot_course
+from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.common import init_node
 from wall_follower.nodes.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.course_report import course_figures

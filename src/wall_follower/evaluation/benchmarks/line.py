@@ -20,9 +20,10 @@ import time
 
 import numpy as np
 
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table, run_rostest
-from wall_follower.evaluation.line_scoring import speed_bound
-from wall_follower.evaluation.line_track import load_centreline
+from wall_follower.evaluation.launching import run_rostest
+from wall_follower.evaluation.scoring.line import speed_bound
+from wall_follower.evaluation.scoring.line_track import load_centreline
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.params import defaults
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.params.line_follower import CONTROLLERS, TABLE

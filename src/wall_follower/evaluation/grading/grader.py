@@ -19,7 +19,7 @@ root, is run with that directory as a package named like the directory
 any catkin workspace can name its scripts pkg="<that directory's name>".
 
 Before any case runs, every option and the solution itself are checked
-(evaluation/grade_options.py): a mistake in how grade is called ends it at
+(evaluation/grading/options.py): a mistake in how grade is called ends it at
 once with exit status 2. A case whose own harness fails (its master, the
 simulator or the grade_case node does not start, or its record cannot be
 written) is the grader's error, not the solution's: its record holds
@@ -30,24 +30,22 @@ import os
 import shlex
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
 import threading
-import time
-import uuid
 from concurrent.futures import ThreadPoolExecutor
 
 import rospkg
 
 from wall_follower.control.motion import MAX_LINEAR
-from wall_follower.evaluation import grade_options, grade_report
-from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
-from wall_follower.evaluation.processes import ProcessGroup
-from wall_follower.evaluation.grade_options import parser
-from wall_follower.evaluation.world_generator import (GenerationError, Settings, free_space_of,
-                                                      generate, world_name, write_world)
+from wall_follower.evaluation.grading import options as grade_options
+from wall_follower.evaluation.grading import report as grade_report
+from wall_follower.evaluation.grading.options import parser
+from wall_follower.evaluation.launching import (ProcessGroup, display_wrapper, free_port,
+                                                wait_for_port)
+from wall_follower.evaluation.worlds.generator import (GenerationError, Settings, free_space_of,
+                                                       generate, world_name, write_world)
 
 # Simulated seconds a case may last without a lap: a start, then two laps of the
 # world's walls at the speed bound.
@@ -122,18 +120,6 @@ class Solution(object):
         return dict(base, ROS_PACKAGE_PATH=':'.join(paths))
 
 
-def _wait_for_port(port, limit, process):
-    """Until something listens on port; False after limit wall seconds or once process ended."""
-    deadline = time.monotonic() + limit
-    while time.monotonic() < deadline and process.poll() is None:
-        try:
-            socket.create_connection(('localhost', port), timeout=1.0).close()
-            return True
-        except OSError:
-            time.sleep(0.2)
-    return False
-
-
 def case_paths(out, name):
     cases = os.path.join(out, 'cases')
     return {key: os.path.join(cases, name + suffix)
@@ -168,7 +154,7 @@ class CaseRunner(object):
         """
         options = self.options
         paths = case_paths(options.out, world.name)
-        group = ProcessGroup('%d-%s' % (os.getpid(), uuid.uuid4().hex))
+        group = ProcessGroup()
         with self._lock:
             if self._stopping:
                 return None
@@ -235,7 +221,7 @@ class CaseRunner(object):
             '%s:=%s' % item for item in sorted(case_args.items())]
         with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
             watcher = group.start(grading, base, log)
-            if not _wait_for_port(port, MASTER_LIMIT, watcher):
+            if not wait_for_port(port, MASTER_LIMIT, watcher):
                 return 'its master did not start', True
             group.start(self.solution.command(), self.solution.environment(base, scratch),
                         solution_log)

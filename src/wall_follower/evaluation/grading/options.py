@@ -35,9 +35,8 @@ import rosgraph.names
 import roslib.packages
 import rospkg
 
-from wall_follower.evaluation.benchmarks.launching import display_wrapper
-from wall_follower.evaluation.processes import ProcessGroup
-from wall_follower.evaluation.world_generator import Settings
+from wall_follower.evaluation.launching import ProcessGroup, display_wrapper
+from wall_follower.evaluation.worlds.generator import Settings
 from wall_follower.params import parameters
 from wall_follower.params.grade_case import TABLE as CASE_TABLE
 from wall_follower.params.stage_sim import TABLE as SIMULATOR_TABLE
@@ -216,7 +215,7 @@ def solution_problems(launch, args, environment):
 
 def _load_problems(path, args, environment):
     """Load the launch file in a child process (see load_problems) and return its sentences."""
-    group = ProcessGroup('%d-check-%s' % (os.getpid(), uuid.uuid4().hex))
+    group = ProcessGroup('%d-check-%s' % (os.getpid(), uuid.uuid4().hex), grace=1.0)
     command = [sys.executable, '-m', __name__, path] + list(args)
     with tempfile.TemporaryFile(mode='w+') as output:
         process = group.start(command, environment, output)
@@ -225,7 +224,7 @@ def _load_problems(path, args, environment):
         except subprocess.TimeoutExpired:
             return ['the launch file %s did not load within %.0f s' % (path, LOAD_LIMIT)]
         finally:
-            group.stop(grace=1.0)
+            group.stop()
         output.seek(0)
         lines = [line.strip() for line in output.read().splitlines() if line.strip()]
     problems = [line[len(PROBLEM):] for line in lines if line.startswith(PROBLEM)]

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from wall_follower.evaluation.geometry import cast_rays, polygon_clearance, solid_edges
+from wall_follower.evaluation.scoring.geometry import cast_rays, polygon_clearance, solid_edges
 from wall_follower.control.lap import LapRecorder
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.control.lines import fit_line

@@ -9,8 +9,8 @@ import html
 import json
 import os
 
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table as _print_rows
-from wall_follower.evaluation.grading import CRITERIA, grades
+from wall_follower.evaluation.tables import fmt, print_table as _print_rows
+from wall_follower.evaluation.grading.criteria import CRITERIA, grades
 
 # grade's exit status when a case could not be graded (its harness failed).
 NOT_GRADED = 3

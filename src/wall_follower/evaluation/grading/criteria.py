@@ -27,7 +27,7 @@ import math
 from collections import OrderedDict
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.evaluation.scoring import taken_every
+from wall_follower.evaluation.scoring.course import taken_every
 
 FIND_WALL_DISTANCE = (0.25, 0.35)
 FIND_WALL_HEADING = math.radians(10.0)

@@ -13,8 +13,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.evaluation.geometry import cast_rays
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.geometry import cast_rays
+from wall_follower.evaluation.scoring.course import CourseMap
 
 __all__ = ['MapQuality', 'map_quality']
 

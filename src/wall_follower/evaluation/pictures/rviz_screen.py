@@ -8,13 +8,12 @@ ImageMagick's `import` (imagemagick); `missing_tools()` says which are absent.
 """
 import os
 import shutil
-import signal
 import subprocess
 
 import numpy as np
 from PIL import Image
 
-from wall_follower.evaluation.benchmarks.launching import free_port
+from wall_follower.evaluation.launching import ProcessGroup, free_port, master_environment
 
 SCREEN = (1280, 800)   # pixels: the configs' window (1080 x 760) fits
 STOP_WAIT = 15.0       # wall seconds for a launch to end on SIGINT before it is killed
@@ -67,21 +66,14 @@ class Launch(object):
 
     def __init__(self, screen, launch_file, args, log):
         port = free_port()
-        env = dict(os.environ, DISPLAY=screen.display,
-                   ROS_MASTER_URI='http://localhost:%d' % port)
-        self.process = subprocess.Popen(
+        self._group = ProcessGroup(grace=STOP_WAIT)
+        self.process = self._group.start(
             ['roslaunch', '-p', str(port), 'wall_follower', launch_file] + list(args),
-            env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+            master_environment(port, dict(os.environ, DISPLAY=screen.display)), log)
 
     def running(self):
         return self.process.poll() is None
 
     def stop(self):
-        """End the launch and all it started (its process group), as Ctrl-C would."""
-        if self.running():
-            os.killpg(self.process.pid, signal.SIGINT)
-            try:
-                self.process.wait(STOP_WAIT)
-            except subprocess.TimeoutExpired:
-                os.killpg(self.process.pid, signal.SIGKILL)
-                self.process.wait()
+        """End the launch and all it started, as Ctrl-C would; killed if it does not end."""
+        self._group.stop()
