@@ -31,14 +31,14 @@ from drive_guard import DriveGuard
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
-from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.mapping.mapfile import load_map
 from wall_follower.mapping.poses import between, wrap
-from wall_follower.nodes.common import pose_of, yaw_of
-from wall_follower.sim.stage_interface import world_path
+from wall_follower.nodes.shared.messages import pose_of, yaw_of
 from wall_follower.params import defaults
 from wall_follower.params.slam import TABLE
+from wall_follower.sim.stage_interface import world_path
 
 # Wall seconds for the lap, the saved map and the robot to settle.
 RUN_LIMIT = 280.0

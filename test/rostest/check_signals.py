@@ -5,7 +5,7 @@ it comes, on a machine whose cores are all busy.
 Each node is started as a child process and signalled at one of MOMENTS
 of its life: a stage it has reached, seen from outside, and a delay after
 it. The stages: its Python has started (it is still importing), it has
-installed a signal handler (common.init_node, about to register with the
+installed a signal handler (shared.startup.init_node, about to register with the
 master), and the master knows it (from then on it waits for its first
 scan, odometry, service or action server, and runs). Counted from stages,
 not from the start, because a loaded machine stretches a start unevenly:

@@ -1,6 +1,6 @@
-"""The camera's floor projection and the base's pose from camera_info and tf (nodes.camera_floor):
-tf is never asked for a stamp far from now (tf2's core aborts the process on one), and one
-projection serves as long as nothing it was made from changes.
+"""The camera's floor projection and the base's pose from camera_info and tf
+(nodes.shared.camera_floor): tf is never asked for a stamp far from now (tf2's core aborts
+the process on one), and one projection serves as long as nothing it was made from changes.
 
 Needs ROS's Python modules but no master: tf's buffer and listener are stand-ins that hold
 one transform, the camera_info subscriber is only created.
@@ -13,7 +13,7 @@ import tf2_ros
 from geometry_msgs.msg import Transform
 from sensor_msgs.msg import CameraInfo
 
-from wall_follower.nodes import camera_floor
+from wall_follower.nodes.shared import camera_floor
 from wall_follower.params import defaults
 from wall_follower.params.line_follower import TABLE
 

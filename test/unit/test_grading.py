@@ -21,8 +21,8 @@ from wall_follower.evaluation.grading.criteria import grade_case, grades
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
-from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.nodes.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.evaluation.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2].

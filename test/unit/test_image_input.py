@@ -1,14 +1,14 @@
-"""Frames as line_follower reads them (nodes.image_input): every encoding cv_bridge reads into
-colour, every bad frame named in words instead of raised, and a frame stamped in the future
-held as stale input (no time arithmetic meets its stamp). Needs ROS's Python modules but no
-master: LatestImage's subscriber is only created, its callback called here."""
+"""Frames as line_follower reads them (nodes.shared.latest_image): every encoding cv_bridge
+reads into colour, every bad frame named in words instead of raised, and a frame stamped in
+the future held as stale input (no time arithmetic meets its stamp). Needs ROS's Python
+modules but no master: LatestImage's subscriber is only created, its callback called here."""
 import cv2
 import numpy as np
 import pytest
 import rospy
 from sensor_msgs.msg import CompressedImage, Image
 
-from wall_follower.nodes.image_input import LatestImage, read_compressed, read_image
+from wall_follower.nodes.shared.latest_image import LatestImage, read_compressed, read_image
 
 
 def image_msg(array, encoding):

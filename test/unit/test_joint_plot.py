@@ -133,7 +133,7 @@ def test_the_recorder_loads_matplotlib_only_to_save():
     # past the two seconds a Ctrl-C may take (signals.test).
     loaded = subprocess.check_output([sys.executable, '-c', (
         'import sys\n'
-        'import wall_follower.nodes.arm_plot\n'
+        'import wall_follower.nodes.arm.arm_plot\n'
         'print(sorted(m for m in sys.modules if m.split(".")[0] == "matplotlib"))')],
         universal_newlines=True)
     assert loaded.strip() == '[]'

@@ -7,7 +7,7 @@ import pytest
 import rospy
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.nodes.common import LatestScan
+from wall_follower.nodes.shared.latest_scan import LatestScan
 
 
 def scan_taken_at(stamp):

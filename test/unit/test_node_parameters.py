@@ -1,7 +1,7 @@
 """NodeParameters at start and under reconfiguration, on a stand-in parameter server."""
 import pytest
 
-from wall_follower.nodes import parameters
+from wall_follower.nodes.shared import parameters
 from wall_follower.params import Parameter, Section
 
 TABLE = (Section('node', (Parameter('target_distance', 0.25, 'wanted distance [m]', 0.1, 1.0),

@@ -14,8 +14,8 @@ import threading
 import pytest
 import rospy
 
-from wall_follower.nodes import signals
-from wall_follower.nodes.common import init_node
+from wall_follower.nodes.shared import signals
+from wall_follower.nodes.shared.startup import init_node
 
 SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, 'scripts')
 

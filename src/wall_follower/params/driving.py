@@ -2,7 +2,7 @@
 
 Each driving node's table (wall_following, wall_finder and the exercises)
 takes these two Sections rather than declaring the same names again;
-nodes/drive_loop.py builds and retunes the loop and the clamp from them.
+nodes/shared/drive_loop.py builds and retunes the loop and the clamp from them.
 """
 import math
 from collections import namedtuple
@@ -43,7 +43,7 @@ CAMERA_INPUT = LoopInput('image_timeout', None)
 
 
 def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
-    """The Section of the DriveLoop's parameters (nodes/drive_loop.py) of a node that reads
+    """The Section of the DriveLoop's parameters (nodes/shared/drive_loop.py) of a node that reads
     the laser.
 
     scan_timeout: its default [s], which differs between nodes, and
@@ -81,5 +81,5 @@ LIMITS = Section('limits', (
     P('max_angular', MAX_ANGULAR, 'clamp on every turn rate sent, and the turn rate limit of '
       'the behaviour [rad/s] (the same)', 0.0, MAX_ANGULAR),
 ))
-"""The clamp on every command (nodes/common.VelocityCommander), which behaviours that plan
+"""The clamp on every command (nodes/shared/velocity.VelocityCommander), which behaviours that plan
 their own speeds (WallFinder, SquareDriver) also take as their limits."""

@@ -30,7 +30,7 @@ NODE = (
           '[px]', 0.0, 100.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.line_follower)."""
+"""The node's own parameters (wall_follower.nodes.camera.line_follower)."""
 
 CHECK = (
     Section('line', (

@@ -18,6 +18,8 @@ from collections import namedtuple
 
 import numpy as np
 
+from wall_follower.rotation import matrix_of_quaternion, wrap_angle
+
 OPTICAL = 'optical'
 STAGEROS = 'stageros'
 AUTO = 'auto'
@@ -50,15 +52,6 @@ def convention_of(frame_id, convention):
     return OPTICAL if 'optical' in frame_id else STAGEROS
 
 
-def rotation_of(quaternion):
-    """3x3 rotation matrix of a unit quaternion (x, y, z, w)."""
-    x, y, z, w = np.asarray(quaternion, float) / np.linalg.norm(quaternion)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
 def level_camera_axes(tilt):
     """Columns: the optical x (right), y (down), z (ahead) axes, in the floor frame, of a
     camera looking straight ahead, tilted down by tilt [rad]."""
@@ -70,14 +63,14 @@ def camera_pose(translation, quaternion, convention):
     """(optical axes as columns, optical centre) in the floor frame, from the tf of the
     camera's frame in the floor frame (translation x, y, z; quaternion x, y, z, w) read
     in the given convention (OPTICAL or STAGEROS)."""
-    rotation = rotation_of(quaternion)
+    rotation = matrix_of_quaternion(quaternion)
     if convention == OPTICAL:
         return rotation, np.asarray(translation, float)
     # STAGEROS: the frame's y axis is Stage's "down" in the image plane; its roll is
     # -90 deg - tilt whatever its yaw, i.e. the angle of y below the floor plane.
     roll = math.atan2(rotation[2, 1], rotation[2, 2])
     tilt = -roll - math.pi / 2.0
-    tilt = math.atan2(math.sin(tilt), math.cos(tilt))
+    tilt = wrap_angle(tilt)
     return level_camera_axes(tilt), np.array([0.0, 0.0, float(translation[2])])
 
 

@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import STOP, Answer, Command
+from wall_follower.rotation import wrap_angle
 from wall_follower.vision.line_path import path_length
 
 FOLLOW = 'follow'
@@ -133,8 +134,7 @@ class LinePursuit(object):
         return Answer(self._command(path, end_seen, base), known)
 
     def _command(self, path, end_seen, base):
-        turned = 0.0 if self._last_yaw is None else abs(
-            math.atan2(math.sin(base[2] - self._last_yaw), math.cos(base[2] - self._last_yaw)))
+        turned = 0.0 if self._last_yaw is None else abs(wrap_angle(base[2] - self._last_yaw))
         self._last_yaw = base[2]
         if self.state == FINISHED:
             return STOP

@@ -1,6 +1,6 @@
 """One step of the line follower: a camera frame in, a command and what is known ahead out.
 
-The node (nodes/line_follower.py), the benchmark (evaluation/benchmarks/line.py) and
+The node (nodes/camera/line_follower.py), the benchmark (evaluation/benchmarks/line.py) and
 the closed-loop unit tests all run this step, so that what is measured and tested
 is what drives. It takes plain values: the frame (a BGR image), the camera's
 FloorProjection (vision.floor, in the base's frame), the base's pose in the

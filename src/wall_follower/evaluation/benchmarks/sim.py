@@ -21,14 +21,14 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
-import wall_follower
 from wall_follower.evaluation.launching import WORLDS, ProcessGroup, free_port, shipped_world
 from wall_follower.evaluation.tables import fmt, print_table
-from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
-from wall_follower.sim.worldfile import load_world
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.stage_interface import rate_in_quit_report
+from wall_follower.sim.worldfile import load_world
+import wall_follower
 
 HELD_SPEEDUP = 20.0
 GOAL_FREE_RUN = 500.0
@@ -68,7 +68,7 @@ class PrivateMaster(object):
         package_parent = os.path.dirname(os.path.dirname(wall_follower.__file__))
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(
             [package_parent] + os.environ.get('PYTHONPATH', '').split(os.pathsep)))
-        command = [sys.executable, '-m', 'wall_follower.nodes.stage_sim', world,
+        command = [sys.executable, '-m', 'wall_follower.nodes.sim.stage_sim', world,
                    '__name:=simulator'] + ['_%s:=%s' % item for item in sorted(params.items())]
         return self._group.start(command, env, output, errors=subprocess.DEVNULL)
 

@@ -1,6 +1,6 @@
 """The grade of one course run, criterion by criterion, from ground-truth figures.
 
-A case record (what nodes/grade_case.py writes for one world) holds only
+A case record (what nodes/evaluation/grade_case.py writes for one world) holds only
 what the simulator's ground truth and the world map say, and what the
 solution's record_odom action sent; nothing the solution says about its
 own position counts. Each criterion passes or fails with its reason in

@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from wall_follower.rotation import wrap_angle
+
 __all__ = ['ODOM_FIELDS', 'GROUND_TRUTH_FIELDS', 'step_scale_errors']
 
 ODOM_FIELDS = ('x', 'y', 'yaw', 'vx', 'vy', 'wz')
@@ -33,6 +35,6 @@ def step_scale_errors(odom, dt):
             along = (x - before[0]) * math.cos(yaw) + (y - before[1]) * math.sin(yaw)
             ex.append(along / (vx * dt) - 1.0)
         if wz != 0.0:
-            turn = math.remainder(yaw - before[2], 2.0 * math.pi)
+            turn = wrap_angle(yaw - before[2])
             ea.append(turn / (wz * dt) - 1.0)
     return np.array(ex), np.array(ea)
