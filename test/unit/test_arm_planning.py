@@ -93,3 +93,15 @@ def test_the_least_velocity_scaling_is_allowed_and_zero_means_full_speed():
     velocity, acceleration = limits(arm)
     longest = TimedMove(arm.lower, arm.upper, velocity * MIN_VELOCITY_SCALING, acceleration)
     assert 5 * 60.0 < longest.duration < 15 * 60.0     # about ten minutes, as documented
+
+
+def test_a_move_s_time_share_is_exactly_one_from_its_end_on():
+    """move_arm's feedback: a move judged at its end (started + duration) is reported done,
+    not a rounding short of it ((0.1 + 4.0) - 0.1 is a shade under 4.0)."""
+    move = TimedMove([0.0], [1.0], [0.25], [1e9])
+    assert move.duration == pytest.approx(4.0)
+    move.duration = 4.0
+    assert move.time_share(0.1, 0.1 + 4.0) == 1.0
+    assert move.time_share(0.1, 9.0) == 1.0
+    assert move.time_share(0.1, 2.1) == pytest.approx(0.5)
+    assert move.time_share(0.1, 0.0) == 0.0

@@ -82,6 +82,14 @@ class TimedMove(object):
         left = self.duration - t
         return 1.0 - 0.5 * self.gain * left * left, self.gain * left, -self.gain
 
+    def time_share(self, started, now):
+        """The share of the move's time past at now, for a move begun at started (both in
+        s): 0 to 1, and exactly 1 from its end (started + duration) on, so that a move
+        judged ended is never reported a rounding short of done."""
+        if self.duration == 0.0 or now >= started + self.duration:
+            return 1.0
+        return min(1.0, max(0.0, (now - started) / self.duration))
+
     def sample(self, time):
         """(positions, velocities, accelerations) at time [s] since the start."""
         s, rate, gain = self.progress(time)

@@ -186,9 +186,8 @@ class MoveArmServer(object):
                 why = 'pre-empted by a new goal' if self.server.is_new_goal_available() \
                     else 'cancelled'
                 raise GoalFailed('%s: %s' % (why, self._stopped(values)))
-            progress = 1.0 if plan.move.duration == 0.0 else \
-                min(1.0, max(0.0, (state.stamp - sent) / plan.move.duration))
-            self.server.publish_feedback(MoveArmFeedback(progress=progress))
+            self.server.publish_feedback(MoveArmFeedback(
+                progress=plan.move.time_share(sent, state.stamp)))
             if state.stamp >= end and np.all(np.abs(state.positions - plan.goal) <=
                                              values['goal_tolerance']) and \
                     np.all(np.abs(state.velocities) < values['stopped_velocity']):
