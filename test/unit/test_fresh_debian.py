@@ -78,4 +78,3 @@ def test_node_modules_are_found_by_walking_the_package_subpackages_too(tmp_path)
     assert fresh.node_modules(str(nodes)) == [
         'wall_follower.nodes.a', 'wall_follower.nodes.b', 'wall_follower.nodes.arm',
         'wall_follower.nodes.arm.move']
-
