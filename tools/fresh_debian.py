@@ -1,12 +1,14 @@
 """The Python side of tools/check-fresh-debian: what it reads and what it measures.
 
 On the host: `mirror` prints the Debian mirror the machine's apt uses (from
-/etc/apt/sources.list.d/*.sources and sources.list), so that the fresh root
-comes from the same registry. Inside the fresh root, after the README's main
-command has built the workspace: `node-modules` lists every module of
-wall_follower.nodes (found by walking the package, so that nodes moved into
-subpackages are found too); `driven` waits until the robot has driven a
-distance on ground truth; `move-arm` sends move_arm a goal to a named state.
+/etc/apt/sources.list.d/*.sources and sources.list), and `sources` the
+machine's Debian 12 sources (its updates and security too) as a sources.list,
+so that the fresh root comes from the same registry and nothing else.
+Inside the fresh root, after the README's main command has built the
+workspace: `node-modules` lists every module of wall_follower.nodes (found by
+walking the package, so that nodes moved into subpackages are found too);
+`driven` waits until the robot has driven a distance on ground truth;
+`move-arm` sends move_arm a goal to a named state.
 Each check exits non-zero with a line saying what it saw.
 """
 import argparse
@@ -21,8 +23,9 @@ SUITE = 'bookworm'
 
 
 def sources_entries(text, deb822):
-    """(types, uris, suites) of each enabled entry of an apt sources file: deb822 stanzas
-    (a .sources file) or one-line entries (`deb [options] URI SUITE COMPONENT...`)."""
+    """(types, uris, suites, components) of each enabled entry of an apt sources file:
+    deb822 stanzas (a .sources file) or one-line entries (`deb [options] URI SUITE
+    COMPONENT...`)."""
     entries = []
     if deb822:
         for stanza in text.split('\n\n'):
@@ -34,7 +37,8 @@ def sources_entries(text, deb822):
                 fields[key.strip().lower()] = value.split()
             if fields.get('enabled', ['yes'])[0].lower() == 'no' or 'uris' not in fields:
                 continue
-            entries.append((fields.get('types', []), fields['uris'], fields.get('suites', [])))
+            entries.append((fields.get('types', []), fields['uris'], fields.get('suites', []),
+                            fields.get('components', [])))
         return entries
     for line in text.splitlines():
         words = line.split('#', 1)[0].split()
@@ -44,23 +48,32 @@ def sources_entries(text, deb822):
                     del words[1]
                 del words[1]
             if len(words) >= 3:
-                entries.append(([words[0]], [words[1]], [words[2]]))
+                entries.append(([words[0]], [words[1]], [words[2]], words[3:]))
     return entries
 
 
-def mirror(source_files, suite=SUITE):
-    """The URI of the first binary-package source of `suite` in the files given; None if
-    none names it."""
+def debian_sources(source_files, suite=SUITE):
+    """(URI, suite, components) of each binary-package source of `suite` and its updates
+    and security suites (`suite`-updates, ...) in the files given, in order; files that
+    cannot be read are skipped."""
+    found = []
     for path in source_files:
         try:
             with open(path) as stream:
                 text = stream.read()
         except EnvironmentError:
             continue
-        for types, uris, suites in sources_entries(text, path.endswith('.sources')):
-            if 'deb' in types and suite in suites and uris:
-                return uris[0]
-    return None
+        for types, uris, suites, components in sources_entries(text, path.endswith('.sources')):
+            if 'deb' in types:
+                found.extend((uri, name, components) for uri in uris for name in suites
+                             if name == suite or name.startswith(suite + '-'))
+    return found
+
+
+def mirror(source_files, suite=SUITE):
+    """The URI of the first binary-package source of `suite` itself; None if none names it."""
+    return next((uri for uri, name, _ in debian_sources(source_files, suite) if name == suite),
+                None)
 
 
 def apt_source_files(etc='/etc/apt'):
@@ -140,6 +153,7 @@ def main(argv=None):
     commands = parser.add_subparsers(dest='command')
     commands.required = True
     commands.add_parser('mirror', help="the machine's Debian mirror")
+    commands.add_parser('sources', help="the machine's Debian sources, as a sources.list")
     nodes = commands.add_parser('node-modules', help='the modules of wall_follower.nodes')
     nodes.add_argument('package_dir')
     drive = commands.add_parser('driven', help='wait for travel on ground truth')
@@ -156,6 +170,10 @@ def main(argv=None):
                   file=sys.stderr)
             return 1
         print(found)
+        return 0
+    if args.command == 'sources':
+        for uri, suite, components in debian_sources(apt_source_files()):
+            print('deb %s %s %s' % (uri, suite, ' '.join(components) or 'main'))
         return 0
     if args.command == 'node-modules':
         print('\n'.join(node_modules(args.package_dir)))

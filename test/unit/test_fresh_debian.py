@@ -52,6 +52,17 @@ def test_the_mirror_is_the_first_enabled_binary_source_of_bookworm(tmp_path):
     assert fresh.mirror([write(tmp_path, 'sources.list', ONE_LINE)]) == 'http://line.example/debian'
 
 
+def test_the_sources_are_bookworms_own_updates_and_security_only(tmp_path):
+    files = [write(tmp_path, 'debian.sources', DEB822),
+             write(tmp_path, 'other.list', 'deb http://vendor.example/apt stable main\n')]
+    assert fresh.debian_sources(files) == [
+        ('http://security.example/debian-security', 'bookworm-security', ['main']),
+        ('http://mirror.example/debian', 'bookworm', ['main']),
+        ('http://mirror.example/debian', 'bookworm-updates', ['main']),
+        ('http://second.example/debian', 'bookworm', ['main']),
+        ('http://second.example/debian', 'bookworm-updates', ['main'])]
+
+
 def test_files_are_read_in_order_and_missing_ones_skipped(tmp_path):
     first = write(tmp_path, 'sources.list', '# nothing here\n')
     second = write(tmp_path, 'debian.sources', DEB822)
