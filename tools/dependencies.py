@@ -50,7 +50,7 @@ MODULES = {
     'pytest': ('python3-pytest', 'python3-pytest', TEST),
     'rosgraph': ('rosgraph', 'python3-rosgraph', RUN),
     'rosgraph_msgs': ('rosgraph_msgs', 'python3-rosgraph-msgs', RUN),
-    'roslaunch': ('roslaunch', 'python3-roslaunch', TEST),
+    'roslaunch': ('roslaunch', 'python3-roslaunch', RUN),
     'roslib': ('roslib', 'python3-roslib', RUN),
     'rosnode': ('rosnode', 'python3-rosnode', TEST),
     'rospkg': ('python3-rospkg', 'python3-rospkg', RUN),
