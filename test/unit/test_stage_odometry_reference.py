@@ -6,7 +6,7 @@ and in a unit_angle "radians" world) and without any (a world recorded in two
 runs) through straight, turn-in-place, past-the-bounds, sideways-commanded and
 reverse arcs, with a /reset_positions between, one of them into a post: /odom
 and ground truth of every update. Each run is replayed through `Simulation` on
-the same world file, read by worldfile.py: the recorded commands in, the
+the same world file, read by sim.worldfile: the recorded commands in, the
 odometry and ground truth out.
 """
 import json

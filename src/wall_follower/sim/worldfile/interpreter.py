@@ -1,334 +1,53 @@
-"""Reader for Stage 4.x world files.
-
-Only what a 2D wall-following simulation needs is interpreted: the world's
-timing and raytrace resolution, static obstacles (bitmaps, boxes, block
-polygons) with their colours, differential-drive `position` robots
-carrying one ranger and at most one camera, and the window's size (real
-Stage draws the camera in it).
-Everything else is skipped and listed in `World.unknown_keywords`, so that a
-world written for real Stage still loads. What loads but is not what its
-author likely meant (a camera capped at the window's size, a camera that
-no robot carries, a second camera on a robot, a pan or tilt beyond a half
-turn or a quarter turn) is said in `World.warnings`. Geometry follows what real Stage
-does (see Stage's blockgroup.cc / model.cc): the bounding box of a model's
-blocks, or of a bitmap's black pixels, is scaled to the model's `size` and
-centred on the model's pose.
-
-A malformed file raises WorldFileError("<file>:<line>: <problem>") and never
-a traceback from deep inside the parser; so does a world whose obstacles
-span more cells of its `resolution` than the simulator's grid may hold
-(MAX_GRID_CELLS), or whose camera would still draw more than
-MAX_CAMERA_PIXELS once capped at the window, before anything that size is
-allocated.
-"""
+"""A parsed world file interpreted as real Stage would: defines applied, models placed and
+sized, robots with their ranger and camera, Stage's defaults where a property is missing."""
 import math
 import os
-import re
-from collections import OrderedDict, namedtuple
+from collections import OrderedDict
 
 import numpy as np
 
-from .colors import color_by_name
-from .kinematics import normalize_angle
+from ..colors import color_by_name
+from ..kinematics import normalize_angle
+from .bitmaps import bitmap_edges, black_pixels, boundary_blocks, fit_to_size, polygon_edges
+from .parser import Parser, Prop
+from .specs import (MAX_CAMERA_PIXELS, MAX_GRID_CELLS, MAX_SAMPLES, STAGE_MENU_BAR,
+                    STAGE_VELOCITY_BOUNDS, STAGEROS_WINDOW, CameraSpec, Obstacle, RangerSpec,
+                    RobotSpec, World, WorldFileError)
+from .tokens import tokenize
 
-__all__ = ['WorldFileError', 'World', 'Obstacle', 'RobotSpec', 'RangerSpec', 'CameraSpec',
-           'load_world', 'STAGE_VELOCITY_BOUNDS']
-
-# Stage's ModelPosition default bounds: +-1 m/s on x, y, z and +-90 deg/s on yaw.
-STAGE_VELOCITY_BOUNDS = (-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -math.pi / 2.0, math.pi / 2.0)
 
 # Entity types real Stage knows but this simulator does not model; they are skipped.
 _SKIPPED_MODEL_TYPES = frozenset((
     'actuator', 'blinkenlight', 'blobfinder', 'bumper', 'fiducial', 'gripper',
     'laser', 'lightindicator', 'powerpack'))
+
+
 _TOP_LEVEL_IGNORED = frozenset(('window', 'gui'))
 
-# Real Stage draws a camera's frame in its window's drawing area, below a menu bar of this
-# height, and caps the camera's resolution at that area's width and height (worldgui.cc,
-# model_camera.cc); stageros opens a window of STAGEROS_WINDOW unless `window size` says.
-STAGE_MENU_BAR = 30
-STAGEROS_WINDOW = (600, 400)
-# The most pixels a camera may draw (1920 x 1080): the simulator draws a frame on the CPU
-# at about 0.1 us a pixel, a quarter of a second at this size (two and a half world steps
-# of 0.1 s), and the step, and the node's answer to Ctrl-C, wait for it.
-MAX_CAMERA_PIXELS = 1920 * 1080
-
-# Black pixels: Stage treats a pixel as free when its first channel is above 127.
-_BITMAP_THRESHOLD = 127
-
-# The most cells of `resolution` the obstacles may span: the simulator's grid keeps some
-# 30 bytes a cell (sim.grid), so this bounds it to about half a GB, where a resolution
-# slipped by a few decimal places would otherwise ask for many GB.
-MAX_GRID_CELLS = 20000000
-# The most beams a ranger may have: far above any laser's, far below what exhausts memory.
-MAX_SAMPLES = 100000
 
 # Stage 4.3's defaults (model_camera.cc, model_ranger.cc).
 _CAMERA_RESOLUTION = (32.0, 32.0)
+
+
 _CAMERA_RANGE = (0.2, 8.0)
+
+
 _CAMERA_FOV = (70.0, 40.0)
+
+
 _CAMERA_SIZE = (0.1, 0.07, 0.05)
+
+
 _CAMERA_COLOR = (0.0, 0.0, 0.0)
+
+
 _RANGER_SIZE = (0.15, 0.15, 0.2)
+
+
 _RANGER_COLOR = (0.0, 0.0, 0.5)
+
+
 _MODEL_COLOR = (1.0, 0.0, 0.0)   # Stage's Model colour and unknown colour names: red
-
-
-class WorldFileError(Exception):
-    """A world file that cannot be read; str() is '<file>:<line>: <problem>'."""
-
-    def __init__(self, path, line, problem):
-        super(WorldFileError, self).__init__('%s:%d: %s' % (path, line, problem))
-        self.path = path
-        self.line = line
-        self.problem = problem
-
-
-RangerSpec = namedtuple('RangerSpec', [
-    'pose',        # (x, y, z, yaw) of the ranger model in base_link (stageros' laser tf)
-    'sensor_pose',  # (x, y, z, yaw) of the sensor inside the ranger model (usually zeros)
-    'sensor_height',  # z of the beams above the robot's base, for Stage's obstacle height test
-    'range_min', 'range_max',
-    'fov',         # rad
-    'samples',
-    'noise',       # (constant sigma [m], proportional factor, angle [rad]) as Stage's `noise`
-    'size',        # (length, width, height) of the ranger model's box
-    'color',       # (r, g, b) in [0, 1] of that box
-])
-
-CameraSpec = namedtuple('CameraSpec', [
-    'pose',        # (x, y, z, yaw) of the camera model in base_link
-    'size',        # (length, width, height) of the camera model's box
-    'color',       # (r, g, b) in [0, 1] of that box
-    'resolution',  # (width, height) [px]
-    'range',       # (near, far) clip distances [m] along the optical axis
-    'fov',         # (horizontal, vertical) [rad]
-    'pantilt',     # (pan, tilt) [rad]; pan > 0 turns right, tilt > 0 looks down (as Stage)
-    'height',      # z of the eye above the floor: body height + pose z (as Stage draws it)
-])
-
-RobotSpec = namedtuple('RobotSpec', [
-    'name',
-    'pose',        # (x, y, yaw) start pose in the world
-    'size',        # (length, width, height)
-    'origin',      # (x, y, yaw) of the body box centre in base_link
-    'drive',
-    'localization',
-    'velocity_bounds',  # (xmin, xmax, ymin, ymax, zmin, zmax, amin [rad/s], amax [rad/s])
-    'ranger',      # RangerSpec or None
-    'odom_error',  # (x, y, yaw) odometry scale errors for localization "odom", or None
-    'color',       # (r, g, b) in [0, 1] of the body
-    'camera',      # CameraSpec or None
-])
-
-Obstacle = namedtuple('Obstacle', [
-    'name',
-    'pose',        # (x, y, z, yaw) global pose of the model
-    'origin',      # (x, y, z, yaw) geometry offset (Stage's `origin`)
-    'edges',       # (M, 2, 2) directed outline edges [start, end] in the model's geometry
-                   # frame, already scaled to `size` (Stage rasterises edge by edge)
-    'z_range',     # (zmin, zmax) global heights of the model's blocks
-    'ranger_return',
-    'obstacle_return',
-    'color',       # (r, g, b) in [0, 1], as the camera draws the model
-])
-
-World = namedtuple('World', [
-    'path', 'resolution', 'interval_sim', 'speedup', 'quit_time', 'paused',
-    'obstacles', 'robots', 'unknown_keywords',
-    'warnings',    # '<file>:<line>: <what>' of what loads but likely not as meant
-])
-
-_Token = namedtuple('_Token', ['kind', 'text', 'path', 'line'])
-_Prop = namedtuple('_Prop', ['values', 'path', 'line'])
-
-_WORD_RE = re.compile(r'[A-Za-z][A-Za-z0-9.\-_\[\]]*')
-_NUM_RE = re.compile(r'[+\-.0-9]+')
-_PUNCT = '()[]'
-
-
-def _tokenize(path, include_stack=()):
-    """Tokens of `path`, with `include "file"` expanded in place."""
-    try:
-        with open(path) as stream:
-            text = stream.read()
-    except (IOError, OSError, UnicodeDecodeError) as err:
-        raise WorldFileError(path, 0, 'cannot read world file (%s)' % err)
-    tokens = []
-    line = 1
-    pos = 0
-    end = len(text)
-    while pos < end:
-        ch = text[pos]
-        if ch == '\n':
-            line += 1
-            pos += 1
-        elif ch.isspace():
-            pos += 1
-        elif ch == '#':
-            newline = text.find('\n', pos)
-            pos = end if newline < 0 else newline
-        elif ch == '"':
-            close = text.find('"', pos + 1)
-            newline = text.find('\n', pos + 1)
-            if close < 0 or (0 <= newline < close):
-                raise WorldFileError(path, line, 'unterminated string')
-            tokens.append(_Token('string', text[pos + 1:close], path, line))
-            pos = close + 1
-        elif ch in _PUNCT:
-            tokens.append(_Token(ch, ch, path, line))
-            pos += 1
-        elif ch.isalpha():
-            word = _WORD_RE.match(text, pos).group(0)
-            tokens.append(_Token('word', word, path, line))
-            pos += len(word)
-        elif ch in '+-.' or ch.isdigit():
-            number = _NUM_RE.match(text, pos).group(0)
-            tokens.append(_Token('number', number, path, line))
-            pos += len(number)
-        else:
-            raise WorldFileError(path, line, 'unexpected character %r' % ch)
-    return _expand_includes(tokens, include_stack + (os.path.abspath(path),))
-
-
-def _expand_includes(tokens, include_stack):
-    out = []
-    index = 0
-    while index < len(tokens):
-        token = tokens[index]
-        if token.kind == 'word' and token.text == 'include':
-            if index + 1 >= len(tokens) or tokens[index + 1].kind != 'string':
-                raise WorldFileError(token.path, token.line, 'include needs a quoted file name')
-            name = tokens[index + 1].text
-            target = os.path.join(os.path.dirname(token.path), name)
-            if not os.path.isfile(target):
-                raise WorldFileError(token.path, token.line, 'include not found: "%s"' % name)
-            if os.path.abspath(target) in include_stack:
-                raise WorldFileError(token.path, token.line, 'recursive include of "%s"' % name)
-            out.extend(_tokenize(target, include_stack))
-            index += 2
-        else:
-            out.append(token)
-            index += 1
-    return out
-
-
-class _Entity(object):
-    """One `type ( ... )` block as written: properties and child entities."""
-
-    def __init__(self, kind, path, line):
-        self.kind = kind
-        self.path = path
-        self.line = line
-        self.props = OrderedDict()
-        self.children = []
-
-
-class _Parser(object):
-    def __init__(self, tokens, path):
-        self.tokens = tokens
-        self.path = path
-        self.index = 0
-        self.defines = OrderedDict()   # name -> (parent, _Entity)
-
-    def _peek(self, offset=0):
-        i = self.index + offset
-        return self.tokens[i] if i < len(self.tokens) else None
-
-    def _last_position(self):
-        if self.tokens:
-            last = self.tokens[-1]
-            return last.path, last.line
-        return self.path, 1
-
-    def _next(self, what):
-        token = self._peek()
-        if token is None:
-            path, line = self._last_position()
-            raise WorldFileError(path, line, 'unexpected end of file, expected %s' % what)
-        self.index += 1
-        return token
-
-    def parse(self):
-        root = _Entity('', self.path, 1)
-        self._parse_body(root, top_level=True)
-        return root
-
-    def _parse_body(self, entity, top_level):
-        while True:
-            token = self._peek()
-            if token is None:
-                if not top_level:
-                    raise WorldFileError(entity.path, entity.line,
-                                         'unbalanced parenthesis: "%s (" is never closed'
-                                         % entity.kind)
-                return
-            if token.kind == ')':
-                if top_level:
-                    raise WorldFileError(token.path, token.line, 'unbalanced parenthesis: '
-                                         'unexpected ")"')
-                self.index += 1
-                return
-            if token.kind != 'word':
-                raise WorldFileError(token.path, token.line,
-                                     'syntax error: unexpected %r' % token.text)
-            if token.text == 'define':
-                if not top_level:
-                    raise WorldFileError(token.path, token.line,
-                                         'define is only allowed at the top level')
-                self._parse_define()
-                continue
-            following = self._peek(1)
-            if following is not None and following.kind == '(':
-                self.index += 2
-                child = _Entity(token.text, token.path, token.line)
-                self._parse_body(child, top_level=False)
-                entity.children.append(child)
-            else:
-                self.index += 1
-                entity.props[token.text] = _Prop(self._parse_value(token), token.path, token.line)
-
-    def _parse_define(self):
-        define = self._next('define')
-        name = self._next('a name after define')
-        parent = self._next('a parent type after define %s' % name.text)
-        opening = self._next('"(" after define %s %s' % (name.text, parent.text))
-        if name.kind != 'word' or parent.kind != 'word' or opening.kind != '(':
-            raise WorldFileError(define.path, define.line,
-                                 'define needs the form: define NAME PARENT ( ... )')
-        body = _Entity(parent.text, define.path, define.line)
-        self._parse_body(body, top_level=False)
-        self.defines[name.text] = (parent.text, body)
-
-    def _parse_value(self, name):
-        token = self._next('a value for "%s"' % name.text)
-        if token.kind == '[':
-            values = []
-            while True:
-                item = self._next('"]" closing the tuple of "%s"' % name.text)
-                if item.kind == ']':
-                    return values
-                if item.kind == '[':
-                    raise WorldFileError(item.path, item.line,
-                                         'nested "[" in the tuple of "%s"' % name.text)
-                if item.kind in '()':
-                    raise WorldFileError(item.path, item.line,
-                                         'unbalanced bracket: tuple of "%s" is not closed'
-                                         % name.text)
-                values.append(_scalar(item))
-        if token.kind in ('string', 'number', 'word'):
-            return [_scalar(token)]
-        raise WorldFileError(token.path, token.line,
-                             'syntax error: "%s" needs a value, found %r' % (name.text, token.text))
-
-
-def _scalar(token):
-    if token.kind == 'number':
-        try:
-            return float(token.text)
-        except ValueError:
-            raise WorldFileError(token.path, token.line, 'bad number %r' % token.text)
-    return token.text
 
 
 class _Resolved(object):
@@ -435,7 +154,7 @@ class _Interpreter(object):
             self.top_level_entity(child)
         cells = _cells_spanned(self.obstacles, resolution)
         if cells > MAX_GRID_CELLS:
-            prop = top.props.get('resolution') or _Prop((), self.path, 0)
+            prop = top.props.get('resolution') or Prop((), self.path, 0)
             raise WorldFileError(prop.path, prop.line, 'the obstacles span about %d cells of '
                                  'resolution %g m, more than the %d the simulator holds: a '
                                  'coarser resolution or smaller models' % (
@@ -529,8 +248,8 @@ class _Interpreter(object):
         if not blocks:
             return np.zeros((0, 2, 2)), (0.0, 0.0)
         if self.number(resolved, 'boundary', 0.0):
-            blocks.extend(_boundary_blocks(blocks, size))
-        return _fit_to_size(blocks, size)
+            blocks.extend(boundary_blocks(blocks, size))
+        return fit_to_size(blocks, size)
 
     def block(self, entity):
         block = self.resolve(entity)
@@ -555,7 +274,7 @@ class _Interpreter(object):
         if not os.path.isfile(full):
             raise WorldFileError(prop.path, prop.line, 'missing bitmap file "%s"' % name)
         try:
-            black = _black_pixels(full)
+            black = black_pixels(full)
         except (IOError, OSError, ValueError) as err:
             raise WorldFileError(prop.path, prop.line, 'cannot read bitmap "%s" (%s)' % (name, err))
         edges = bitmap_edges(black)
@@ -655,7 +374,7 @@ class _Interpreter(object):
         drawing area as real Stage caps it (a warning says so), and refused beyond
         MAX_CAMERA_PIXELS even so."""
         width, height = self.numbers(resolved, 'resolution', 2, _CAMERA_RESOLUTION)
-        prop = resolved.props.get('resolution') or _Prop((), resolved.path, resolved.line)
+        prop = resolved.props.get('resolution') or Prop((), resolved.path, resolved.line)
         if width < 1 or height < 1 or width != int(width) or height != int(height):
             raise WorldFileError(prop.path, prop.line, 'camera resolution must be two positive '
                                  'whole numbers, got [%g %g]' % (width, height))
@@ -716,8 +435,14 @@ _COMMON_KEYS = frozenset((
     'gui_nose', 'gui_grid', 'gui_move', 'gui_outline', 'gripper_return', 'fiducial_return',
     'blob_return', 'laser_return', 'visual_return', 'boundary', 'mass', 'update_interval',
     'noblocks', 'stack_children', 'fiducial_key', 'map_resolution', 'say', 'alwayson', 'watts'))
+
+
 _MODEL_KEYS = _COMMON_KEYS | frozenset(('bitmap',))
+
+
 _CAMERA_KEYS = _COMMON_KEYS | frozenset(('resolution', 'range', 'fov', 'pantilt'))
+
+
 _POSITION_KEYS = _COMMON_KEYS | frozenset((
     'drive', 'localization', 'velocity_bounds', 'acceleration_bounds', 'localization_origin',
     'odom_error', 'wheelbase', 'velocity', 'bitmap'))
@@ -767,111 +492,11 @@ def _cells_spanned(obstacles, resolution):
     return int(math.ceil(cols) * math.ceil(rows))
 
 
-def polygon_edges(points):
-    """Directed edges of the closed polygon through `points` ((N, 2) -> (N, 2, 2))."""
-    points = np.asarray(points, dtype=float)
-    return np.stack([points, np.roll(points, -1, axis=0)], axis=1)
-
-
-def _boundary_blocks(blocks, size):
-    """Stage's `boundary 1`: four thin walls along the (scaled) bounding box."""
-    edges, _ = _fit_to_size(blocks, size)
-    flat = edges.reshape(-1, 2)
-    xmin, ymin = flat.min(axis=0)
-    xmax, ymax = flat.max(axis=0)
-    eps = 0.01
-    sx, sy = xmax - xmin, ymax - ymin
-
-    def rect(x, y, dx, dy):
-        corners = [[x, y], [x + dx, y], [x + dx, y + dy], [x, y + dy]]
-        return (polygon_edges(corners), 0.0, size[2])
-    return [rect(xmin, ymin, eps, sy), rect(xmin, ymin, sx, eps),
-            rect(xmin, ymax - eps, sx, eps), rect(xmax - eps, ymin, eps, sy)]
-
-
-def _fit_to_size(blocks, size):
-    """Scale and centre blocks so their joint bounding box fills `size` (Stage CalcSize).
-
-    Returns all edges as one (M, 2, 2) array and the model's (zmin, zmax).
-    """
-    eps = np.finfo(float).eps
-    edges = np.concatenate([b[0] for b in blocks])
-    flat = edges.reshape(-1, 2)
-    bmin = flat.min(axis=0)
-    bmax = flat.max(axis=0)
-    extent = np.where(np.abs(bmax - bmin) >= eps, bmax - bmin, eps)
-    offset = bmin + extent / 2.0
-    zmin = min(b[1] for b in blocks)
-    zmax = max(b[2] for b in blocks)
-    zextent = zmax - zmin if abs(zmax - zmin) >= eps else eps
-    scaled = np.empty_like(edges)
-    scaled[..., 0] = (edges[..., 0] - offset[0]) * (size[0] / extent[0])
-    scaled[..., 1] = (edges[..., 1] - offset[1]) * (size[1] / extent[1])
-    return scaled, (zmin * (size[2] / zextent), zmax * (size[2] / zextent))
-
-
-def _black_pixels(path):
-    from PIL import Image
-    with Image.open(path) as image:
-        image.load()
-        if image.mode in ('RGBA', 'LA', 'P'):
-            image = image.convert('RGBA')
-        bands = image.split()
-        first = np.asarray(bands[0], dtype=np.uint8)
-        if image.mode == 'RGBA':
-            # Fully transparent pixels count as white, like a blank canvas.
-            alpha = np.asarray(bands[3], dtype=np.uint8)
-            return (first <= _BITMAP_THRESHOLD) & (alpha > 0)
-        return first <= _BITMAP_THRESHOLD
-
-
-def bitmap_edges(black):
-    """Directed black/white boundary edges of a boolean image, in Stage's bitmap frame.
-
-    Pixel (row r, column c) spans x in [c, c+1] and y in [-(r+1), -r]: image row 0 is the
-    top (+y) edge. Each edge is one maximal straight run of boundary, directed the way
-    Stage's image tracing walks a black pixel's sides (top +x, right -y, bottom -x,
-    left +y), because Stage's line rasteriser gives different cells in either direction.
-    """
-    black = np.asarray(black, dtype=bool)
-    padded = np.pad(black, 1, mode='constant', constant_values=False)
-    inner = padded[1:-1, 1:-1]
-    runs = []
-    runs += _runs(inner & ~padded[:-2, 1:-1], horizontal=True, forward=True, offset=0)
-    runs += _runs(inner & ~padded[2:, 1:-1], horizontal=True, forward=False, offset=1)
-    runs += _runs(inner & ~padded[1:-1, 2:], horizontal=False, forward=True, offset=1)
-    runs += _runs(inner & ~padded[1:-1, :-2], horizontal=False, forward=False, offset=0)
-    return np.array(runs, dtype=float).reshape(-1, 2, 2)
-
-
-def _runs(mask, horizontal, forward, offset):
-    """Maximal runs of True in `mask` along rows (horizontal) or columns, as directed segments."""
-    if not horizontal:
-        mask = mask.T
-    out = []
-    padded = np.zeros((mask.shape[0], mask.shape[1] + 2), dtype=np.int8)
-    padded[:, 1:-1] = mask
-    diff = np.diff(padded, axis=1)
-    starts = np.argwhere(diff == 1)
-    ends = np.argwhere(diff == -1)
-    for (line, a), (_, b) in zip(starts, ends):
-        # the run covers pixels a .. b-1 along the line; its edge spans a .. b
-        lo, hi = float(a), float(b)
-        first, last = (lo, hi) if forward else (hi, lo)
-        if horizontal:
-            y = -float(line + offset)
-            out.append([[first, y], [last, y]])
-        else:
-            x = float(line + offset)
-            out.append([[x, -first], [x, -last]])
-    return out
-
-
 def load_world(path):
     """Parse the Stage world file at `path` into a World (raises WorldFileError)."""
     if not os.path.isfile(path):
         raise WorldFileError(path, 0, 'world file not found')
-    tokens = _tokenize(path)
-    parser = _Parser(tokens, path)
+    tokens = tokenize(path)
+    parser = Parser(tokens, path)
     root = parser.parse()
     return _Interpreter(path, parser, root).interpret()
