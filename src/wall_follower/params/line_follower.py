@@ -7,7 +7,8 @@ from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
 CONTROLLERS = ('pursuit', 'pixel_p')
 CONVENTIONS = ('auto', 'optical', 'stageros')
-"""The choices of controller and frame_convention (vision.floor's AUTO, OPTICAL, STAGEROS)."""
+"""The choices of controller and frame_convention (vision.floor names them AUTO, OPTICAL,
+STAGEROS)."""
 
 NODE = (
     driving.camera_loop(image_timeout=0.3),

@@ -18,12 +18,12 @@ from collections import namedtuple
 
 import numpy as np
 
+from wall_follower.params.line_follower import CONVENTIONS
 from wall_follower.rotation import matrix_of_quaternion, wrap_angle
 
-OPTICAL = 'optical'
-STAGEROS = 'stageros'
-AUTO = 'auto'
-CONVENTIONS = (AUTO, OPTICAL, STAGEROS)
+# The frame conventions a camera's tf may follow: the choices of line_follower's
+# ~frame_convention, named once in its parameter table.
+AUTO, OPTICAL, STAGEROS = CONVENTIONS
 
 
 class Intrinsics(namedtuple('Intrinsics', ['fx', 'fy', 'cx', 'cy', 'width', 'height'])):
