@@ -7,8 +7,8 @@ own position counts. Each criterion passes or fails with its reason in
 words:
 
 - find_wall: when its call replied (seen from the service's own
-  connection; where the lap began, the record_odom goal, if it was never
-  called), the wall on the right is FIND_WALL_DISTANCE away and the
+  connection; where the lap began, the record_odom goal, if no call of it
+  ended), the wall on the right is FIND_WALL_DISTANCE away and the
   heading within FIND_WALL_HEADING of parallel to it;
 - lap: the action's result came (never: it did not), and not before the
   robot had truly come back to where the lap began (premature: declared
@@ -106,12 +106,6 @@ def judge_find_wall(case):
     heading = _number(figures.get('found_heading_error_deg'))
     call = case.get('find_wall_call')
     if call is not None:
-        if call.get('replied') is None:
-            return False, _with_note(
-                'find_wall was called at %.1f s and never replied: in the %.0f s left the robot '
-                'moved %s m and turned %.0f deg' % (call['called'], call['seconds'],
-                                                    shown(call['moved'], MOVED[0]),
-                                                    call['turned_deg']), case)
         when = 'when find_wall replied (at %.1f s, after %.1f s)' % (call['replied'],
                                                                      call['seconds'])
         if call['moved'] <= MOVED[0] and call['turned_deg'] <= MOVED[1]:
@@ -120,12 +114,12 @@ def judge_find_wall(case):
                 '(turned %.0f deg)' % (call['replied'], shown(call['moved'], None, MOVED[0]),
                                        call['seconds'], call['turned_deg']), case)
     else:
-        when = ('when the lap began (find_wall was never called)'
-                if case.get('goal_time') is not None else
-                'at the end (find_wall was never called, and no record_odom goal was sent)')
+        never = 'find_wall was never called, or never replied'
+        when = ('when the lap began (%s)' % never if case.get('goal_time') is not None else
+                'at the end (%s, and no record_odom goal was sent)' % never)
         if not case.get('moved_before_lap', True):
-            return False, _with_note('find_wall was never called, and the robot had not moved %s'
-                                     % when.split(' (')[0], case)
+            return False, _with_note('%s, and the robot had not moved %s'
+                                     % (never, when.split(' (')[0]), case)
     if distance is None:
         return False, 'no wall within 30 deg of the right %s' % when
     wrong = _wall_beside(distance, heading)

@@ -7,12 +7,43 @@ sandbox, the sandbox) the cases give the solution. That environment may
 hold the solution's own package named wall_follower, so this file
 imports nothing of grade's package: only ROS's own roslaunch and rosgraph.
 
-`python3 launch_check.py LAUNCH_FILE [ARG:=VALUE ...]` prints each problem
-on a line of its own, after PROBLEM.
+`python3 launch_check.py PACKAGE LAUNCH_FILE -- [ARG:=VALUE ...]` (or
+`LAUNCH_PATH -- ...`) prints each problem on a line of its own, after
+PROBLEM.
 """
+import os
 import sys
 
 PROBLEM = 'grade-problem: '
+
+
+def launch_path(launch):
+    """(the launch file's path, []) for [PACKAGE, LAUNCH_FILE] or [PATH], as roslaunch
+    finds it in this process's environment; (None, why not) when it would not."""
+    if len(launch) != 2:
+        return launch[0], []
+    import rospkg
+    import roslib.packages
+    package, name = launch
+    rospack = rospkg.RosPack()
+    try:
+        directory = rospack.get_path(package)
+    except rospkg.ResourceNotFound:
+        return None, ['no package %s on ROS_PACKAGE_PATH (%s)' % (
+            package, os.environ.get('ROS_PACKAGE_PATH', ''))]
+    found = roslib.packages.find_resource(package, name, rospack=rospack)
+    if not found:
+        return None, ['no launch file %s in package %s (%s)' % (name, package, directory)]
+    if len(found) > 1:
+        return None, ['%d launch files named %s in package %s (%s): give the path of one'
+                      % (len(found), name, package, ', '.join(found))]
+    return found[0], []
+
+
+def problems(launch, args):
+    """Why roslaunch could not start launch ([PACKAGE, LAUNCH_FILE] or [PATH]) with args."""
+    path, found = launch_path(launch)
+    return found if path is None else load_problems(path, args)
 
 
 def load_problems(path, args):
@@ -41,5 +72,6 @@ def load_problems(path, args):
 
 
 if __name__ == '__main__':
-    for problem in load_problems(sys.argv[1], sys.argv[2:]):
+    split = sys.argv.index('--')
+    for problem in problems(sys.argv[1:split], sys.argv[split + 1:]):
         print(PROBLEM + problem)

@@ -32,7 +32,6 @@ import tempfile
 import uuid
 
 import rosgraph.names
-import roslib.packages
 import rospkg
 
 from wall_follower.evaluation.grading import launch_check
@@ -207,40 +206,22 @@ def solution_problems(launch, args, environment, wrap=list):
     launch: [PACKAGE, LAUNCH_FILE], or [the launch file's path]; args: its
     ARG:=VALUE words; environment: the one the cases give the solution;
     wrap: the command the launch file is loaded with, as the cases wrap the
-    solution's (its sandbox).
+    solution's (its sandbox). The package is looked for in the child too:
+    a launch file is found through the process's own environment (catkin's
+    workspaces), which must be the solution's.
     """
-    if len(launch) == 2:
-        package, name = launch
-        rospack = rospkg.RosPack(rospkg.get_ros_paths(environment))
-        try:
-            directory = rospack.get_path(package)
-        except rospkg.ResourceNotFound:
-            return ['no package %s on ROS_PACKAGE_PATH (%s)' % (
-                package, environment.get('ROS_PACKAGE_PATH', ''))]
-        found = roslib.packages.find_resource(package, name, rospack=rospack)
-        if not found:
-            return ['no launch file %s in package %s (%s)' % (name, package, directory)]
-        if len(found) > 1:
-            return ['%d launch files named %s in package %s (%s): give the path of one'
-                    % (len(found), name, package, ', '.join(found))]
-        path = found[0]
-    else:
-        path = launch[0]
-    return _load_problems(path, args, environment, wrap)
-
-
-def _load_problems(path, args, environment, wrap):
-    """Load the launch file in a child process (launch_check.py, run by its path: the
-    solution's environment may hold a package of its own named wall_follower) and return
-    its sentences."""
     group = ProcessGroup('%d-check-%s' % (os.getpid(), uuid.uuid4().hex), grace=1.0)
-    command = wrap([sys.executable, launch_check.__file__, path] + list(args))
+    # Run by its path: the solution's environment may hold a package of its own named
+    # wall_follower.
+    command = wrap([sys.executable, launch_check.__file__] + list(launch) + ['--']
+                   + list(args))
     with tempfile.TemporaryFile(mode='w+') as output:
         process = group.start(command, environment, output)
         try:
             process.wait(timeout=LOAD_LIMIT)
         except subprocess.TimeoutExpired:
-            return ['the launch file %s did not load within %.0f s' % (path, LOAD_LIMIT)]
+            return ['the launch file %s did not load within %.0f s'
+                    % (' '.join(launch), LOAD_LIMIT)]
         finally:
             group.stop()
         output.seek(0)
@@ -248,5 +229,5 @@ def _load_problems(path, args, environment, wrap):
     problems = [line[len(PROBLEM):] for line in lines if line.startswith(PROBLEM)]
     if process.returncode != 0 and not problems:
         problems = ['the launch file %s could not be checked (exit %d): %s' % (
-            path, process.returncode, ' / '.join(lines[-3:]))]
+            ' '.join(launch), process.returncode, ' / '.join(lines[-3:]))]
     return problems

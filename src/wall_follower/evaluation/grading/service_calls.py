@@ -1,39 +1,44 @@
 """When a service was called and when it replied, seen from its TCP connections.
 
 A ROS service call is a TCP connection of its own from the client to the
-service's port (its rosrpc:// URI), held open by the server while its
-handler runs and closed once the reply has been read. So, polled from the
-kernel's table of the namespace's TCP sockets (/proc/net/tcp, tcp6), an
-established connection to the service's port is a call in progress. The
-probe of rospy.wait_for_service closes at once, before the server has
-answered, and is not held established.
+port of the node that serves it (its rosrpc:// URI), held open by the
+server while its handler runs and closed once the reply has been read.
+The same port also takes the node's topic connections (every subscriber
+of what it publishes, rosout's included), which stay open as long as the
+subscriber does. So, polled from the kernel's table of the namespace's
+TCP sockets (/proc/net/tcp, tcp6), each established connection to the
+port is followed by its peer's address: one that came and went while
+the run went on was a call (or the probe of rospy.wait_for_service,
+which lasts no simulated time); one still open at the end is a topic's,
+or a call that never replied, which cannot be told apart.
 """
 
 ESTABLISHED = '01'
 TABLES = ('/proc/net/tcp', '/proc/net/tcp6')
+# Simulated seconds a call lasts at least to be taken for the real one (a probe does not).
+LASTING = 0.1
 
 
-def established_to(port, text):
-    """How many established connections in a /proc/net/tcp text have port as their local
-    port (the server's side of a call)."""
-    found = 0
+def peers_of(port, text):
+    """The peers (remote address:port, as the table writes them) of the established
+    connections in a /proc/net/tcp text whose local port is port (the server's side)."""
+    found = set()
     for line in text.splitlines()[1:]:
         fields = line.split()
         if len(fields) < 4 or ':' not in fields[1]:
             continue
-        local_port = int(fields[1].rsplit(':', 1)[1], 16)
-        if local_port == port and fields[3] == ESTABLISHED:
-            found += 1
+        if int(fields[1].rsplit(':', 1)[1], 16) == port and fields[3] == ESTABLISHED:
+            found.add(fields[2])
     return found
 
 
-def open_calls(port, tables=TABLES):
-    """Established connections to port in this network namespace, now."""
-    found = 0
+def connected_peers(port, tables=TABLES):
+    """peers_of(port) in this network namespace, now."""
+    found = set()
     for table in tables:
         try:
             with open(table) as stream:
-                found += established_to(port, stream.read())
+                found |= peers_of(port, stream.read())
         except (IOError, OSError):
             pass
     return found
@@ -41,28 +46,26 @@ def open_calls(port, tables=TABLES):
 
 class CallWatch(object):
     """The calls of one service seen so far: each a dict of its start and end (simulated
-    s; end None while it has not replied) and the pose at each."""
+    s) and the robot's pose at each."""
 
     def __init__(self):
         self.calls = []
+        self._open = {}
 
-    def look(self, time, open_count, pose):
-        """What a poll saw at time: open_count calls in progress, the robot at pose."""
-        current = self.calls[-1] if self.calls else None
-        if open_count > 0 and (current is None or current['end'] is not None):
-            self.calls.append({'start': time, 'end': None, 'start_pose': pose,
-                               'end_pose': None})
-        elif open_count == 0 and current is not None and current['end'] is None:
-            current.update(end=time, end_pose=pose)
+    def look(self, time, peers, pose):
+        """What a poll saw at time: the peers connected to the service's port, the robot
+        at pose."""
+        for peer in set(peers) - set(self._open):
+            self._open[peer] = (time, pose)
+        for peer in set(self._open) - set(peers):
+            start, start_pose = self._open.pop(peer)
+            self.calls.append({'start': start, 'end': time, 'start_pose': start_pose,
+                               'end_pose': pose})
 
     def judged(self):
-        """The call to judge find_wall by: the first that replied after simulated time had
-        passed (a call answered at once may be a double of the real one), else the last
-        that replied, else one that never replied; None when there was no call."""
-        replied = [c for c in self.calls if c['end'] is not None]
-        lasting = [c for c in replied if c['end'] > c['start']]
+        """The call to judge find_wall by: the first that lasted (see LASTING), else the
+        longest; None when no call ended."""
+        lasting = [c for c in self.calls if c['end'] - c['start'] >= LASTING]
         if lasting:
             return lasting[0]
-        if replied:
-            return replied[-1]
-        return self.calls[-1] if self.calls else None
+        return max(self.calls, key=lambda c: c['end'] - c['start']) if self.calls else None

@@ -38,7 +38,7 @@ from std_srvs.srv import Empty
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.evaluation.grading.commands import CommandLog, non_finite_text
-from wall_follower.evaluation.grading.service_calls import CallWatch, open_calls
+from wall_follower.evaluation.grading.service_calls import CallWatch, connected_peers
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
@@ -166,32 +166,29 @@ class FindWallWatch(object):
     def _run(self):
         while not self._stop.wait(CALL_POLL):
             if self._port is not None:
-                count = open_calls(self._port)
+                peers = connected_peers(self._port)
                 with self._lock:
-                    self.watch.look(rospy.get_time(), count, self._monitor.pose)
+                    self.watch.look(rospy.get_time(), peers, self._monitor.pose)
 
     def stop(self):
         self._stop.set()
         self._thread.join(1.0)
 
-    def record(self, course_map, start, end_time, end_pose):
+    def record(self, course_map, start):
         """The judged call (CallWatch.judged) as the record keeps it, None without one: its
         times (s since the start), how far the robot went in it, and the wall beside the
-        robot when it replied (at the end of the run when it never did)."""
+        robot when it replied."""
         with self._lock:
             call = self.watch.judged()
             count = len(self.watch.calls)
-            calls = [(c['start'] - start, None if c['end'] is None else c['end'] - start)
+            calls = [(c['start'] - start, c['end'] - start)
                      for c in self.watch.calls[:CALLS_KEPT]]
-        if call is None or call['start_pose'] is None:
+        if call is None or call['start_pose'] is None or call['end_pose'] is None:
             return None
-        replied = call['end'] is not None
-        pose = call['end_pose'] if replied else end_pose
-        first = call['start_pose']
-        aligned = course_map.right_wall_alignment(pose) if pose is not None else None
-        return {'called': call['start'] - start,
-                'replied': call['end'] - start if replied else None,
-                'seconds': (call['end'] if replied else end_time) - call['start'],
+        pose, first = call['end_pose'], call['start_pose']
+        aligned = course_map.right_wall_alignment(pose)
+        return {'called': call['start'] - start, 'replied': call['end'] - start,
+                'seconds': call['end'] - call['start'],
                 'moved': math.hypot(pose[0] - first[0], pose[1] - first[1]),
                 'turned_deg': abs(math.degrees(wrap_angle(pose[2] - first[2]))),
                 'distance': aligned[0] if aligned else float('nan'),
@@ -293,7 +290,7 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
     clock.commands.finish(end_time if end_time is not None else start)
     figures = course_figures(monitor)
     goal_pose = monitor.goal_pose
-    call = calls.record(monitor.score.map, start, end_time, monitor.pose) if calls else None
+    call = calls.record(monitor.score.map, start) if calls else None
     if call is not None:
         figures['found_distance'] = call['distance']
         figures['found_heading_error_deg'] = call['heading_error_deg']
@@ -325,7 +322,7 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
         'goal_time': monitor.goal_time,
         'end_time': end_time,
         'find_wall_call': call,
-        'find_wall_time': (call['seconds'] if call is not None and call['replied'] is not None
+        'find_wall_time': (call['seconds'] if call is not None
                            else (monitor.goal_time - start) if monitor.goal_time is not None
                            else None),
         'commands': clock.commands.record(),
