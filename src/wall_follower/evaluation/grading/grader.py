@@ -8,7 +8,11 @@ free port, the simulator (launch/grade_case.launch, paused, in lockstep,
 with the course robot's interface: scan in --laser, odom, cmd_vel) and the
 grade_case node that scores the run from ground truth, then the solution's
 launch file. When the case has ended, every process it started is ended
-(processes.ProcessGroup). Each case is one independent command (--list
+(processes.ProcessGroup), in the case's own sandbox (grading/sandbox.py: its
+namespaces end every process of it; the solution runs read-only and
+unprivileged within). With --workspace the solution runs in the student's
+own workspace's clean environment (grading/workspace.py), never in
+grade's. Each case is one independent command (--list
 prints them, --case K runs one), so a batch system can spread a class over
 many machines; --collect DIR then builds the report from the finished
 cases.

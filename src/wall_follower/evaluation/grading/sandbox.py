@@ -11,8 +11,8 @@ run there with the normal filesystem, so that they write the case's
 record; the solution runs in a second sandbox nested in it (Confinement):
 its own PID namespace again, the whole filesystem read-only, the home
 directories and grade's output directory hidden, a private writable
-directory (its HOME and ROS_HOME), a private /tmp, /var/tmp, /dev/shm and
-/run, no capabilities, and, when grade runs as root, the uid of `nobody`.
+directory (its HOME and ROS_HOME), a private /tmp (also /var/tmp and
+/dev/shm) and an empty /run, no capabilities, and, when grade runs as root, the uid of `nobody`.
 So the solution cannot touch the case's record, see or signal grade's
 processes, or read root's files.
 
@@ -45,8 +45,13 @@ UNPRIVILEGED = 'nobody'
 CHECK_LIMIT = 60.0
 # Wall seconds for a case's master to come up.
 MASTER_LIMIT = 30.0
-# Directories of system state a solution has no business with: a private, empty one each.
-PRIVATE_SYSTEM_DIRECTORIES = ('/tmp', '/var/tmp', '/run')
+# Where a solution may write beside its private directory: each is the private
+# directory's TEMPORARY, empty at the start of each case.
+TEMPORARY_DIRECTORIES = ('/tmp', '/var/tmp', '/dev/shm')
+TEMPORARY = '.tmp'
+# Directories of system state a solution has no business with: an empty one each.
+EMPTIED_DIRECTORIES = ('/run',)
+PRIVATE_SYSTEM_DIRECTORIES = TEMPORARY_DIRECTORIES + EMPTIED_DIRECTORIES
 # What a case's processes and a solution in its sandbox use for ROS: the namespace has
 # only loopback, on which the host's name need not resolve.
 LOOPBACK_ENVIRONMENT = {'ROS_IP': '127.0.0.1', 'ROS_HOSTNAME': 'localhost'}
@@ -151,8 +156,15 @@ class Confinement(object):
         self.writable = sorted({os.path.abspath(p) for p in writable if os.path.isdir(p)})
         self.network = network
 
+    @property
+    def temporary(self):
+        return os.path.join(self.private, TEMPORARY)
+
     def prepare(self):
-        """Give the private and writable directories to the user the solution runs as."""
+        """Make its temporary directory, and give the private and writable directories to
+        the user the solution runs as."""
+        os.makedirs(self.temporary, exist_ok=True)
+        os.chmod(self.temporary, 0o1777)
         if self.privileged:
             uid, gid = unprivileged_ids()
             for top in [self.private] + self.writable:
@@ -161,12 +173,16 @@ class Confinement(object):
                         os.lchown(name, uid, gid)
 
     def command(self, command):
+        """command, run so. (Options of bubblewrap 0.4, Ubuntu 20.04's, and later; a
+        directory it makes is 0755, which the solution's user can go through.)"""
         args = [BWRAP, '--ro-bind', '/', '/', '--dev', '/dev', '--proc', '/proc']
-        for directory in PRIVATE_SYSTEM_DIRECTORIES + ('/dev/shm',):
-            args += ['--perms', '1777' if directory != '/run' else '0755', '--tmpfs', directory]
+        for directory in EMPTIED_DIRECTORIES:
+            args += ['--tmpfs', directory]
+        for directory in TEMPORARY_DIRECTORIES:
+            args += ['--bind', self.temporary, directory]
         hidden = [h for h in self.hidden if h not in PRIVATE_SYSTEM_DIRECTORIES]
         for directory in hidden:
-            args += ['--perms', '0755', '--tmpfs', directory]
+            args += ['--tmpfs', directory]
         made = set()
         for path in self.visible + self.writable + [self.private]:
             covers = [h for h in hidden + list(PRIVATE_SYSTEM_DIRECTORIES) if _under(path, h)]
@@ -174,13 +190,13 @@ class Confinement(object):
                 for parent in _ancestors_below(path, top):
                     if parent not in made:
                         made.add(parent)
-                        args += ['--perms', '0755', '--dir', parent]
+                        args += ['--dir', parent]
             if path in self.visible and covers:
                 args += ['--ro-bind', path, path]
         # What is hidden stays so inside what is shown again (grade's output in a workspace).
         for directory in hidden:
             if any(_under(directory, v) and directory != v for v in self.visible):
-                args += ['--perms', '0755', '--tmpfs', directory]
+                args += ['--tmpfs', directory]
         for path in self.writable + [self.private]:
             args += ['--bind', path, path]
         args += ['--unshare-pid', '--unshare-ipc', '--unshare-uts', '--new-session',

@@ -17,7 +17,12 @@ plot of the true path (~plot), and ends, which ends the launch.
 
 Everything scored comes from the simulator's ground truth and the world
 map (CourseMonitor), never from the solution's own topics; from the
-solution only the action's messages count, as what it declared.
+solution only the action's messages count, as what it declared, and what
+it commanded on cmd_vel (every command: a non-finite one, and those the
+simulator's watchdog cut, see evaluation/grading/commands.py). find_wall
+is judged where its call replied, seen from the service's own TCP
+connection (evaluation/grading/service_calls.py), in the case's network
+namespace.
 
 When the run cannot even begin for the grader's own reasons (the world
 file unreadable, no ground truth from the simulator), the record says so
