@@ -266,6 +266,13 @@ def test_find_wall_names_the_heading_too_when_it_is_off():
                       'began (find_wall was never called, or never replied)')
 
 
+def test_find_wall_names_the_heading_alone_against_the_wall():
+    case = run()
+    case['figures'].update(found_distance=0.28, found_heading_error_deg=60.2)
+    assert grade_case(case)['criteria']['find_wall']['reason'].startswith(
+        'the heading was 60 deg off parallel to the wall (10 deg at most) when the lap began')
+
+
 def call(called, replied, moved=0.8, turned=90.0, distance=0.28, heading=2.0):
     return {'called': called, 'replied': replied, 'seconds': replied - called, 'moved': moved,
             'turned_deg': turned, 'distance': distance, 'heading_error_deg': heading,

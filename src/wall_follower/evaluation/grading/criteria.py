@@ -89,9 +89,9 @@ def _wall_beside(distance, heading):
         wrong.append('the wall on the right was %s m away (%.2f-%.2f m expected)' % (
             shown(distance, low, high), low, high))
     if heading is None or abs(heading) > most:
-        wrong.append('the heading was %s deg off parallel to it (%.0f deg at most)' % (
+        wrong.append('the heading was %s deg off parallel to %s (%.0f deg at most)' % (
             shown(abs(heading), None, most, 0) if heading is not None else 'an unknown number of',
-            most))
+            'it' if wrong else 'the wall', most))
     return wrong
 
 
