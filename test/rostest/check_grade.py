@@ -36,7 +36,7 @@ import rostest
 from wall_follower.evaluation.grading import report as grade_report
 
 from wall_follower.evaluation.grading import grader
-from wall_follower.evaluation.launching import TOKEN_VARIABLE
+from wall_follower.evaluation.launching import TOKEN_VARIABLE, processes_with
 
 SOLUTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'solutions')
 # Small worlds, and a short start limit: every case takes seconds, not minutes.
@@ -185,20 +185,6 @@ class GradeBroken(unittest.TestCase):
     def test_nothing_left_running(self):
         for name, (_, pid, _, _) in self.runs.items():
             self.assertEqual(left_behind(pid), [], name)
-
-
-def processes_with(word):
-    """Ids of the processes whose command line holds word (whatever their environment)."""
-    found = []
-    for entry in os.listdir('/proc'):
-        if entry.isdigit():
-            try:
-                with open('/proc/%s/cmdline' % entry, 'rb') as stream:
-                    if word.encode() in stream.read():
-                        found.append(int(entry))
-            except (IOError, OSError):
-                pass
-    return found
 
 
 class Listener(object):

@@ -16,6 +16,7 @@ import uuid
 import pytest
 
 from wall_follower.evaluation.grading import sandbox
+from wall_follower.evaluation.launching import processes_with
 
 NOBODY = pwd.getpwnam('nobody')
 AS_NOBODY = ['setpriv', '--reuid=%d' % NOBODY.pw_uid, '--regid=%d' % NOBODY.pw_gid,
@@ -54,19 +55,6 @@ PROBE = textwrap.dedent('''
 def kernel_allows_user_namespaces():
     return subprocess.call(AS_NOBODY + ['unshare', '--user', '--map-root-user', 'true'],
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) == 0
-
-
-def processes_with(marker):
-    found = []
-    for entry in os.listdir('/proc'):
-        if entry.isdigit():
-            try:
-                with open('/proc/%s/cmdline' % entry, 'rb') as stream:
-                    if marker.encode() in stream.read():
-                        found.append(int(entry))
-            except OSError:
-                pass
-    return found
 
 
 @pytest.fixture

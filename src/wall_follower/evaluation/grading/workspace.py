@@ -33,7 +33,11 @@ PRIVATE = 'workspace'
 # A file every workspace holding grade's own package has: a workspace that holds it
 # is grade's.
 OWN_MARK = os.path.join('lib', 'wall_follower', 'grade')
-_SOURCE_ALL = 'files=("$@"); set --; for f in "${files[@]}"; do . "$f"; done; exec env -0'
+
+
+def _sourcing(then):
+    """A bash script that sources its arguments, in order, then runs then (a command line)."""
+    return 'files=("$@"); set --; for f in "${files[@]}"; do . "$f"; done; exec ' + then
 
 
 class WorkspaceError(Exception):
@@ -93,8 +97,8 @@ def build(packages, workspace, wrap, log_path):
     home = os.path.join(workspace, 'home')
     os.makedirs(home)
     setups = [s for s in (system_setup(),) if s]
-    command = ['bash', '-c', 'files=("$@"); set --; for f in "${files[@]}"; do . "$f"; done; '
-               'exec catkin_make -C %s' % _quoted(workspace), 'grade-build'] + setups
+    command = ['bash', '-c', _sourcing('catkin_make -C %s' % _quoted(workspace)),
+               'grade-build'] + setups
     command = wrap(home, writable=[workspace], network=False)(command)
     with open(log_path, 'w') as log:
         try:
@@ -117,7 +121,7 @@ def _quoted(path):
 
 def sourced_environment(setups, home, wrap):
     """The environment a clean shell has after sourcing setups, in order (run wrapped)."""
-    command = wrap(home, network=False)(['bash', '-c', _SOURCE_ALL, 'grade-environment']
+    command = wrap(home, network=False)(['bash', '-c', _sourcing('env -0'), 'grade-environment']
                                         + list(setups))
     try:
         result = subprocess.run(command, env=clean_environment(home), stdout=subprocess.PIPE,
