@@ -20,7 +20,7 @@ from nav_msgs.msg import Odometry
 
 from wall_follower.evaluation.grading.commands import CommandLog
 from wall_follower.evaluation.grading.criteria import grade_case, grades, shown
-from wall_follower.evaluation.grading.service_calls import CallWatch, peers_of
+from wall_follower.evaluation.grading.service_calls import CallWatch, PortWatch, peers_by_port
 from wall_follower.evaluation.pictures.course_plot import plot_course, plt, points_label
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
@@ -368,8 +368,18 @@ TCP_TABLE = '''  sl  local_address rem_address   st tx_queue rx_queue tr tm->whe
 
 
 def test_the_connections_to_a_services_port_are_told_by_their_peers():
-    assert peers_of(40000, TCP_TABLE) == {'0100007F:D430', '0100007F:D431'}
-    assert peers_of(40001, TCP_TABLE) == set()
+    peers = peers_by_port(TCP_TABLE)
+    assert peers[40000] == {'0100007F:D430', '0100007F:D431'}
+    assert peers[0xD431] == {'0100007F:9C40'}
+    assert 40001 not in peers
+
+
+def test_a_call_that_ended_before_its_service_was_seen_is_kept():
+    watch = PortWatch()
+    for time, peers in ((0.0, {}), (1.0, {40000: {'call'}, 50000: {'x'}}), (5.0, {})):
+        watch.look(time, peers, (0.0, 0.0, 0.0))
+    assert [(c['start'], c['end']) for c in watch.of(40000).calls] == [(1.0, 5.0)]
+    assert watch.of(None).judged() is None
 
 
 def test_a_call_is_a_connection_that_came_and_went_and_the_first_that_lasted_is_judged():

@@ -19,29 +19,46 @@ TABLES = ('/proc/net/tcp', '/proc/net/tcp6')
 LASTING = 0.1
 
 
-def peers_of(port, text):
-    """The peers (remote address:port, as the table writes them) of the established
-    connections in a /proc/net/tcp text whose local port is port (the server's side)."""
-    found = set()
+def peers_by_port(text):
+    """{local port: the peers (remote address:port, as the table writes them)} of the
+    established connections in a /proc/net/tcp text."""
+    found = {}
     for line in text.splitlines()[1:]:
         fields = line.split()
-        if len(fields) < 4 or ':' not in fields[1]:
+        if len(fields) < 4 or ':' not in fields[1] or fields[3] != ESTABLISHED:
             continue
-        if int(fields[1].rsplit(':', 1)[1], 16) == port and fields[3] == ESTABLISHED:
-            found.add(fields[2])
+        found.setdefault(int(fields[1].rsplit(':', 1)[1], 16), set()).add(fields[2])
     return found
 
 
-def connected_peers(port, tables=TABLES):
-    """peers_of(port) in this network namespace, now."""
-    found = set()
+def connected_peers(tables=TABLES):
+    """peers_by_port in this network namespace, now."""
+    found = {}
     for table in tables:
         try:
             with open(table) as stream:
-                found |= peers_of(port, stream.read())
+                for port, peers in peers_by_port(stream.read()).items():
+                    found.setdefault(port, set()).update(peers)
         except (IOError, OSError):
             pass
     return found
+
+
+class PortWatch(object):
+    """A CallWatch for every port connections were seen to, from before anyone knows
+    which port is the service's: a call may begin, and end, before the service has been
+    seen in the graph."""
+
+    def __init__(self):
+        self.ports = {}
+
+    def look(self, time, peers, pose):
+        """A poll at time: peers as connected_peers gives them, the robot at pose."""
+        for port in set(self.ports) | set(peers):
+            self.ports.setdefault(port, CallWatch()).look(time, peers.get(port, ()), pose)
+
+    def of(self, port):
+        return self.ports.get(port) or CallWatch()
 
 
 class CallWatch(object):

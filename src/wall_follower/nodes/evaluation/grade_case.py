@@ -43,7 +43,7 @@ from std_srvs.srv import Empty
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.evaluation.grading.commands import CommandLog, non_finite_text
-from wall_follower.evaluation.grading.service_calls import CallWatch, connected_peers
+from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
@@ -144,11 +144,13 @@ class RunClock(object):
 
 
 class FindWallWatch(object):
-    """The calls of the solution's find_wall service, from its TCP connections (see
-    evaluation/grading/service_calls.py), with the robot's true pose at each start and end."""
+    """The calls of the solution's find_wall service, from the namespace's TCP connections
+    (see evaluation/grading/service_calls.py; every port's, watched from the start, so
+    that a call that ended before the service was seen in the graph counts), with the
+    robot's true pose at each start and end."""
 
     def __init__(self, monitor):
-        self.watch = CallWatch()
+        self.watch = PortWatch()
         self._monitor = monitor
         self._port = None
         self._lock = threading.Lock()
@@ -170,10 +172,9 @@ class FindWallWatch(object):
 
     def _run(self):
         while not self._stop.wait(CALL_POLL):
-            if self._port is not None:
-                peers = connected_peers(self._port)
-                with self._lock:
-                    self.watch.look(rospy.get_time(), peers, self._monitor.pose)
+            peers = connected_peers()
+            with self._lock:
+                self.watch.look(rospy.get_time(), peers, self._monitor.pose)
 
     def stop(self):
         self._stop.set()
@@ -184,10 +185,10 @@ class FindWallWatch(object):
         times (s since the start), how far the robot went in it, and the wall beside the
         robot when it replied."""
         with self._lock:
-            call = self.watch.judged()
-            count = len(self.watch.calls)
-            calls = [(c['start'] - start, c['end'] - start)
-                     for c in self.watch.calls[:CALLS_KEPT]]
+            watch = self.watch.of(self._port)
+            call = watch.judged()
+            count = len(watch.calls)
+            calls = [(c['start'] - start, c['end'] - start) for c in watch.calls[:CALLS_KEPT]]
         if call is None or call['start_pose'] is None or call['end_pose'] is None:
             return None
         pose, first = call['end_pose'], call['start_pose']
