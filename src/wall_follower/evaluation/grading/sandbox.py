@@ -12,9 +12,9 @@ record; the solution runs in a second sandbox nested in it (Confinement):
 its own PID namespace again, the whole filesystem read-only, the home
 directories and grade's output directory hidden, a private writable
 directory (its HOME and ROS_HOME), a private /tmp (also /var/tmp and
-/dev/shm) and an empty /run, no capabilities, and, when grade runs as root, the uid of `nobody`.
-So the solution cannot touch the case's record, see or signal grade's
-processes, or read root's files.
+/dev/shm) and an empty /run, no capabilities, and, when grade runs as
+root, the uid of `nobody`. So the solution cannot touch the case's
+record, see or signal grade's processes, or read root's files.
 
 What it does not do: the ROS graph of the case is shared (it must be, to
 grade), so a solution can still talk to the case's master, simulator and
