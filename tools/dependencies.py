@@ -85,6 +85,7 @@ OTHER = {
     'catkin': ('catkin', BUILD),
     'message_generation': ('ros-message-generation', BUILD),
     'message_runtime': ('ros-message-runtime', RUN),
+    'bubblewrap': ('bubblewrap', RUN),               # grade's sandbox per case (bwrap)
     'stage_ros': (None, OPTIONAL),                   # stage_sim runs real stageros where found
 }
 

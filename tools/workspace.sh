@@ -33,7 +33,8 @@ APT_PACKAGES="gcc g++ make cmake catkin python3-catkin-pkg python3-setuptools
   python3-opencv python3-cv-bridge
   ros-robot-state-publisher joint-state-publisher-gui liburdfdom-tools
   rosbash python3-rostopic python3-rosnode python3-rosservice python3-rosparam
-  python3-rosmsg python3-rosbag"
+  python3-rosmsg python3-rosbag
+  bubblewrap"
 
 as_root() {
   if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi

@@ -60,7 +60,7 @@ def no_case_runs(monkeypatch):
 @pytest.fixture
 def solution_loads(monkeypatch):
     """The solution taken as one that loads (its own check is tested apart)."""
-    monkeypatch.setattr(grader.Solution, 'problems', lambda self, base: [])
+    monkeypatch.setattr(grader.Solution, 'problems', lambda self, *args: [])
 
 
 def refusal(capsys, words):
@@ -262,3 +262,19 @@ def test_a_case_ends_processes_that_left_its_session():
     assert len(marked_processes(group.token)) >= 3
     group.stop()
     assert marked_processes(group.token) == []
+
+
+def test_without_a_sandbox_grade_refuses_unless_told(capsys, tmp_path, monkeypatch,
+                                                     solution_loads):
+    monkeypatch.setattr(grader.sandbox, 'sandbox_problems',
+                        lambda scratch: ['no sandbox: bubblewrap cannot make one here (x)'])
+    monkeypatch.setattr(grader, 'run_cases', lambda *args: [])
+    status, err = refusal(capsys, GOOD + ['--case', '0', '--out', str(tmp_path)])
+    assert status == 2 and 'no sandbox: bubblewrap cannot make one here' in err
+    # Told: it grades (no case is run here), with no sandbox.
+    ran = []
+    monkeypatch.setattr(grader, 'run_cases', lambda *args: ran.append(args[3]) or [])
+    monkeypatch.setattr(grader.grade_report, 'print_table',
+                        lambda records: {'summary': {'not_graded': 0}})
+    assert grader.main(GOOD + ['--case', '0', '--no-sandbox', '--out', str(tmp_path)]) == 0
+    assert not ran[0].sandboxed

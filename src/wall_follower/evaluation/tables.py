@@ -2,9 +2,12 @@
 
 
 def fmt(value, spec):
-    """A table cell; '-' where a figure is missing."""
+    """A table cell; '-' where a figure is missing; a figure kept as text (a record's 'inf'
+    or 'nan', which JSON cannot hold as numbers) as it is."""
     if value is None or value != value:
         return '-'
+    if isinstance(value, str):
+        return value
     return format(value, spec)
 
 

@@ -8,7 +8,11 @@ free port, the simulator (launch/grade_case.launch, paused, in lockstep,
 with the course robot's interface: scan in --laser, odom, cmd_vel) and the
 grade_case node that scores the run from ground truth, then the solution's
 launch file. When the case has ended, every process it started is ended
-(processes.ProcessGroup). Each case is one independent command (--list
+(processes.ProcessGroup), in the case's own sandbox (grading/sandbox.py: its
+namespaces end every process of it; the solution runs read-only and
+unprivileged within). With --workspace the solution runs in the student's
+own workspace's clean environment (grading/workspace.py), never in
+grade's. Each case is one independent command (--list
 prints them, --case K runs one), so a batch system can spread a class over
 many machines; --collect DIR then builds the report from the finished
 cases.
@@ -41,17 +45,18 @@ import rospkg
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.evaluation.grading import options as grade_options
 from wall_follower.evaluation.grading import report as grade_report
+from wall_follower.evaluation.grading import sandbox
 from wall_follower.evaluation.grading.options import parser
-from wall_follower.evaluation.launching import (ProcessGroup, display_wrapper, free_port,
-                                                wait_for_port)
+from wall_follower.evaluation.grading.workspace import StudentWorkspace, WorkspaceError
+from wall_follower.evaluation.launching import ProcessGroup, display_wrapper, free_port
 from wall_follower.evaluation.worlds.generator import (GenerationError, Settings, free_space_of,
                                                        generate, world_name, write_world)
 
 # Simulated seconds a case may last without a lap: a start, then two laps of the
 # world's walls at the speed bound.
 LAP_ALLOWANCE = (30.0, 2.0)
-# Wall seconds for a case's master to come up.
-MASTER_LIMIT = 30.0
+# Wall seconds a case's sandbox has, beyond --timeout, to start and to end.
+SANDBOX_MARGIN = 60.0
 _PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2">
   <name>{name}</name>
@@ -91,12 +96,14 @@ class Solution(object):
             raise ValueError('expected PACKAGE LAUNCH_FILE or a .launch path, then ARG:=VALUE '
                              'arguments; got %s' % (' '.join(words) or 'nothing'))
 
-    def problems(self, base):
-        """Why roslaunch could not start the solution in environment base; [] when it can."""
+    def problems(self, base, preparation=None):
+        """Why roslaunch could not start the solution in environment base (as the cases
+        give it, see Preparation); [] when it can."""
+        preparation = preparation or Preparation(sandbox.Containment(False, '.'))
         scratch = tempfile.mkdtemp(prefix='grade-check-')
         try:
-            return grade_options.solution_problems(self.launch, self.args,
-                                                   self.environment(base, scratch))
+            wrap, env = preparation.solution_launch(self, base, scratch, network=False)
+            return grade_options.solution_problems(self.launch, self.args, env, wrap)
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
 
@@ -120,6 +127,82 @@ class Solution(object):
         return dict(base, ROS_PACKAGE_PATH=':'.join(paths))
 
 
+class Preparation(object):
+    """What every case of one grading shares: its sandboxes (containment: a
+    sandbox.Containment, enabled or not) and the student's workspace (a prepared
+    workspace.StudentWorkspace, or None: the solution then runs in grade's environment)."""
+
+    def __init__(self, containment, workspace=None):
+        self.containment = containment
+        self.workspace = workspace
+
+    @property
+    def sandboxed(self):
+        return self.containment.enabled
+
+    def harness_environment(self, base):
+        """grade's own processes of a case: grade's environment, on the case's loopback."""
+        return dict(base, **sandbox.LOOPBACK_ENVIRONMENT) if self.sandboxed else dict(base)
+
+    def solution_launch(self, solution, base, scratch, network=True):
+        """(wrap, env): how the solution's processes start, whose master is base's.
+
+        env: the student's clean environment (with --workspace) or grade's
+        (base), with ROS_MASTER_URI of base; in a sandbox, a private HOME
+        and ROS_HOME in scratch. wrap: command -> the command in its sandbox.
+        """
+        private = os.path.join(scratch, 'solution')
+        os.makedirs(private, exist_ok=True)
+        if self.workspace is not None:
+            env = dict(self.workspace.environment)
+            if 'ROS_MASTER_URI' in base:
+                env['ROS_MASTER_URI'] = base['ROS_MASTER_URI']
+            env.update(HOME=private, ROS_HOME=os.path.join(private, '.ros'))
+        else:
+            env = dict(base)
+        env = solution.environment(env, scratch)
+        if not self.sandboxed:
+            return list, env
+        env.update(sandbox.LOOPBACK_ENVIRONMENT, HOME=private,
+                   ROS_HOME=os.path.join(private, '.ros'))
+        visible = sandbox.needed_paths(env) + [os.path.dirname(p) for p in solution.launch
+                                               if os.path.isabs(p)]
+        if solution.overlay:
+            visible += [solution.overlay, os.path.join(scratch, 'overlay')]
+        # The launch file's check runs grade's launch_check.py by its path.
+        visible.append(os.path.dirname(os.path.abspath(grade_options.launch_check.__file__)))
+        wrap = self.containment.wrap
+        if self.workspace is not None:
+            wrap = self.workspace.wrapper(wrap)
+        return wrap(private, visible=visible, network=network), env
+
+
+def prepare(options):
+    """The Preparation of a grading, checked: (preparation, problems in words).
+
+    The sandbox is tried (unless --no-sandbox), then --workspace made
+    ready: built when it is a package, its environment read.
+    """
+    scratch = tempfile.mkdtemp(prefix='grade-prepare-')
+    try:
+        enabled = not options.no_sandbox
+        if enabled:
+            problems = sandbox.sandbox_problems(scratch)
+            if problems:
+                return None, problems
+        preparation = Preparation(sandbox.Containment(enabled, options.out))
+        if options.workspace:
+            workspace = StudentWorkspace(options.workspace, options.out)
+            try:
+                workspace.prepare(preparation.containment.wrap, scratch)
+            except (WorkspaceError, OSError) as err:
+                return None, [str(err)]
+            preparation.workspace = workspace
+        return preparation, []
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
 def case_paths(out, name):
     cases = os.path.join(out, 'cases')
     return {key: os.path.join(cases, name + suffix)
@@ -137,9 +220,10 @@ def lap_limit(world):
 class CaseRunner(object):
     """Runs cases of one grading; stop_all() ends every case still running."""
 
-    def __init__(self, solution, options):
+    def __init__(self, solution, options, preparation):
         self.solution = solution
         self.options = options
+        self.preparation = preparation
         # Real stageros runs paced only in its window (see sim/simulator_choice.py).
         self.wrapper = (display_wrapper() or []) if options.simulator == 'stage' else []
         self._running = set()
@@ -202,7 +286,8 @@ class CaseRunner(object):
         return world_file
 
     def _run_processes(self, group, base, port, world_file, paths, limit, scratch):
-        """Start the case's processes and wait for its end.
+        """Start the case's processes and wait for its end (sandbox.hold), in the case's
+        sandbox unless there is none.
 
         Returns how it ended, in words, and whether the case's own harness
         (its master, simulator or grade_case node: grade_case.launch) is what
@@ -219,17 +304,37 @@ class CaseRunner(object):
         grading = self.wrapper + ['roslaunch', '-p', str(port), 'wall_follower',
                                   'grade_case.launch'] + [
             '%s:=%s' % item for item in sorted(case_args.items())]
-        with open(paths['log'], 'w') as log, open(paths['solution_log'], 'w') as solution_log:
-            watcher = group.start(grading, base, log)
-            if not wait_for_port(port, MASTER_LIMIT, watcher):
-                return 'its master did not start', True
-            group.start(self.solution.command(), self.solution.environment(base, scratch),
-                        solution_log)
+        wrap, solution_env = self.preparation.solution_launch(self.solution, base, scratch)
+        spec = {'harness': grading, 'harness_env': self.preparation.harness_environment(base),
+                'port': port, 'solution': wrap(self.solution.command()),
+                'solution_env': solution_env, 'timeout': options.timeout,
+                'log': paths['log'], 'solution_log': paths['solution_log'],
+                'token': group.token}
+        for name in ('log', 'solution_log'):
+            open(paths[name], 'w').close()
+        if not self.preparation.sandboxed:
+            return sandbox.hold(spec, group)
+        return self._hold_in_sandbox(group, spec, scratch)
+
+    def _hold_in_sandbox(self, group, spec, scratch):
+        """sandbox.hold, as the first process of the case's own namespaces."""
+        spec_file, outcome_file = (os.path.join(scratch, name)
+                                   for name in ('case.json', 'outcome.json'))
+        with open(spec_file, 'w') as stream:
+            json.dump(spec, stream)
+        command = sandbox.case_command([sys.executable, '-m', sandbox.__name__, 'hold',
+                                        spec_file, outcome_file])
+        with open(spec['log'], 'a') as log:
+            process = group.start(command, spec['harness_env'], log)
             try:
-                watcher.wait(timeout=options.timeout)
+                process.wait(timeout=spec['timeout'] + SANDBOX_MARGIN)
             except subprocess.TimeoutExpired:
-                return 'it ran out of its %.0f wall seconds' % options.timeout, False
-        return "grade's simulator or grade_case node ended", True
+                return 'it ran out of its %.0f wall seconds' % spec['timeout'], False
+        outcome = grade_report.read_record(outcome_file)
+        if outcome is None:
+            return "the case's sandbox ended (exit %d) without saying how the case ended" % (
+                process.returncode), True
+        return outcome['ended'], outcome['harness_failed']
 
     def stop_all(self):
         with self._lock:
@@ -239,8 +344,8 @@ class CaseRunner(object):
             group.stop()
 
 
-def case_command(solution_words, options, index):
-    """The command line of one case, for --list."""
+def case_command(solution_words, options, index, workspace=None):
+    """The command line of one case, for --list (workspace: the one the cases use)."""
     words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + [
         '--worlds', str(options.worlds), '--seed', str(options.seed), '--case', str(index),
         '--laser', options.laser,
@@ -248,6 +353,10 @@ def case_command(solution_words, options, index):
         '--timeout', str(options.timeout), '--start-limit', str(options.start_limit),
         '--simulator', options.simulator,
         '--room', str(options.room[0]), str(options.room[1]), '--out', options.out]
+    if workspace:
+        words += ['--workspace', workspace]
+    if options.no_sandbox:
+        words.append('--no-sandbox')
     return ' '.join(shlex.quote(w) for w in words)
 
 
@@ -266,18 +375,27 @@ def main(argv=None):
     try:
         solution = Solution(options.solution)
     except ValueError as err:
-        problems.append(str(err))
-    else:
-        problems += solution.problems(os.environ)
+        return _refused(problems + [str(err)])
     if problems:
         return _refused(problems)
+    made = not os.path.isdir(options.out)
+    # The sandboxes hide it, so it must be there first.
+    os.makedirs(options.out, exist_ok=True)
+    preparation, problems = prepare(options)
+    if not problems:
+        problems = solution.problems(os.environ, preparation)
+    if problems:
+        if made and not os.listdir(options.out):
+            os.rmdir(options.out)
+        return _refused(problems)
     if options.list:
+        workspace = preparation.workspace.directory if preparation.workspace else None
         for index in range(options.worlds):
-            print(case_command(options.solution, options, index))
+            print(case_command(options.solution, options, index, workspace))
         return 0
     indices = [options.case] if options.case is not None else list(range(options.worlds))
     try:
-        records = run_cases(solution, options, indices)
+        records = run_cases(solution, options, indices, preparation)
     except GenerationError as err:
         return _refused(['--room %g %g: %s' % (options.room[0], options.room[1], err)])
     if records is None:
@@ -295,14 +413,18 @@ def _refused(problems):
     return 2
 
 
-def run_cases(solution, options, indices):
+def run_cases(solution, options, indices, preparation=None):
     """The records of cases indices, options.jobs at a time; None when interrupted.
 
-    Every case's world is generated first (GenerationError, before any case
-    runs, when --room allows none). SIGINT or SIGTERM ends every case still
-    running (and every process it started) before this returns.
+    preparation: prepare()'s; by default, the sandbox where one can be had
+    and the solution in grade's environment. Every case's world is
+    generated first (GenerationError, before any case runs, when --room
+    allows none). SIGINT or SIGTERM ends every case still running (and
+    every process it started) before this returns.
     """
-    runner = CaseRunner(solution, options)
+    if preparation is None:
+        preparation = _default_preparation(options)
+    runner = CaseRunner(solution, options, preparation)
     previous = signal.signal(signal.SIGTERM, _interrupt)
     pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
     try:
@@ -316,3 +438,18 @@ def run_cases(solution, options, indices):
     finally:
         pool.shutdown(wait=True)
         signal.signal(signal.SIGTERM, previous)
+
+
+def _default_preparation(options):
+    """A sandbox where one can be had (said on stderr where not), grade's environment."""
+    enabled = not getattr(options, 'no_sandbox', False)
+    if enabled:
+        scratch = tempfile.mkdtemp(prefix='grade-prepare-')
+        try:
+            problems = sandbox.sandbox_problems(scratch)
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+        for problem in problems:
+            sys.stderr.write('grade: %s: the cases run without one\n' % problem)
+        enabled = not problems
+    return Preparation(sandbox.Containment(enabled, options.out))

@@ -21,7 +21,7 @@ and is then graded as if the solution had failed. So before the first case:
 
 Loading the solution's launch file runs its substitutions ($(eval), a
 param's command), so it is loaded in a child process, in the environment
-the cases give the solution, never in grade's own process.
+(and the sandbox) the cases give the solution, never in grade's own process.
 """
 import argparse
 import math
@@ -32,9 +32,9 @@ import tempfile
 import uuid
 
 import rosgraph.names
-import roslib.packages
 import rospkg
 
+from wall_follower.evaluation.grading import launch_check
 from wall_follower.evaluation.launching import ProcessGroup, display_wrapper
 from wall_follower.evaluation.worlds.generator import Settings
 from wall_follower.params import parameters
@@ -46,7 +46,7 @@ DEFAULT_LASER = 'course720'
 # Wall seconds the solution's launch file may take to load (a param's command runs then).
 LOAD_LIMIT = 60.0
 # How the child process marks a problem in its output (roslaunch may print there too).
-PROBLEM = 'grade-problem: '
+PROBLEM = launch_check.PROBLEM
 
 
 def _parameter(table, name):
@@ -98,7 +98,20 @@ def parser():
     p.add_argument('--case', type=int, help='run only this case (0 .. worlds-1)')
     p.add_argument('--collect', metavar='DIR',
                    help='build DIR/grades.json and DIR/report.html from its finished cases')
+    _add_solution_options(p)
     return p
+
+
+def _add_solution_options(p):
+    """Where the solution comes from and how it is contained (grading/workspace.py,
+    grading/sandbox.py)."""
+    p.add_argument('--workspace', metavar='DIR',
+                   help="the student's catkin workspace (its devel/ or install/ setup is "
+                   "sourced for the solution only), or a package directory, built first into "
+                   "a private workspace in --out")
+    p.add_argument('--no-sandbox', action='store_true',
+                   help='run the solution with grade\'s rights, in the host\'s namespaces '
+                   '(where no sandbox can be had)')
 
 
 def option_problems(options):
@@ -187,42 +200,28 @@ def _directory_problems(flag, path, may_create):
     return []
 
 
-def solution_problems(launch, args, environment):
+def solution_problems(launch, args, environment, wrap=list):
     """Sentences saying why roslaunch could not start the solution; [] when it can.
 
     launch: [PACKAGE, LAUNCH_FILE], or [the launch file's path]; args: its
-    ARG:=VALUE words; environment: the one the cases give the solution.
+    ARG:=VALUE words; environment: the one the cases give the solution;
+    wrap: the command the launch file is loaded with, as the cases wrap the
+    solution's (its sandbox). The package is looked for in the child too:
+    a launch file is found through the process's own environment (catkin's
+    workspaces), which must be the solution's.
     """
-    if len(launch) == 2:
-        package, name = launch
-        rospack = rospkg.RosPack(rospkg.get_ros_paths(environment))
-        try:
-            directory = rospack.get_path(package)
-        except rospkg.ResourceNotFound:
-            return ['no package %s on ROS_PACKAGE_PATH (%s)' % (
-                package, environment.get('ROS_PACKAGE_PATH', ''))]
-        found = roslib.packages.find_resource(package, name, rospack=rospack)
-        if not found:
-            return ['no launch file %s in package %s (%s)' % (name, package, directory)]
-        if len(found) > 1:
-            return ['%d launch files named %s in package %s (%s): give the path of one'
-                    % (len(found), name, package, ', '.join(found))]
-        path = found[0]
-    else:
-        path = launch[0]
-    return _load_problems(path, args, environment)
-
-
-def _load_problems(path, args, environment):
-    """Load the launch file in a child process (see load_problems) and return its sentences."""
     group = ProcessGroup('%d-check-%s' % (os.getpid(), uuid.uuid4().hex), grace=1.0)
-    command = [sys.executable, '-m', __name__, path] + list(args)
+    # Run by its path: the solution's environment may hold a package of its own named
+    # wall_follower.
+    command = wrap([sys.executable, launch_check.__file__] + list(launch) + ['--']
+                   + list(args))
     with tempfile.TemporaryFile(mode='w+') as output:
         process = group.start(command, environment, output)
         try:
             process.wait(timeout=LOAD_LIMIT)
         except subprocess.TimeoutExpired:
-            return ['the launch file %s did not load within %.0f s' % (path, LOAD_LIMIT)]
+            return ['the launch file %s did not load within %.0f s'
+                    % (' '.join(launch), LOAD_LIMIT)]
         finally:
             group.stop()
         output.seek(0)
@@ -230,37 +229,5 @@ def _load_problems(path, args, environment):
     problems = [line[len(PROBLEM):] for line in lines if line.startswith(PROBLEM)]
     if process.returncode != 0 and not problems:
         problems = ['the launch file %s could not be checked (exit %d): %s' % (
-            path, process.returncode, ' / '.join(lines[-3:]))]
+            ' '.join(launch), process.returncode, ' / '.join(lines[-3:]))]
     return problems
-
-
-def load_problems(path, args):
-    """Why roslaunch could not load path with args (ARG:=VALUE words); [] when it can.
-
-    Run in the child process that solution_problems starts.
-    """
-    import roslaunch.config
-    import roslaunch.xmlloader
-    given = rosgraph.names.load_mappings(args)
-    unusable = [word for word in args if word.split(':=', 1)[0].strip() not in given]
-    if unusable:
-        return ['roslaunch takes no argument %s: ARG:=VALUE, ARG a name' % ', '.join(unusable)]
-    loader = roslaunch.xmlloader.XmlLoader()
-    try:
-        loader.load(path, roslaunch.config.ROSLaunchConfig(), argv=['grade'] + list(args),
-                    verbose=False)
-    except Exception as err:  # whatever the file does wrong ($(eval) included) is reported
-        return ['the launch file %s does not load: %s' % (
-            path, ' '.join(str(err).split()) or type(err).__name__)]
-    declared = loader.root_context.arg_names
-    # __ns, __log and the like are roslaunch's own, not the file's.
-    unknown = [name for name in given if not name.startswith('__') and name not in declared]
-    if unknown:
-        return ['the launch file %s declares no argument %s (it declares: %s)' % (
-            path, ', '.join(unknown), ', '.join(declared) or 'none')]
-    return []
-
-
-if __name__ == '__main__':
-    for problem in load_problems(sys.argv[1], sys.argv[2:]):
-        print(PROBLEM + problem)

@@ -91,6 +91,14 @@ class CourseMap(object):
         return polygon_clearance(footprint_corners(self.robot, pose), self.edges)
 
 
+def _highest(highest, value):
+    """The higher of two command magnitudes, NaN once one was NaN: a NaN command is one no
+    robot can follow, never one to drop (max() would drop it, or keep it by its order)."""
+    if highest != highest or value != value:
+        return float('nan')
+    return max(highest, value)
+
+
 class RunScore(object):
     """Accumulates a run, sample by sample, into the figures of the benchmark.
 
@@ -155,8 +163,8 @@ class RunScore(object):
         return self.lap.closed or self._end is not None
 
     def add_command(self, linear, angular):
-        self.max_linear = max(self.max_linear, abs(linear))
-        self.max_angular = max(self.max_angular, abs(angular))
+        self.max_linear = _highest(self.max_linear, abs(linear))
+        self.max_angular = _highest(self.max_angular, abs(angular))
 
     def add_stall(self, stalled):
         self.stalled = self.stalled or bool(stalled)

@@ -17,7 +17,12 @@ plot of the true path (~plot), and ends, which ends the launch.
 
 Everything scored comes from the simulator's ground truth and the world
 map (CourseMonitor), never from the solution's own topics; from the
-solution only the action's messages count, as what it declared.
+solution only the action's messages count, as what it declared, and what
+it commanded on cmd_vel (every command: a non-finite one, and those the
+simulator's watchdog cut, see evaluation/grading/commands.py). find_wall
+is judged where its call replied, seen from the service's own TCP
+connection (evaluation/grading/service_calls.py), in the case's network
+namespace.
 
 When the run cannot even begin for the grader's own reasons (the world
 file unreadable, no ground truth from the simulator), the record says so
@@ -26,6 +31,7 @@ as the solution's failure.
 """
 import json
 import math
+import threading
 import time
 
 import rosgraph
@@ -36,6 +42,8 @@ from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus
 
+from wall_follower.evaluation.grading.commands import CommandLog, non_finite_text
+from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
@@ -46,9 +54,12 @@ from wall_follower.params.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.worldfile import WorldFileError
 
-# Wall seconds between looks at the run and at the graph.
+# Wall seconds between looks at the run, at the graph, and at find_wall's connections.
 POLL = 0.1
 GRAPH_POLL = 1.0
+CALL_POLL = 0.01
+# The find_wall calls a record keeps.
+CALLS_KEPT = 10
 # Wall seconds for ground truth to connect (the simulator is started first).
 SIMULATOR_LIMIT = 60.0
 # The robot "moved before the lap" when the lap began this far from the start [m, rad].
@@ -107,26 +118,88 @@ def wait_for_simulator(monitor, limit):
 
 
 class RunClock(object):
-    """Simulated times of the first and the latest cmd_vel, and since when the robot is stalled."""
+    """Simulated times of the first and the latest cmd_vel, since when the robot is stalled,
+    and every command (a CommandLog, against the simulator's watchdog)."""
 
     def __init__(self):
         self.first = None
         self.latest = None
         self.stalled_since = None
-        self._subs = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=100),
+        self.commands = CommandLog(rospy.get_param('simulator/base_watchdog_timeout', 0.2))
+        self._subs = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
                       rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=100)]
 
-    def _on_command(self, _msg):
+    def _on_command(self, msg):
         now = rospy.get_time()
         if self.first is None:
             self.first = now
         self.latest = now
+        self.commands.add(now, msg.linear.x, msg.angular.z)
 
     def _on_stalled(self, msg):
         if not msg.data:
             self.stalled_since = None
         elif self.stalled_since is None:
             self.stalled_since = rospy.get_time()
+
+
+class FindWallWatch(object):
+    """The calls of the solution's find_wall service, from the namespace's TCP connections
+    (see evaluation/grading/service_calls.py; every port's, watched from the start, so
+    that a call that ended before the service was seen in the graph counts), with the
+    robot's true pose at each start and end."""
+
+    def __init__(self, monitor):
+        self.watch = PortWatch()
+        self._monitor = monitor
+        self._port = None
+        self._lock = threading.Lock()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run)
+        self._thread.daemon = True
+        self._thread.start()
+
+    def found(self, service):
+        """The service is advertised: watch its port."""
+        if self._port is not None or service is None:
+            return
+        try:
+            uri = rosgraph.Master(rospy.get_name()).lookupService(service)
+            self._port = int(uri.rsplit(':', 1)[1].strip('/'))
+        except (rosgraph.MasterError, OSError, ValueError, IndexError):
+            rospy.logwarn('grade_case: cannot find the port of %s: its calls are not seen',
+                          service)
+
+    def _run(self):
+        while not self._stop.wait(CALL_POLL):
+            peers = connected_peers()
+            with self._lock:
+                self.watch.look(rospy.get_time(), peers, self._monitor.pose)
+
+    def stop(self):
+        self._stop.set()
+        self._thread.join(1.0)
+
+    def record(self, course_map, start):
+        """The judged call (CallWatch.judged) as the record keeps it, None without one: its
+        times (s since the start), how far the robot went in it, and the wall beside the
+        robot when it replied."""
+        with self._lock:
+            watch = self.watch.of(self._port)
+            call = watch.judged()
+            count = len(watch.calls)
+            calls = [(c['start'] - start, c['end'] - start) for c in watch.calls[:CALLS_KEPT]]
+        if call is None or call['start_pose'] is None or call['end_pose'] is None:
+            return None
+        pose, first = call['end_pose'], call['start_pose']
+        aligned = course_map.right_wall_alignment(pose)
+        return {'called': call['start'] - start, 'replied': call['end'] - start,
+                'seconds': call['end'] - call['start'],
+                'moved': math.hypot(pose[0] - first[0], pose[1] - first[1]),
+                'turned_deg': abs(math.degrees(wrap_angle(pose[2] - first[2]))),
+                'distance': aligned[0] if aligned else float('nan'),
+                'heading_error_deg': math.degrees(aligned[1]) if aligned else float('nan'),
+                'calls': count, 'all': calls}
 
 
 class SolutionSeen(object):
@@ -150,7 +223,7 @@ def solution_running(graph, state=None):
     return any(node_alive(name) for name in graph.solution_nodes(state))
 
 
-def watch(monitor, graph, seen, clock, params, start):
+def watch(monitor, graph, seen, clock, params, start, calls):
     """Why the run ended: 'result', or the reason no lap can come any more.
 
     Meanwhile notes in seen what the solution advertises. The solution's
@@ -178,6 +251,7 @@ def watch(monitor, graph, seen, clock, params, start):
             next_graph = time.monotonic() + GRAPH_POLL
             state = graph.state()
             seen.look(graph, state)
+            calls.found(seen.find_wall_service)
             if solution_running(graph, state) or \
                     time.monotonic() - started < params['start_limit']:
                 gone_since = None
@@ -211,11 +285,22 @@ def freeze(monitor):
     monitor.close()
 
 
-def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
-    """The case's ground-truth record, as grading.grade_case reads it."""
+def case_record(monitor, params, seen, end_reason, start, start_pose, clock, calls=None,
+                end_time=None):
+    """The case's ground-truth record, as grading.grade_case reads it.
+
+    find_wall is judged where its call replied (find_wall_call, from
+    calls: a FindWallWatch), else, never called, where the lap began, else
+    where the robot ended (at end_time, simulated s).
+    """
+    clock.commands.finish(end_time if end_time is not None else start)
     figures = course_figures(monitor)
     goal_pose = monitor.goal_pose
-    if goal_pose is None and monitor.pose is not None:
+    call = calls.record(monitor.score.map, start) if calls else None
+    if call is not None:
+        figures['found_distance'] = call['distance']
+        figures['found_heading_error_deg'] = call['heading_error_deg']
+    elif goal_pose is None and monitor.pose is not None:
         # No lap began: judge find_wall where the robot ended.
         aligned = monitor.score.map.right_wall_alignment(monitor.pose)
         figures['found_distance'] = aligned[0] if aligned else float('nan')
@@ -241,7 +326,12 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
         'end_reason': end_reason,
         'start_time': start,
         'goal_time': monitor.goal_time,
-        'find_wall_time': (monitor.goal_time - start) if monitor.goal_time is not None else None,
+        'end_time': end_time,
+        'find_wall_call': call,
+        'find_wall_time': (call['seconds'] if call is not None
+                           else (monitor.goal_time - start) if monitor.goal_time is not None
+                           else None),
+        'commands': clock.commands.record(),
         'first_command_time': clock.first,
         'result_time': monitor.result_time,
         'result_status': (STATUS_NAMES.get(monitor.result_status, str(monitor.result_status))
@@ -258,9 +348,11 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock):
 
 
 def _json_safe(value):
-    """NaN and infinity as null: grades.json is read by other tools than Python's."""
+    """NaN and infinity as the strings 'nan', 'inf' and '-inf' (JSON has none of them, and
+    grades.json is read by other tools than Python's; null would read as nothing
+    commanded)."""
     if isinstance(value, float) and not math.isfinite(value):
-        return None
+        return non_finite_text(value)
     if isinstance(value, dict):
         return {key: _json_safe(item) for key, item in value.items()}
     if isinstance(value, (list, tuple)):
@@ -309,17 +401,22 @@ def main():
         time.sleep(0.01)
     start_pose = monitor.pose
     seen = SolutionSeen()
-    end_reason = watch(monitor, graph, seen, clock, params, start)
+    calls = FindWallWatch(monitor)
+    end_reason = watch(monitor, graph, seen, clock, params, start, calls)
+    calls.stop()
     rospy.loginfo('grade_case: run ended: %s; find_wall service: %s; %s action: %s', end_reason,
                   seen.find_wall_service or 'none', params['action_ns'],
                   'up' if seen.action_server else 'none')
     if end_reason == 'result':
         keep_watching(monitor, params['after_result'])
     freeze(monitor)
-    record = case_record(monitor, params, seen, end_reason, start, start_pose, clock)
+    record = case_record(monitor, params, seen, end_reason, start, start_pose, clock, calls,
+                         rospy.get_time())
     if not write_record(params['json'], record):
         return 1
     if params['plot']:
-        plot_course(course_map, monitor.trail, monitor.result, params['plot'],
-                    title=params['world'].rsplit('/', 1)[-1])
+        spans = record['recorded_spans']
+        plot_course(course_map, monitor.full_trail(), monitor.result, params['plot'],
+                    title=params['world'].rsplit('/', 1)[-1], start=start_pose,
+                    points_span=spans[-1][0] - spans[0][0] if spans else None)
     return 0

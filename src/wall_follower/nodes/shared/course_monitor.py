@@ -145,6 +145,7 @@ class CourseMonitor(object):
         self.trail = []
         self._trail_stamps = []
         self._backlog = []
+        self._before_goal = []
         self._subs = [
             rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
                              queue_size=QUEUE),
@@ -197,6 +198,14 @@ class CourseMonitor(object):
         recorded = int(np.searchsorted(self._trail_stamps, self.result_time, side='right'))
         return stretches_on_trail(self.trail[:recorded], self.result)
 
+    def full_trail(self):
+        """The whole true path heard, from the first pose: the lap's trail and, with
+        start_on_goal, the way to where the lap began (all of it when no lap began)."""
+        with self.lock:
+            if self.start_on_goal and self.goal_time is None:
+                return [pose[:2] for _, pose in self._backlog]
+            return self._before_goal + list(self.trail)
+
     @property
     def scoring(self):
         return not self.start_on_goal or self.goal_time is not None
@@ -233,6 +242,7 @@ class CourseMonitor(object):
             before = [(stamp, pose) for stamp, pose in self._backlog if stamp < self.goal_time]
             since = self._backlog[len(before):]
             self._backlog = []
+            self._before_goal = [pose[:2] for _, pose in before[:-1]]
             if before:
                 # Odometry is the pose before each step, so the recorder's
                 # first point can be where the robot was just before the goal:
