@@ -8,7 +8,6 @@ import shutil
 import socket
 import pathlib
 import subprocess
-import sys
 import tempfile
 import textwrap
 import uuid
@@ -106,7 +105,7 @@ def run_probe(base, listener, privileged, prefix=()):
                                       privileged=privileged)
     confinement.prepare()
     command = list(prefix) + sandbox.case_command(confinement.command(
-        [sys.executable, '-c', PROBE, str(listener.getsockname()[1]), marker, str(private),
+        [sandbox.SOLUTION_PYTHON, '-c', PROBE, str(listener.getsockname()[1]), marker, str(private),
          str(home / 'secret'), str(home / 'workspace' / 'shown')]))
     output = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             universal_newlines=True, timeout=60).stdout

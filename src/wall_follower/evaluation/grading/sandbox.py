@@ -41,6 +41,10 @@ from wall_follower.evaluation.launching import ProcessGroup, wait_for_port
 BWRAP = 'bwrap'
 # The unprivileged user a solution runs as when grade runs as root.
 UNPRIVILEGED = 'nobody'
+# The interpreter a solution's Python nodes run with (the shebang of ROS 1's own scripts,
+# Debian's and Noetic's alike). The check tries it, not grade's own interpreter, which
+# may be one that the unprivileged user cannot reach (a virtual environment in a home).
+SOLUTION_PYTHON = '/usr/bin/python3'
 # Wall seconds the check before any case may take.
 CHECK_LIMIT = 60.0
 # Wall seconds for a case's master to come up.
@@ -232,7 +236,7 @@ def sandbox_problems(scratch):
     probe = ('import os, socket; assert [n for _, n in socket.if_nameindex()] == ["lo"]; '
              'assert not os.access("/", os.W_OK); '
              'open(os.path.join(%r, "ok"), "w").close()' % private)
-    command = case_command(confinement.command([sys.executable, '-c', probe]))
+    command = case_command(confinement.command([SOLUTION_PYTHON, '-c', probe]))
     try:
         result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                 stdin=subprocess.DEVNULL, universal_newlines=True,
