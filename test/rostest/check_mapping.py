@@ -4,11 +4,11 @@
 The saved map must match the world (precision and recall at least
 ~min_precision and ~min_recall, 99 % unless mapping.test is told
 otherwise, and no occupied cell farther than ~max_wall_distance from a
-true wall, 0.10 m; see wall_follower/evaluation/map_scoring.py), and once the robot has stopped
-after the lap, the mapper's pose (tf map -> base_footprint) must be within
-3 cm and 1 degree of the true pose, while the raw odometry was off by more
-somewhere on the lap (a scale error alone closes the lap again, as in the
-octagon).
+true wall, 0.10 m; see wall_follower/evaluation/scoring/map_quality.py),
+and once the robot has stopped after the lap, the mapper's pose (tf map ->
+base_footprint) must be within 3 cm and 1 degree of the true pose, while
+the raw odometry was off by more somewhere on the lap (a scale error
+alone closes the lap again, as in the octagon).
 The simulator starts paused and is let go once this check listens and the
 mapper is connected to every topic of the simulator it reads (scan, tf,
 clock): a mapper that misses the first steps starts its map on a scan taken
@@ -35,14 +35,15 @@ from drive_guard import DriveGuard
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
-from wall_follower.evaluation.map_scoring import map_quality
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.mapping.mapfile import load_map
-from wall_follower.mapping.poses import between, wrap
-from wall_follower.nodes.common import pose_of, yaw_of
-from wall_follower.sim.stage_interface import world_path
+from wall_follower.mapping.poses import between
+from wall_follower.nodes.shared.messages import pose_of, yaw_of
 from wall_follower.params import defaults
 from wall_follower.params.slam import TABLE
+from wall_follower.rotation import wrap_angle
+from wall_follower.sim.stage_interface import world_path
 
 # Wall seconds for the lap, the saved map and the robot to settle.
 RUN_LIMIT = 280.0
@@ -181,7 +182,7 @@ class Mapping(unittest.TestCase):
     def errors(cls, pose, true_pose=None):
         truth = between(cls.start, true_pose or cls.final_truth)
         return (math.hypot(pose[0] - truth[0], pose[1] - truth[1]),
-                abs(math.degrees(wrap(pose[2] - truth[2]))))
+                abs(math.degrees(wrap_angle(pose[2] - truth[2]))))
 
     def test_saved_map_matches_the_world(self):
         self.assertTrue(self.saved, 'no map saved at %s.yaml' % self.map_file)

@@ -37,6 +37,8 @@ import math
 import numpy as np
 from scipy.ndimage import distance_transform_edt
 
+from wall_follower.rotation import wrap_angle
+
 __all__ = ['DistanceField', 'ScanMatcher', 'Match']
 
 # How far a scan's point may lie off the wall it hit for no fault of the pose [m]: the
@@ -170,7 +172,7 @@ class ScanMatcher(object):
         step_limit = np.array([self.field.grid.resolution * 2.0] * 2 + [math.radians(2.0)])
         for reach in self.reaches:
             pose = self._descend(pose, px, py, reach, step_limit, guess, information)
-        pose[2] = math.atan2(math.sin(pose[2]), math.cos(pose[2]))
+        pose[2] = wrap_angle(pose[2])
         return self.judge(tuple(float(p) for p in pose), points, information)
 
     def judge(self, pose, points, information=None):
@@ -254,7 +256,7 @@ class ScanMatcher(object):
                 # in units of the points' squared distances: POINT_NOISE each
                 prior = information * POINT_NOISE ** 2
                 off = pose - np.asarray(guess, dtype=float)
-                off[2] = math.atan2(math.sin(off[2]), math.cos(off[2]))
+                off[2] = wrap_angle(off[2])
                 hessian = hessian + prior
                 gradient = gradient + prior.dot(off)
             delta = -np.linalg.solve(hessian, gradient)

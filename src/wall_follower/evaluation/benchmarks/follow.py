@@ -20,9 +20,9 @@ import sys
 import tempfile
 
 from wall_follower.evaluation.benchmarks import follow_generated
-from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
-                                                           laser_profile, print_table, run_launch,
-                                                           shipped_world)
+from wall_follower.evaluation.launching import (WORLDS, display_wrapper, laser_profile, run_launch,
+                                                shipped_world)
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.sim.laser_profiles import PROFILES as LASER_PROFILES
 
 PROFILES = ('stage', 'lds01', 'lds02', 'course720')

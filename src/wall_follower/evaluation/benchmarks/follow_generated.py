@@ -12,9 +12,9 @@ import os
 
 import numpy as np
 
-from wall_follower.evaluation import grader
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table
-from wall_follower.evaluation.grading import MIN_IN_BAND, grade_case
+from wall_follower.evaluation.grading import grader
+from wall_follower.evaluation.tables import fmt, print_table
+from wall_follower.evaluation.grading.criteria import MIN_IN_BAND, grade_case
 from wall_follower.params import defaults
 from wall_follower.params.wall_finder import FINDER
 

@@ -1,6 +1,6 @@
 """`benchmark mapping --generated N --seed S`: mapping laps in rooms the mapper was never tuned on.
 
-The grader's generated worlds (evaluation/world_generator.py: chamfered
+The grader's generated worlds (evaluation/worlds/generator.py: chamfered
 rooms with walls at any angle, wings, pillars, islands), each given
 odometry that drifts as Stage's `localization "odom"` does, with its own
 `odom_error` drawn from the seed: travel and turn scale errors up to
@@ -22,8 +22,9 @@ import tempfile
 
 import rospkg
 
-from wall_follower.evaluation import world_generator
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table, run_rostest
+from wall_follower.evaluation.launching import run_rostest
+from wall_follower.evaluation.tables import fmt, print_table
+from wall_follower.evaluation.worlds import generator as world_generator
 
 # The largest travel and turn scale errors drawn for a room's odometry (fractions).
 DRIFT = (0.03, 0.025)
