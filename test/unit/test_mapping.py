@@ -135,6 +135,13 @@ def test_the_map_starts_at_rest_or_once_patience_runs_out():
     poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * k, 0.0, 0.0))
              for k in range(7)]
     assert poses[:5] == [None] * 5 and poses[5] is not None
+    # Patience run out while the robot turns (find_wall): the map waits for a step that
+    # does not turn, where the odometry's lead cannot tilt it.
+    turning = Mapper(start_patience=5)
+    poses = [turning.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k))
+             for k in range(9)]
+    poses.append(turning.add_scan(ranges, angles, 0.12, 3.5, (0.01, 0.0, 0.4)))
+    assert poses[:9] == [None] * 9 and poses[9] == (0.01, 0.0, 0.4)
 
 
 def test_new_parameters_apply_from_the_next_scan():

@@ -14,8 +14,10 @@ The map starts from a scan taken at rest: the odometry may be read a step
 apart from the scan (Stage's "odom" localization reports the pose after
 the move its laser has not seen yet), and while the robot moves that would
 tilt the whole map by the step's turn. So the first scan is drawn only once
-the odometry has not moved since the scan before, or after `start_patience`
-scans, whichever comes first.
+the odometry has not moved since the scan before; or, once `start_patience`
+scans have gone by (a robot that never stands), at the first scan the
+odometry did not turn since the scan before (`START_TURN`): a straight step
+shifts the map by no more than the step, a turning one would tilt it all.
 
 A scan is matched every time, but drawn into the map only once the robot
 has moved `linear_update` or turned `angular_update` since the last one
@@ -59,6 +61,11 @@ __all__ = ['Mapper', 'scan_points', 'joined_walls']
 
 # Odometry that moved less than this between two scans is at rest [m, rad].
 AT_REST = 1e-4
+# Once start_patience has run out, the map starts at a scan whose odometry turned less than
+# this since the scan before [rad]: the turn the map may be tilted by, as little as a match
+# jitters. A map started while find_wall turned the robot at 0.49 rad/s was tilted by the
+# step's 2.8 degrees, every wall drawn beside the true one (a generated room, issue 41).
+START_TURN = math.radians(0.5)
 # The fine grid's beams are sampled a cell apart (see LogOddsGrid).
 FINE_STEP = 1.0
 # What became of a scan: its pose trusted (drawn when due), not (the pose predicted or
@@ -291,11 +298,12 @@ class Mapper(object):
     def _may_start(self, odom_pose):
         previous = self._waiting[-1] if self._waiting else None
         self._waiting.append(odom_pose)
-        if previous is not None:
-            moved = between(previous, odom_pose)
-            if math.hypot(moved[0], moved[1]) < AT_REST and abs(moved[2]) < AT_REST:
-                return True
-        return len(self._waiting) > self.config['start_patience']
+        if previous is None:
+            return self.config['start_patience'] == 0
+        moved = between(previous, odom_pose)
+        if math.hypot(moved[0], moved[1]) < AT_REST and abs(moved[2]) < AT_REST:
+            return True
+        return len(self._waiting) > self.config['start_patience'] and abs(moved[2]) < START_TURN
 
     def _due(self, pose):
         if self._drawn_at is None:

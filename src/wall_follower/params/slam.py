@@ -52,7 +52,7 @@ MAPPER = (
         P('hit_logodds', 0.85, 'log-odds added to the cell a beam ends in', 0.0, 10.0),
         P('miss_logodds', -0.4, 'log-odds added to each cell a beam crosses', -10.0, 0.0),
         P('start_patience', 100, 'the map starts at the first scan taken at rest, or after this '
-          'many scans', 0, 100000),
+          'many scans at the first that did not turn', 0, 100000),
     )),
     Section('matching', (
         P('scan_matching', True, 'false: odometry alone places every scan (to compare)'),

@@ -1,10 +1,10 @@
 """Mapping a lap of every world with drifting odometry (its _odom variant).
 
 The loop the nodes of mapping.launch run, in pure Python and simulated
-time: the simulator steps, the robot stands for a second (as it does while
-the nodes of the launch start: a mapper starts its map on a scan taken at
-rest), then the finder and then the follower answer each
-scan from the world's start pose, and the mapper takes every scan with the
+time: the simulator steps, the finder and then the follower answer each
+scan from the world's start pose at once (as in mapping.test, where
+find_wall turns the robot from the first step: a mapper cannot count on a
+scan at rest to start its map), and the mapper takes every scan with the
 odometry of its stamp, until the true path has closed its lap; then the
 robot stands for a second and the map is saved in map_server's format,
 read back and scored against the world (evaluation/scoring/map_quality.py). Each
@@ -41,8 +41,7 @@ from wall_follower.sim.worldfile import load_world
 
 WORLD_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
                          os.pardir, os.pardir, 'worlds')
-# Simulated seconds the robot stands before it moves, and after the lap before the map is
-# saved.
+# Simulated seconds the robot stands after the lap before the map is saved.
 STAND = 1.0
 # The course's worlds, and rooms of angled walls with a pillar (octagon, 60/120-degree corners).
 MAPPING_WORLDS = WORLDS + ('octagon', 'parallelogram')
@@ -73,8 +72,6 @@ def map_a_lap(world_path, scan_matching=True, map_name=None, time_limit=240.0):
         cpu += spent
         slowest = max(slowest, spent)
         path.append((truth.x, truth.y, truth.yaw))
-        if simulation.time < STAND:
-            continue
         if stand_until is None:
             if isinstance(controller, WallFinder) and controller.done:
                 controller = WallFollower()

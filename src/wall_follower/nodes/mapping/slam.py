@@ -188,8 +188,8 @@ class SlamNode(object):
         pose = self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
         self.cpu += time.process_time() - started
         if pose is None:
-            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still to start '
-                                   'the map')
+            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still (or to '
+                                   'stop turning, after ~start_patience scans) to start the map')
             return
         self._tell(msg.header.stamp.to_sec())
         try:
