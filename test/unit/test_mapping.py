@@ -128,20 +128,24 @@ def test_the_map_starts_at_rest_or_once_patience_runs_out():
     ranges, angles = _room_scan((0.0, 0.0, 0.0))
     mapper = Mapper(start_patience=5)
     for k in range(3):    # turning: odometry a step ahead of the laser would tilt the map
-        assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k)) is None
-    assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.1)) == (0.0, 0.0, 0.1)
+        assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * (k + 1))) is None
+    assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.15)) == (0.0, 0.0, 0.15)
     assert mapper.started and mapper.drawn == 1
     impatient = Mapper(start_patience=5)
-    poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * k, 0.0, 0.0))
+    poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * (k + 1), 0.0, 0.0))
              for k in range(7)]
     assert poses[:5] == [None] * 5 and poses[5] is not None
     # Patience run out while the robot turns (find_wall): the map waits for a step that
     # does not turn, where the odometry's lead cannot tilt it.
     turning = Mapper(start_patience=5)
-    poses = [turning.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k))
+    poses = [turning.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * (k + 1)))
              for k in range(9)]
-    poses.append(turning.add_scan(ranges, angles, 0.12, 3.5, (0.01, 0.0, 0.4)))
-    assert poses[:9] == [None] * 9 and poses[9] == (0.01, 0.0, 0.4)
+    poses.append(turning.add_scan(ranges, angles, 0.12, 3.5, (0.01, 0.0, 0.45)))
+    assert poses[:9] == [None] * 9 and poses[9] == (0.01, 0.0, 0.45)
+    # The odometry still at its origin: nothing has moved yet, the map starts there, before
+    # the turn and the odometry's error since.
+    fresh = Mapper(start_patience=5)
+    assert fresh.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
 
 
 def test_new_parameters_apply_from_the_next_scan():

@@ -14,7 +14,10 @@ The map starts from a scan taken at rest: the odometry may be read a step
 apart from the scan (Stage's "odom" localization reports the pose after
 the move its laser has not seen yet), and while the robot moves that would
 tilt the whole map by the step's turn. So the first scan is drawn only once
-the odometry has not moved since the scan before; or, once `start_patience`
+the odometry has not moved since the scan before, or where it still reads
+its origin (nothing has moved since it began: the robot's very first scan,
+before find_wall turns it, and before the odometry's own error has grown
+into the map's frame); or, once `start_patience`
 scans have gone by (a robot that never stands), at the first scan the
 odometry did not turn since the scan before (`START_TURN`): a straight step
 shifts the map by no more than the step, a turning one would tilt it all.
@@ -299,7 +302,7 @@ class Mapper(object):
         previous = self._waiting[-1] if self._waiting else None
         self._waiting.append(odom_pose)
         if previous is None:
-            return self.config['start_patience'] == 0
+            return odom_pose == (0.0, 0.0, 0.0) or self.config['start_patience'] == 0
         moved = between(previous, odom_pose)
         if math.hypot(moved[0], moved[1]) < AT_REST and abs(moved[2]) < AT_REST:
             return True
