@@ -40,14 +40,14 @@ from wall_follower.evaluation.scoring.line_track import (CourseError, centreline
 from wall_follower.evaluation.worlds.line_courses import describe_camera, camera_from_keys
 from wall_follower.nodes.evaluation.grade_case import (GONE, Graph, solution_running,
                                                        write_record)
+from wall_follower.nodes.evaluation.solution_gone import SolutionGone
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.line_case import TABLE
 
-# Wall seconds between looks at the run and at the graph.
+# Wall seconds between looks at the run.
 POLL = 0.2
-GRAPH_POLL = 1.0
 # Wall seconds for ground truth to connect (the simulator is started first).
 SIMULATOR_LIMIT = 60.0
 QUEUE = 1000
@@ -127,24 +127,14 @@ def run_over(centreline, run, params, start):
 
 
 def watch(centreline, run, graph, params, start):
-    """Why the run ended: run_over's reason, GONE, or 'shut down'. The solution's nodes
-    count as gone only after ~start_limit wall seconds, the time its launch file has to
-    start them."""
-    started = time.monotonic()
-    gone_since = None
-    next_graph = started
+    """Why the run ended: run_over's reason, GONE, or 'shut down'."""
+    gone = SolutionGone(graph, params['start_limit'], params['gone_limit'])
     while not rospy.is_shutdown():
         reason, idle = run_over(centreline, run, params, start)
         if reason:
             return GONE if idle and not solution_running(graph) else reason
-        if time.monotonic() >= next_graph:
-            next_graph = time.monotonic() + GRAPH_POLL
-            if solution_running(graph) or time.monotonic() - started < params['start_limit']:
-                gone_since = None
-            elif gone_since is None:
-                gone_since = time.monotonic()
-            elif time.monotonic() - gone_since > params['gone_limit']:
-                return GONE
+        if gone.gone():
+            return GONE
         time.sleep(POLL)
     return 'shut down'
 
