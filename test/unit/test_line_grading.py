@@ -33,7 +33,8 @@ def test_a_base_that_cuts_the_bends_fails_tracking_and_is_told_where():
     assert 'cm RMS from the line (1.50 at most)' in reason
     assert 'cm from it at worst (5.00 at most)' not in reason    # 4.5 cm is within 5
     assert 'inside a 0.35 m bend to the left' in reason, reason
-    assert 'it cuts its bends' in reason and 'on the straights' in reason, reason
+    assert 'it cuts its bends (off the line on them, inside them 100 % of the time; ' in reason
+    assert 'cm RMS on the bends, 0.0 on the straights)' in reason, reason
     # The lap itself was done: only tracking fails.
     assert [name for name, v in graded['criteria'].items() if not v['passed']] == ['tracking']
 
@@ -43,6 +44,15 @@ def test_a_base_wide_of_its_bends_is_told_so():
         'tracking']['reason']
     assert 'cm from it at worst (5.00 at most)' in reason
     assert 'outside a 0.35 m bend to the left' in reason and 'runs wide of its bends' in reason
+
+
+def test_a_base_that_weaves_is_not_said_to_cut_or_run_wide():
+    def weave(alongs):
+        return 0.03 * np.sin(alongs * 12.0)
+    reason = grade_case(record(LOOP, drive(LOOP, offset=weave)))['criteria']['tracking'][
+        'reason']
+    assert reason.startswith('the base kept 2.1'), reason
+    assert 'cuts' not in reason and 'wide' not in reason
 
 
 def test_no_lap_says_how_far_it_went_and_why_the_run_ended():

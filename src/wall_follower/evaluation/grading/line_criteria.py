@@ -10,7 +10,9 @@ or fails with its reason in words and numbers:
 - tracking: the base's distance to the centreline, RMS at most MAX_RMS and
   at worst MAX_ERROR (the line_follow rostest's bounds), over the lap or up
   to the stop; a failure says where the worst was (on which bend, inside or
-  outside it) and, where it is so, that the base cuts its bends;
+  outside it) and, where it is so, that the base cuts its bends (off the
+  line on a bend, it is inside it at least SIDE_SHARE of the time) or runs
+  wide of them (outside as often);
 - speed: the mean speed along the line over the lap (or the drive to the
   stop) at least MIN_SPEED, from the base's first motion;
 - stop (open lines only): stopped for good within END_DISTANCE of the
@@ -33,8 +35,9 @@ MIN_SPEED = 0.15
 END_DISTANCE = 0.35
 # Commands are floats sent over the wire: a hair over the limit is rounding.
 LIMIT_TOLERANCE = 1e-3
-# The worst error is put down to the bends when their RMS is this many times the straights'.
-BEND_SHARE = 1.5
+# A base that is off the line on its bends at least this share of the time on one side
+# of them cuts them (inside) or runs wide of them (outside).
+SIDE_SHARE = 0.75
 CRITERIA = ('completion', 'tracking', 'speed', 'stop', 'safety')
 
 
@@ -104,12 +107,15 @@ def judge_tracking(case):
     worst = figures['worst']
     reason = 'the base kept %s; the worst, %.1f cm, %s' % (
         ' and '.join(failed), 100.0 * figures['max'], _where(worst))
-    bends, straights = figures.get('rms_bends'), figures.get('rms_straights')
-    if worst['piece']['kind'] == 'bend' and bends is not None and \
-            (straights is None or bends >= BEND_SHARE * straights):
-        reason += ': it %s its bends (%.1f cm RMS on the bends%s)' % (
-            'cuts' if worst.get('inside') else 'runs wide of', 100.0 * bends,
-            '' if straights is None else ', %.1f on the straights' % (100.0 * straights))
+    inside = figures.get('inside_bends')
+    if inside is not None and max(inside, 1.0 - inside) >= SIDE_SHARE:
+        bends, straights = figures.get('rms_bends'), figures.get('rms_straights')
+        reason += ': it %s its bends (off the line on them, %s them %.0f %% of the time; ' \
+            '%.1f cm RMS on the bends%s)' % (
+                'cuts' if inside >= SIDE_SHARE else 'runs wide of',
+                'inside' if inside >= SIDE_SHARE else 'outside',
+                100.0 * max(inside, 1.0 - inside), 100.0 * (bends or 0.0),
+                '' if straights is None else ', %.1f on the straights' % (100.0 * straights))
     return False, reason
 
 

@@ -16,7 +16,8 @@ is over. Nothing the solution says about itself counts.
 - The cross-track error is the base's distance to the centreline. The
   worst of it is placed on the course: on which piece (a straight, or a
   bend of what radius and which way), and on the inside or the outside of
-  a bend (a base inside its bends cuts them).
+  a bend; and of the poses on bends more than OFF_BEND off the line, the
+  share inside their bend (a base inside its bends cuts them).
 - Commands: the largest |linear.x| and |angular.z|, and every non-finite
   value of any field, kept in words ('-inf'), since JSON has no infinity.
 """
@@ -31,6 +32,8 @@ from wall_follower.evaluation.scoring.line import cross_track, progress, speed_b
 STILL = 1e-4
 # m: a base this far from the centreline has left the line.
 OFF_LINE = 0.1
+# m: a base this far off the line on a bend is inside or outside it (nearer, it is on it).
+OFF_BEND = 0.01
 # Non-finite commands a record keeps (it counts them all).
 NON_FINITE_KEPT = 5
 TWIST_FIELDS = ('linear.x', 'linear.y', 'linear.z', 'angular.x', 'angular.y', 'angular.z')
@@ -155,19 +158,25 @@ def _place(pieces, pose, along, offset):
 
 def tracking(centreline, course, poses):
     """The cross-track figures of poses: RMS and worst [m], the worst's place, the RMS on
-    bends and on straights, and where the base first left the line (None if never)."""
+    bends and on straights, the share of the poses off the line on bends that are inside
+    them (None if none is off), and where the base first left the line (None if never)."""
     xy = poses[:, 1:3]
     pieces = pieces_along(course)
     rms, worst = cross_track(centreline, xy)
     distance, along, offset = signed_offsets(centreline, xy)
     at = int(np.argmax(distance))
-    on_bend = np.array([piece_at(pieces, a)['kind'] == 'bend' for a in along])
+    places = [piece_at(pieces, a) for a in along]
+    on_bend = np.array([place['kind'] == 'bend' for place in places])
+    inside = np.array([place['kind'] == 'bend' and (o > 0) == (place['turn'] == 'left')
+                       for place, o in zip(places, offset)])
+    off_bend = on_bend & (distance > OFF_BEND)
     off = np.nonzero(distance > OFF_LINE)[0]
 
     def rms_of(mask):
         return float(math.sqrt(np.mean(distance[mask] ** 2))) if mask.any() else None
     return {'rms': rms, 'max': worst, 'worst': _place(pieces, poses[at], along[at], offset[at]),
             'rms_bends': rms_of(on_bend), 'rms_straights': rms_of(~on_bend),
+            'inside_bends': float(np.mean(inside[off_bend])) if off_bend.any() else None,
             'left_line': _place(pieces, poses[off[0]], along[off[0]], offset[off[0]])
             if len(off) else None}
 
