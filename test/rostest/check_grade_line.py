@@ -23,13 +23,13 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import uuid
 
 import rospy
 import rostest
 
 import report_browser as browser
-from check_grade import left_behind
-from wall_follower.evaluation.launching import TOKEN_VARIABLE
+from wall_follower.evaluation.launching import marked_processes
 
 SOLUTION = ['--task', 'line', 'wall_follower', 'line_following.launch']
 SMALL = ['--worlds', '3', '--seed', '0', '--room', '1.4', '1.8', '--start-limit', '20',
@@ -42,24 +42,10 @@ def grade(words):
     return ['rosrun', 'wall_follower', 'grade'] + words
 
 
-def orphans():
-    """Processes carrying a grade's case token whose grade has ended: left behind."""
-    needle = ('%s=' % TOKEN_VARIABLE).encode()
-    found = []
-    for entry in os.listdir('/proc'):
-        if not entry.isdigit():
-            continue
-        try:
-            with open('/proc/%s/environ' % entry, 'rb') as stream:
-                environment = stream.read().split(b'\0')
-        except (IOError, OSError):
-            continue
-        for variable in environment:
-            if variable.startswith(needle):
-                owner = variable[len(needle):].split(b'-')[0]
-                if owner.isdigit() and not os.path.exists('/proc/%s' % owner.decode()):
-                    found.append(int(entry))
-    return found
+# Every process this test starts, and all they start (parallel, the graders, every case's
+# processes), carries this mark in its environment: none may be left at the end. (Not the
+# case token's variable: each grade gives its cases tokens of their own.)
+MARK = ('WALL_FOLLOWER_GRADE_LINE_TEST', uuid.uuid4().hex)
 
 
 def read_json(path):
@@ -74,9 +60,10 @@ class GradeLineClass(unittest.TestCase):
         cls.root = tempfile.mkdtemp(prefix='grade_line-')
         cls.pursuit = os.path.join(cls.root, 'pursuit')
         cls.pixel_p = os.path.join(cls.root, 'pixel_p')
+        env = dict(os.environ, **{MARK[0]: MARK[1]})
         listing = subprocess.check_output(grade(SOLUTION + SMALL + ['--out', cls.pursuit,
                                                                     '--list']),
-                                          universal_newlines=True)
+                                          universal_newlines=True, env=env)
         cls.cases = listing.splitlines()
         cases_file = os.path.join(cls.root, 'cases.txt')
         with open(cases_file, 'w') as stream:
@@ -85,17 +72,17 @@ class GradeLineClass(unittest.TestCase):
         # own master, so the load cannot change what either scores.
         other = subprocess.Popen(grade(SOLUTION + ['controller:=pixel_p'] + SMALL + [
             '--case', str(TIGHT), '--out', cls.pixel_p]), stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT, universal_newlines=True)
+            stderr=subprocess.STDOUT, universal_newlines=True, env=env)
         cls.joblog = os.path.join(cls.root, 'joblog')
         with open(cases_file) as commands:
             cls.parallel = subprocess.run(
                 ['parallel', '--will-cite', '--jobs', '2', '--joblog', cls.joblog],
                 stdin=commands, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                universal_newlines=True)
+                universal_newlines=True, env=env)
         cls.other_output, _ = other.communicate()
         cls.other = other
         collect = subprocess.run(grade(['--collect', cls.root]), stdout=subprocess.PIPE,
-                                 stderr=subprocess.STDOUT, universal_newlines=True)
+                                 stderr=subprocess.STDOUT, universal_newlines=True, env=env)
         cls.status, cls.output = collect.returncode, collect.stdout
         cls.grades = read_json(os.path.join(cls.pursuit, 'grades.json'))
         cls.pixel_grades = read_json(os.path.join(cls.pixel_p, 'grades.json'))
@@ -164,8 +151,7 @@ class GradeLineClass(unittest.TestCase):
         self.assertEqual(tops, sorted(set(tops)))
 
     def test_nothing_left_running(self):
-        self.assertEqual(left_behind(self.other.pid), [])
-        self.assertEqual(orphans(), [])
+        self.assertEqual(marked_processes(MARK[1], MARK[0]), [])
 
 
 if __name__ == '__main__':

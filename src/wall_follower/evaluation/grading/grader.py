@@ -11,7 +11,12 @@ launch file. When the case has ended, every process it started is ended
 (processes.ProcessGroup). Each case is one independent command (--list
 prints them, --case K runs one), so a batch system can spread a class over
 many machines; --collect DIR then builds the report from the finished
-cases.
+cases (--collect DIR1 DIR2 ..., the class page too: class_report.py).
+
+What a case is depends on the task (--task): the course's (CourseTask
+below: a generated room, grade_case.launch) or a line follower's
+(line_task.LineTask: a generated line course and camera, line_case.launch);
+CaseRunner runs either.
 
 A launch file given by its path, in a directory that is no package's
 root, is run with that directory as a package named like the directory

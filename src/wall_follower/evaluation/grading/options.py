@@ -68,8 +68,8 @@ START_LIMIT = _parameter(CASE_TABLE, 'start_limit')
 
 def parser():
     p = argparse.ArgumentParser(
-        prog='grade', description='A course solution graded on generated worlds, from ground '
-        'truth.',
+        prog='grade', description='A course solution (or, with --task line, a line follower) '
+        'graded on generated worlds, from ground truth.',
         epilog='examples: grade my_course main.launch; grade ~/sub/alice.launch --worlds 20 '
                '--jobs 2; grade my_course main.launch --list > cases.txt; '
                'grade --collect DIR')
