@@ -25,7 +25,8 @@ from wall_follower.evaluation.pictures.course_plot import plot_course, plt, poin
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
-from wall_follower.nodes.evaluation.grade_case import SolutionSeen, _json_safe, case_record
+from wall_follower.nodes.evaluation.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.shared.case_graph import _json_safe
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
