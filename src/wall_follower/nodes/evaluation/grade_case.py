@@ -42,7 +42,7 @@ from std_srvs.srv import Empty
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.evaluation.grading.commands import CommandLog
-from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers
+from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers, reply_moment
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
@@ -148,18 +148,21 @@ class FindWallWatch(object):
     def record(self, course_map, start):
         """The judged call (CallWatch.judged) as the record keeps it, None without one: its
         times (s since the start), how far the robot went in it, and the wall beside the
-        robot when it replied."""
+        robot when it replied (service_calls.reply_moment)."""
         with self._lock:
             watch = self.watch.of(self._port)
             call = watch.judged()
             count = len(watch.calls)
             calls = [(c['start'] - start, c['end'] - start) for c in watch.calls[:CALLS_KEPT]]
-        if call is None or call['start_pose'] is None or call['end_pose'] is None:
+        moment = None if call is None or call['start_pose'] is None else reply_moment(
+            call, course_map.right_wall_alignment)
+        if moment is None:
             return None
-        pose, first = call['end_pose'], call['start_pose']
-        aligned = course_map.right_wall_alignment(pose)
-        return {'called': call['start'] - start, 'replied': call['end'] - start,
-                'seconds': call['end'] - call['start'],
+        replied, pose, aligned = moment
+        first = call['start_pose']
+        return {'called': call['start'] - start, 'replied': replied - start,
+                'seconds': replied - call['start'],
+                'reply_within': call['end'] - call['last_open'],
                 'moved': math.hypot(pose[0] - first[0], pose[1] - first[1]),
                 'turned_deg': abs(math.degrees(wrap_angle(pose[2] - first[2]))),
                 'distance': aligned[0] if aligned else float('nan'),
