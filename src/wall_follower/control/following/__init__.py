@@ -1,0 +1,1 @@
+"""The wall follower and its manoeuvres: following, corners, left turns, the search, the body's swing."""
