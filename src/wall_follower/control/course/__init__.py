@@ -1,1 +1,2 @@
-"""The course's other behaviours: finding the wall (find_wall) and recording the lap (record_odom)."""
+"""The course's other behaviours: finding the wall (find_wall) and recording the lap
+(record_odom)."""

@@ -1,1 +1,2 @@
-"""The wall follower and its manoeuvres: following, corners, left turns, the search, the body's swing."""
+"""The wall follower and its manoeuvres: following, corners, left turns, the search, and
+the body's swing on a turn."""

@@ -15,7 +15,7 @@ import rospy
 from wall_follower.nodes.shared.latest_image import image_topics
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.camera_view import TABLE
+from wall_follower.params.camera.camera_view import TABLE
 
 NAME = 'camera_view'
 WINDOW = 'camera_view'
