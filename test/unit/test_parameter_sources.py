@@ -21,13 +21,29 @@ import yaml
 from dynamic_reconfigure.encoding import extract_params
 
 from wall_follower.params import ParameterError, checked, defaults, parameters
-from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
-                                  odom_recorder, range_ahead, simple_move_square, slam,
-                                  stage_sim, teleop_key, wall_finder, wall_following, wander)
-from wall_follower.params import arm_controller, arm_plot, move_arm
-from wall_follower.params import grade_case
-from wall_follower.params import camera_view, line_follower, line_mask
-from wall_follower.params import world_map
+from wall_follower.params import driving
+from wall_follower.params.arm import arm_controller
+from wall_follower.params.arm import arm_plot
+from wall_follower.params.arm import move_arm
+from wall_follower.params.camera import camera_view
+from wall_follower.params.camera import line_follower
+from wall_follower.params.camera import line_mask
+from wall_follower.params.course import odom_recorder
+from wall_follower.params.course import wall_finder
+from wall_follower.params.course import wall_following
+from wall_follower.params.evaluation import course_report
+from wall_follower.params.evaluation import find_trials
+from wall_follower.params.evaluation import grade_case
+from wall_follower.params.evaluation import line_case
+from wall_follower.params.exercises import forward_stop
+from wall_follower.params.exercises import range_ahead
+from wall_follower.params.exercises import simple_move_square
+from wall_follower.params.exercises import teleop_key
+from wall_follower.params.exercises import wander
+from wall_follower.params.mapping import map_saver
+from wall_follower.params.mapping import slam
+from wall_follower.params.mapping import world_map
+from wall_follower.params.sim import stage_sim
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
@@ -50,6 +66,7 @@ NODES = {
     'move_arm': (move_arm.TABLE, 'MoveArm'),
     'arm_plot': (arm_plot.TABLE, None),
     'grade_case': (grade_case.TABLE, None),
+    'line_case': (line_case.TABLE, None),
     'line_follower': (line_follower.TABLE, 'LineFollower'),
     'line_mask': (line_mask.TABLE, 'LineMask'),
     'camera_view': (camera_view.TABLE, None),
@@ -64,7 +81,7 @@ DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 
            'wander')
 DRIVING += ('line_follower',)
 #: nodes set only by their launch files' arguments, which document them: no README table
-WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case', 'world_map'}
+WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case', 'line_case', 'world_map'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 
@@ -134,7 +151,8 @@ def _nest(values, path, value):
 LAUNCH_FILES = sorted(glob.glob(os.path.join(ROOT, 'launch', '*.launch')))
 #: The args a launch file cannot do without (declared with no default), and a value for
 #: each: a parameter set to that value from it is the caller's, not a default to check.
-REQUIRED_ARGS = {'grade_case.launch': {'world': '/tmp/generated.world'}}
+REQUIRED_ARGS = {'grade_case.launch': {'world': '/tmp/generated.world'},
+                 'line_case.launch': {'world': '/tmp/line_s0_000.world'}}
 #: (launch file, its args): each file at its defaults, and with the args that add a node
 LAUNCH_RUNS = [(path, tuple('%s:=%s' % item for item in sorted(
     REQUIRED_ARGS.get(os.path.basename(path), {}).items()))) for path in LAUNCH_FILES] + [

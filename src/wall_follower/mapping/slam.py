@@ -51,7 +51,7 @@ import math
 import numpy as np
 
 from wall_follower.params import checked
-from wall_follower.params.slam import GRID, MAPPER, RULES
+from wall_follower.params.mapping.slam import GRID, MAPPER, RULES
 
 from .grid import LogOddsGrid
 from .keyframes import REDRAW, Keyframes

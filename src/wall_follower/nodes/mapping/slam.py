@@ -11,8 +11,8 @@ processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
 
 What it cannot trust it says, with a warning, and does not draw: a scan
-that control.scan_check finds malformed or unusable, odometry that
-control.odom_check finds not finite or with no unit quaternion (a scan
+that control.sensing.scan_check finds malformed or unusable, odometry that
+control.course.odom_check finds not finite or with no unit quaternion (a scan
 that only such odometry could place is skipped), a scan or odometry
 stamped far ahead of the node's clock (control.stamps: a map -> odom
 transform broadcast at such a stamp would abort every tf listener, this
@@ -21,7 +21,7 @@ restarted, a bag looped) starts its history afresh, and one that jumped
 further than the robot can drive is warned of: the map is drawn on at the
 jumped pose only after the warning.
 
-Parameters: the table in wall_follower.params.slam. A mapping run is long
+Parameters: the table in wall_follower.params.mapping.slam. A mapping run is long
 and tuned while it runs (`rosrun dynamic_reconfigure dynparam set /slam
 map_update_interval 1.0`, or rqt_reconfigure): a change applies at the next
 scan, in the scan callback, which alone touches the mapper. The frames and
@@ -41,8 +41,8 @@ from sensor_msgs.msg import LaserScan
 import numpy as np
 
 from wall_follower.cfg import SlamConfig
-from wall_follower.control.odom_check import OdomCheck, odometry_problem
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.course.odom_check import OdomCheck, odometry_problem
+from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.mapping.slam import Mapper
 from wall_follower.nodes.shared.messages import pose_message, pose_of, yaw_of
@@ -50,7 +50,7 @@ from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import pick
-from wall_follower.params.slam import MAPPER, READ_AT_START, RULES, TABLE
+from wall_follower.params.mapping.slam import MAPPER, READ_AT_START, RULES, TABLE
 from wall_follower.rotation import quaternion_of_yaw, wrap_angle
 
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
