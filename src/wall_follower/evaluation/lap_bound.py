@@ -16,7 +16,7 @@ found by optimising a path through the band's corridor: stations every
 SPACING metres along the band's middle line, the rotation centre free to
 move along each station's normal, the laser held in the band by a
 penalty. The path is flown as an arc from each station to the next and a
-pivot at each station where the arcs' headings differ (flown()). The
+pivot at each station where the arcs' headings differ (_Flown). The
 optimisation (scipy's L-BFGS-B) first times the path as if every turn
 were spread over the stations either side of it, which is smooth, then
 the arcs and pivots themselves; its variables are smoothed along the loop
@@ -37,7 +37,7 @@ from collections import namedtuple
 
 import numpy as np
 from scipy.ndimage import distance_transform_edt
-from scipy.optimize import linprog, minimize
+from scipy.optimize import minimize
 from scipy.sparse import csc_matrix, diags
 from scipy.sparse.linalg import splu
 from scipy.spatial import cKDTree
@@ -75,7 +75,7 @@ LapBound = namedtuple('LapBound', 'time length centres turns laser excursion')
 LapBound.__doc__ = """time: T* [s]; length: the rotation centre's path length [m];
 centres (M, 2): the rotation centre at each station, round the loop with the wall on the
 right; turns (M,): the turn of the arc each piece, from one station to the next, is flown
-with [rad] (see flown()); laser: (x, y) of the laser in the robot's frame; excursion: the
+with [rad] (see _Flown); laser: (x, y) of the laser in the robot's frame; excursion: the
 farthest the laser goes past the band's edges held MARGIN inside, at the stations [m]
 (0 when it keeps within)."""
 
@@ -361,9 +361,17 @@ class _Spread(_Timing):
 
 
 class _Flown(_Timing):
-    """The path's time flown as arcs and pivots (see flown()); the variables after the
-    offsets are the turns of the arcs. The laser is checked at each station at the
-    headings the robot arrives and leaves with, and halfway between."""
+    """The path's time flown as arcs and pivots; the variables after the offsets are the
+    turns of the arcs.
+
+    A piece flown as an arc turning through a whose chord it is leaves its station
+    at its direction less a / 2 and arrives at the next at its direction plus a /
+    2, taking max(length / MAX_LINEAR, |a| / MAX_ANGULAR); at a station the robot
+    pivots from the heading it arrived with to the one it leaves with, at
+    MAX_ANGULAR (flight_time()). A robot can fly that exactly. The laser is checked
+    at each station at the headings the robot arrives and leaves with, and halfway
+    between.
+    """
 
     def split(self, variables):
         count = len(self.corridor.stations)
@@ -466,49 +474,33 @@ def fastest_lap(world_path, start, spacing=SPACING):
     for timing, weight, steps in STAGES:
         if timing == 'flown' and len(variables) == len(bounds):
             _, _, length, direction = spread.pieces(variables)
-            variables = np.concatenate((variables, flown(length, direction)[0]))
+            variables = np.concatenate((variables, spread_turns(direction)))
         smoothed = _Smoothed(spread if timing == 'spread' else flying, bounds)
         variables = smoothed.variables(minimize(
             smoothed, smoothed.smoothed(variables), args=(weight,), jac=True,
             method='L-BFGS-B', options={'maxiter': steps, 'maxcor': 20}).x)
-    offsets = np.clip(flying.split(variables)[0], bounds[:, 0], bounds[:, 1])
+    offsets, turns = flying.split(variables)
     centres, _, length, direction = flying.pieces(offsets)
-    turns, time = flown(length, direction)
+    time = flight_time(length, direction, turns)
     arrive = np.roll(direction + 0.5 * turns, 1)
     leave = arrive + _wrapped(direction - 0.5 * turns - arrive)
     excursion = flying.excursion(centres, (arrive, leave, 0.5 * (arrive + leave)))
     return LapBound(time, float(length.sum()), centres, turns, tuple(laser), excursion)
 
 
-def flown(length, direction):
-    """(the turn of each piece's arc, the least time of the lap) for a closed polyline
-    through stations, pieces of length and direction, flown as arcs and pivots.
+def flight_time(length, direction, turns):
+    """The time of a lap through stations, pieces of length and direction, each flown as
+    an arc turning through turns (see _Flown), with a pivot at each station between."""
+    pivots = _wrapped(direction - np.roll(direction, 1)) - 0.5 * (turns + np.roll(turns, 1))
+    return float(np.maximum(length / MAX_LINEAR, np.abs(turns) / MAX_ANGULAR).sum()
+                 + np.abs(pivots).sum() / MAX_ANGULAR)
 
-    A piece flown as an arc turning through a whose chord it is leaves its
-    station at its direction less a / 2 and arrives at the next at its direction
-    plus a / 2, taking max(length / MAX_LINEAR, |a| / MAX_ANGULAR); at a station
-    the robot pivots from the heading it arrived with to the one it leaves with, at
-    MAX_ANGULAR. The turns that make the lap quickest come from a linear programme.
-    """
-    count = len(length)
-    bend = _wrapped(direction - np.roll(direction, 1))   # at each station
-    eye = np.eye(count)
-    # The pivot at station i: its bend less half the turns of pieces i - 1 and i.
-    halves = 0.5 * (eye + np.roll(eye, -1, axis=1))
-    zero = np.zeros((count, count))
-    # Variables: the pieces' turns, their times, the pivots' sizes.
-    rows = np.vstack((np.hstack((eye / MAX_ANGULAR, -eye, zero)),
-                      np.hstack((-eye / MAX_ANGULAR, -eye, zero)),
-                      np.hstack((-halves, zero, -eye)),
-                      np.hstack((halves, zero, -eye))))
-    limits = np.concatenate((np.zeros(2 * count), -bend, bend))
-    cost = np.concatenate((np.zeros(count), np.ones(count), np.full(count, 1.0 / MAX_ANGULAR)))
-    bounds = ([(-math.pi, math.pi)] * count + [(t, None) for t in length / MAX_LINEAR]
-              + [(0.0, None)] * count)
-    result = linprog(cost, A_ub=rows, b_ub=limits, bounds=bounds)
-    if not result.success:
-        raise BoundError('no timing of the lap found: %s' % result.message)
-    return result.x[:count], float(result.fun)
+
+def spread_turns(direction):
+    """Turns for the pieces of a polyline that share each station's bend between the
+    pieces either side of it: no pivot where the polyline bends evenly."""
+    bend = _wrapped(direction - np.roll(direction, 1))
+    return 0.5 * (bend + np.roll(bend, -1))
 
 
 def drive(world_path, bound):
