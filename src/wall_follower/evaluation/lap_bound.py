@@ -624,3 +624,39 @@ class _Schedule(object):
                 x += radius * (math.sin(heading) - math.sin(start))
                 y += radius * (math.cos(start) - math.cos(heading))
         return (x, y, heading), station
+
+
+class Bounds(object):
+    """The bound of every lap a benchmark asks about, and its check by driving it: each
+    loop of a world optimised and driven once, however many laps go round it.
+
+    of() answers (LapBound, DrivenLap), or (None, the reason) where there is no
+    bound (no band loop near the lap's start, say).
+    """
+
+    # A lap whose start is this near a known bound's path goes round its loop [m].
+    SAME_LOOP = 0.2
+
+    def __init__(self):
+        self._known = {}
+
+    def of(self, world_path, start):
+        """The bound of the loop nearest start (x, y, ...) in the world of world_path."""
+        start = np.asarray(start[:2], dtype=float)
+        known = self._known.setdefault(world_path, [])
+        for bound, driven in known:
+            if bound is not None and np.hypot(*(bound.centres - start).T).min() <= self.SAME_LOOP:
+                return bound, driven
+        try:
+            bound = fastest_lap(world_path, start)
+        except BoundError as error:
+            known.append((None, str(error)))
+        else:
+            known.append((bound, drive(world_path, bound)))
+        return known[-1]
+
+    def all(self):
+        """(world path, LapBound or None, DrivenLap or the reason there is none) of each
+        bound known, worlds in the order asked about."""
+        return [(world, bound, driven) for world, known in self._known.items()
+                for bound, driven in known]
