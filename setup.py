@@ -1,10 +1,13 @@
-"""Python package of wall_follower, installed by catkin_python_setup()."""
-from setuptools import setup
+"""Python package of wall_follower, installed by catkin_python_setup().
+
+Every package under src/ is found, so that an install space (catkin_make
+install, a Debian or ROS build farm package) holds the whole library, not
+only the folders a list named.
+"""
+from setuptools import find_packages, setup
 from catkin_pkg.python_setup import generate_distutils_setup
 
 setup(**generate_distutils_setup(
-    packages=['wall_follower', 'wall_follower.control', 'wall_follower.sim', 'wall_follower.nodes',
-              'wall_follower.evaluation', 'wall_follower.exercises',
-              'wall_follower.evaluation.benchmarks'],
+    packages=find_packages('src'),
     package_dir={'': 'src'},
 ))

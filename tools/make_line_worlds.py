@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Regenerates the line worlds of worlds/ from their course files.
 
-Each worlds/<name>.course.yaml (see wall_follower.evaluation.line_track)
+Each worlds/<name>.course.yaml (see wall_follower.evaluation.scoring.line_track)
 defines a yellow line by its centreline; this draws
 
 - worlds/<name>_line.png: the line at LINE_PIXEL metres per pixel, black
@@ -30,7 +30,7 @@ from PIL import Image
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, 'src'))
 
-from wall_follower.evaluation.line_track import centreline_of, read_course  # noqa: E402
+from wall_follower.evaluation.scoring.line_track import centreline_of, read_course  # noqa: E402
 
 LINE_PIXEL = 0.005
 TIE = 1e-9         # m: a pixel centre this near the line's edge is a tie (line_raster)

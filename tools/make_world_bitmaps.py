@@ -25,7 +25,7 @@ import numpy as np
 from PIL import Image
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'src'))
-from wall_follower.evaluation.floorplan import png_bytes, render  # noqa: E402
+from wall_follower.evaluation.worlds.floorplan import png_bytes, render  # noqa: E402
 
 # name -> free-space outline, (x, y) in metres, counter-clockwise.
 OUTLINES = {

@@ -5,12 +5,11 @@ real stageros (built by tools/build-real-stage) on worlds of their own and
 keep what it publishes. Both need Stage's window (under `xvfb-run -a`
 without a display, so that the world's `speedup` paces it), a master of
 their own on a free port so that no other roscore is disturbed, and every
-process they start ended by its group id whatever happens.
+process they start ended whatever happens (launching.ProcessGroup).
 """
 import contextlib
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
@@ -19,33 +18,21 @@ import time
 import rosgraph
 import rospy
 
-from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port
+from wall_follower.evaluation.launching import ProcessGroup, display_wrapper, free_port
 
-
-def start(command, log, env):
-    """A process in a session of its own, so that stop() reaches its children too."""
-    return subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
-                            start_new_session=True)
-
-
-def stop(process):
-    """End a process start() made, and its children, by its group id."""
-    if process.poll() is None:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
+STOP_GRACE = 15.0   # wall s for stageros and roscore to end on SIGINT before they are killed
 
 
 @contextlib.contextmanager
 def stage_session(name):
-    """Yield (wrapper, log, env) with a private master up and this process its node `name`.
+    """Yield (wrapper, log, env, group) with a private master up and this process its node
+    `name`.
 
     wrapper: the words to put before a command that opens a window
     (xvfb-run where there is no display); log: the file every process
-    writes to; env: the environment that names the private master. Exits
+    writes to; env: the environment that names the private master; group:
+    the ProcessGroup to start stageros in, every process of which ends with
+    the session. Exits
     with a one-line message where real Stage or a display cannot be had.
     """
     wrapper = display_wrapper()
@@ -59,12 +46,13 @@ def stage_session(name):
                ROS_LOG_DIR=tempfile.mkdtemp(prefix='%s-log-' % name))
     os.environ.update(env)
     log = open(os.path.join(env['ROS_LOG_DIR'], 'processes.log'), 'w')
-    roscore = start(['roscore', '-p', str(port)], log, env)
+    group = ProcessGroup(grace=STOP_GRACE)
+    group.start(['roscore', '-p', str(port)], env, log)
     try:
         while not rosgraph.is_master_online():
             time.sleep(0.2)
         rospy.init_node(name, disable_signals=True)
-        yield wrapper, log, env
+        yield wrapper, log, env, group
     finally:
-        stop(roscore)
+        group.stop()
         log.close()

@@ -34,11 +34,11 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 
-from wall_follower.evaluation.stage_odometry import (GROUND_TRUTH_FIELDS, ODOM_FIELDS,
-                                                     step_scale_errors)
+from wall_follower.evaluation.scoring.stage_odometry import (GROUND_TRUTH_FIELDS, ODOM_FIELDS,
+                                                             step_scale_errors)
 from wall_follower.sim.worldfile import load_world
 
-from real_stage_session import stage_session, start, stop
+from real_stage_session import stage_session
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'test', 'data',
                     'stage_reference')
@@ -136,11 +136,11 @@ class Recorder(object):
         self.wait_ticks(int(round(seconds / INTERVAL)))
 
 
-def record_run(name, world_file, wrapper, log, env):
+def record_run(name, world_file, wrapper, log, env, group):
     world = load_world(os.path.join(DATA, world_file))
     recorder = Recorder(len(world.robots))
-    stageros = start(wrapper + ['rosrun', 'stage_ros', 'stageros',
-                                os.path.join(DATA, world_file)], log, env)
+    stageros = group.start(wrapper + ['rosrun', 'stage_ros', 'stageros',
+                                      os.path.join(DATA, world_file)], env, log)
     try:
         recorder.wait_ticks(1)
         first = recorder.wait_ticks(1)
@@ -154,7 +154,7 @@ def record_run(name, world_file, wrapper, log, env):
                 recorder.drive(v, vy, w, seconds)
         last = recorder.wait_ticks(2)
     finally:
-        stop(stageros)
+        group.end(stageros)
         recorder.close()
     stamps = [s for s in sorted(recorder.odom[0]) if first <= s <= last]
     steps = [int(round((b - a) / INTERVAL)) for a, b in zip(stamps[:-1], stamps[1:])]
@@ -206,11 +206,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('--out', default=os.path.join(DATA, 'stage_odometry.json'))
     args = parser.parse_args()
-    with stage_session('record_stage_odometry') as (wrapper, log, env):
+    with stage_session('record_stage_odometry') as (wrapper, log, env, group):
         runs = []
         for name, world_file in RUNS:
             print('== %s: %s' % (name, world_file))
-            runs.append(record_run(name, world_file, wrapper, log, env))
+            runs.append(record_run(name, world_file, wrapper, log, env, group))
             summary(runs[-1])
             time.sleep(1.5)   # a new second: Stage seeds its default draw from the clock
     with open(args.out, 'w') as stream:

@@ -16,7 +16,7 @@ import sys
 import tempfile
 import time
 
-from wall_follower.evaluation.rviz_screen import Launch, VirtualScreen, missing_tools
+from wall_follower.evaluation.pictures.rviz_screen import Launch, VirtualScreen, missing_tools
 
 
 def main():

@@ -1,13 +1,20 @@
 """Summarise catkin's JUnit results into one pass/fail line.
 
 catkin_make run_tests exits 0 even when tests fail, so the suite's verdict
-comes from the result files instead.
+comes from the result files instead. A unit-test module that pytest could
+not collect (it failed to import) ran none of its tests: each of them counts
+as failed, so that the closing line counts every test that should have run.
 """
 import argparse
+import ast
 import glob
 import os
 import sys
 import xml.etree.ElementTree as ET
+
+REPO = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+# pytest's JUnit record of a module it could not collect: no class, this message.
+COLLECTION_FAILURE = 'collection failure'
 
 
 def _cases(path):
@@ -27,14 +34,52 @@ def _problem(case):
     return (bad.get('message') or bad.text or '').strip()[:400]
 
 
-def count_results(results_dir):
+def module_tests(path):
+    """How many tests a pytest module defines: its test_* functions and the test_* methods
+    of its Test* classes (a parametrized one counts once); None if it cannot be read."""
+    try:
+        with open(path, encoding='utf-8') as stream:
+            tree = ast.parse(stream.read(), path)
+    except (EnvironmentError, SyntaxError, ValueError):
+        return None
+    functions = (ast.FunctionDef, ast.AsyncFunctionDef)
+    count = 0
+    for node in tree.body:
+        if isinstance(node, functions) and node.name.startswith('test'):
+            count += 1
+        elif isinstance(node, ast.ClassDef) and node.name.startswith('Test'):
+            count += sum(1 for item in node.body
+                         if isinstance(item, functions) and item.name.startswith('test'))
+    return count
+
+
+def _uncollected(case, source):
+    """(tests not run, failure line) for pytest's record of a module it could not collect,
+    or None for any other case. source: the folder pytest's module names are relative to."""
+    error = case.find('error')
+    if case.get('classname') or error is None or error.get('message') != COLLECTION_FAILURE:
+        return None
+    module = case.get('name')
+    tests = module_tests(os.path.join(source, *module.split('.')) + '.py')
+    lines = [line[1:].strip() for line in (error.text or '').splitlines()
+             if line.startswith('E ')]
+    why = lines[-1] if lines else 'see the log'
+    if tests is None:
+        return 1, '%s: could not be collected, so none of its tests ran: %s' % (module, why)
+    return max(tests, 1), '%s: could not be collected, so its %d test(s) did not run: %s' % (
+        module, tests, why)
+
+
+def count_results(results_dir, source=REPO):
     """Return (passed, failed, failures) over the JUnit files below results_dir.
 
     Each rostest writes a wrapper file (rostest-*.xml, one case per <test>)
     and the test node's own file (rosunit-<test-name>.xml). The real cases
     are counted from the latter; a wrapper counts only when it failed, or
     when its test node left no cases at all (rostest reports SUCCESS when a
-    required node dies before the test runs).
+    required node dies before the test runs). A unit-test module that could not be
+    collected counts as failed once for each test it defines (source: the folder its
+    dotted name is relative to, the repository).
     """
     passed, failed, failures = 0, 0, []
     files = sorted(glob.glob(os.path.join(results_dir, '**', '*.xml'), recursive=True))
@@ -47,6 +92,11 @@ def count_results(results_dir):
             continue
         wrapper = name.startswith('rostest-')
         for case in cases:
+            uncollected = _uncollected(case, source)
+            if uncollected is not None:
+                failed += uncollected[0]
+                failures.append('%s :: %s' % (name, uncollected[1]))
+                continue
             problem = _problem(case)
             if problem is not None:
                 failed += 1

@@ -13,7 +13,12 @@ REPO_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CLONE_NAME="$(basename "$REPO_DIR")-$(printf '%s' "$REPO_DIR" | sha1sum | cut -c1-8)"
 WS_DIR="${WALL_FOLLOWER_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/wall_follower_ws/$CLONE_NAME}"
 
-APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
+# What the build and the nodes need (the main command's list): each package is in the
+# dependency table tools/dependencies.py (test/unit/test_dependencies.py checks it);
+# tools/run-tests adds what only the tests need.
+APT_PACKAGES="gcc g++ make cmake catkin python3-catkin-pkg python3-setuptools
+  ros-message-generation ros-message-runtime python3-genpy
+  python3-rospy python3-roslib python3-rospkg python3-rosgraph python3-rosgraph-msgs
   python3-roslaunch python3-rostest librostest-dev python3-actionlib
   ros-std-msgs libstd-msgs-dev python3-std-msgs
   ros-geometry-msgs libgeometry-msgs-dev python3-geometry-msgs
@@ -21,18 +26,15 @@ APT_PACKAGES="gcc g++ make cmake catkin ros-message-generation python3-rospy
   ros-sensor-msgs libsensor-msgs-dev python3-sensor-msgs
   ros-nav-msgs libnav-msgs-dev python3-nav-msgs
   ros-std-srvs libstd-srvs-dev python3-std-srvs
-  python3-tf2-ros python3-tf python3-tf2-msgs python3-rosgraph
-  python3-numpy python3-yaml python3-pil python3-matplotlib python3-pytest
-  python3-opencv python3-cv-bridge
-  python3-catkin-pkg rosbash python3-rostopic python3-rosnode
-  python3-rosservice python3-rosparam python3-rosmsg python3-rosbag
-  python3-hypothesis
-  python3-scipy
-  python3-visualization-msgs
-  python3-dynamic-reconfigure
-  libdynamic-reconfigure-config-init-mutex-dev
   ros-trajectory-msgs libtrajectory-msgs-dev python3-trajectory-msgs
-  ros-robot-state-publisher joint-state-publisher joint-state-publisher-gui liburdfdom-tools"
+  python3-visualization-msgs python3-tf2-ros python3-tf2-msgs
+  python3-dynamic-reconfigure libdynamic-reconfigure-config-init-mutex-dev
+  python3-numpy python3-scipy python3-yaml python3-pil python3-matplotlib
+  python3-opencv python3-cv-bridge
+  ros-robot-state-publisher joint-state-publisher-gui liburdfdom-tools
+  rosbash python3-rostopic python3-rosnode python3-rosservice python3-rosparam
+  python3-rosmsg python3-rosbag
+  bubblewrap"
 
 as_root() {
   if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi

@@ -6,7 +6,11 @@ In simulated time, the controller driving /clock: a trajectory is followed (the 
 within 0.01 rad of each point at its time, with splines through points with velocities
 and straight lines through points without); a replacing trajectory takes over mid-way
 without a jump; every bad trajectory is rejected with a warning naming the problem and
-no motion, and one wholly in the past leaves the current one going on. No joint_states
+no motion (a single point due now among them, as JointTrajectoryController rejects it),
+one wholly in the past leaves the current one going on, and one stamped an hour ahead is
+named in the log and waits for its time. An empty trajectory (no joints named, as
+JointTrajectoryController's own tests send it) stops the arm from where it actually is,
+braking within the acceleration limits to rest, and holds it there. No joint_states
 heard breaks a limit or puts a link into the floor or into another.
 """
 import unittest
@@ -20,6 +24,7 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from arm_watch import ArmWatch
 from rosout_log import RosoutLog
 from waiting import wait_until
+from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.params import defaults
 from wall_follower.params.arm_controller import TABLE
 
@@ -127,6 +132,8 @@ class ArmControllerTest(unittest.TestCase):
             (trajectory(0.0, [(1.0, [0, 0, 3.0, 0])]), 'elbow at 3.0000 rad is outside'),
             (trajectory(max(now - 5.0, 0.001), [(1.0, [0.5, 0, 0, 0])]),
              'every point is in the past'),
+            (trajectory(0.0, [(0.0, [0.5, 0, 0, 0])]),
+             'its last point is due now (time_from_start 0.000 s from a zero stamp, which'),
         ]
         for msg, words in bad:
             before = self.watch.latest()
@@ -147,6 +154,51 @@ class ArmControllerTest(unittest.TestCase):
         self.assertTrue(wait_until(lambda: self.log.said(
             '/arm_controller', 'every point is in the past', Log.WARN), 30.0))
         self.assert_points_met(current, start)
+        self.watch.assert_safe(self)
+
+    def test_5_a_trajectory_stamped_ahead_is_logged_and_waits_for_its_time(self):
+        before = self.watch.latest()
+        self.command.publish(trajectory(before[0] + 3600.0, [(1.0, [0.5, 0.5, 0.5, 0.5])]))
+        self.assertTrue(wait_until(lambda: any(
+            3500.0 < float(line.split('stamped ')[1].split()[0]) <= 3600.0
+            for line in self.log.lines('/arm_controller', 's ahead: it starts then', Log.INFO)),
+            30.0), 'no log line for it')
+        self.assertTrue(self.watch.wait_for_time(before[0] + 1.0))
+        for state in self.watch.since(before[0]):
+            self.assertTrue(np.allclose(state[1], before[1], atol=1e-12))
+
+    def test_6_an_empty_trajectory_brakes_the_arm_from_where_it_is_to_rest(self):
+        """The hip is sent far faster than it can go: it runs at its speed limit, far behind
+        what is desired of it. The stop brakes it from where it actually is (holding what
+        was desired would run it on at full speed to 3 rad and halt it at once), within
+        its acceleration limit, to rest where such a brake ends, and holds it there."""
+        acceleration = read_acceleration_limits(
+            rospy.get_param('robot_description_planning'), self.watch.model)
+        limit = self.watch.model.velocity[0]
+        start = self.watch.latest()[0] + LEAD
+        self.follow(trajectory(start, [(4.0, [-3.0, 0.0, 0.0, 0.0])]), start)
+        start = self.watch.latest()[0] + LEAD     # 6 s at its limit to 3 rad: time to stop it
+        self.command.publish(trajectory(start, [(0.5, [3.0, 0.0, 0.0, 0.0])]))
+        self.assertTrue(self.watch.wait_for_time(start + 0.6))
+        asked = self.watch.latest()[0]
+        self.assertAlmostEqual(self.watch.latest()[2][0], limit)     # held back
+        self.command.publish(JointTrajectory())
+        duration = 1.5 * limit / acceleration[0]    # the other joints are at rest
+        self.assertTrue(wait_until(lambda: any(
+            s[2][0] < limit for s in self.watch.since(asked)), 30.0), 'the hip never braked')
+        states = self.watch.since(asked)
+        braked = next(i for i, s in enumerate(states) if s[2][0] < limit)
+        self.assertTrue(self.watch.wait_for_time(states[braked][0] + duration + 1.0))
+        states = self.watch.since(asked)
+        for previous, state in zip(states, states[1:]):
+            change = np.abs(state[2] - previous[2]) / (state[0] - previous[0])
+            self.assertTrue((change <= acceleration * 1.001).all(),
+                            'at %.2f s: %s rad/s^2' % (state[0], change))
+        rest = self.watch.since(states[braked - 1][0] + duration + STEP / 2)
+        self.assertTrue(all(np.allclose(s[2], 0.0) for s in rest), 'still moving')
+        self.assertTrue(all(np.allclose(s[1], rest[0][1], atol=1e-9) for s in rest))
+        self.assertAlmostEqual(rest[0][1][0], states[braked - 1][1][0] + limit * duration / 2,
+                               places=6)
         self.watch.assert_safe(self)
 
 

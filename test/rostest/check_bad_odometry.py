@@ -5,9 +5,12 @@ Three squares, fed a room's scan and the odometry of a robot standing at
 the origin: one whose odometry has a NaN position from the start, one with
 a NaN orientation from the start, and one with good odometry until it
 drives, then a NaN position, a NaN orientation, an all-zero quaternion,
-and a jump of 5 m. While odometry is bad no command may move the robot,
-and the node must warn naming what is wrong (once it has, it may send
-nothing but stops); after the jump it stands for good. In wall time, with synthetic messages.
+odometry stamped 2100-01-01 and with the largest stamp a header holds
+(2**32 - 1 s), and a jump of 5 m. While odometry is bad no command may
+move the robot, and the node must warn naming what is wrong (once it has,
+it may send nothing but stops); it drives on once good odometry returns,
+but after the jump it stands for good. In wall time, with synthetic
+messages.
 """
 import math
 import sys
@@ -43,6 +46,9 @@ def odometry(x=0.0, y=0.0, orientation=(0.0, 0.0, 0.0, 1.0)):
 NAN_POSITION = odometry(x=math.nan)
 NAN_ORIENTATION = odometry(orientation=(0.0, 0.0, math.nan, 1.0))
 ZERO_QUATERNION = odometry(orientation=(0.0, 0.0, 0.0, 0.0))
+YEAR_2100 = rospy.Time(4102444800)
+LARGEST_STAMP = rospy.Time(2 ** 32 - 1, 999999999)
+FAR_AHEAD = "years ahead of this node's clock"
 
 
 class Square(object):
@@ -51,6 +57,7 @@ class Square(object):
     def __init__(self, namespace, odom):
         self.node = '/%s/simple_move_square' % namespace
         self.odom = odom
+        self.stamp = None   # the odometry's stamp: None for this clock's
         self.lock = threading.Lock()
         self.commands = []
         self.scans = rospy.Publisher(namespace + '/scan', LaserScan, queue_size=1)
@@ -95,14 +102,15 @@ class BadOdometry(unittest.TestCase):
             scan.header.stamp = now
             for square in cls.squares.values():
                 odom = square.odom
-                odom.header.stamp = now
+                odom.header.stamp = square.stamp or now
                 square.scans.publish(scan)
                 square.odometry.publish(odom)
             time.sleep(PERIOD)
 
-    def assert_stands_and_warns(self, square, words):
-        """The node warns naming the problem, and from then on sends only stops."""
-        assert_soon(self, WAIT_LIMIT, lambda: self.log.said(square.node, words),
+    def assert_stands_and_warns(self, square, words, warned=0):
+        """The node warns naming the problem (more than the `warned` times it had), and from
+        then on sends only stops."""
+        assert_soon(self, WAIT_LIMIT, lambda: len(self.log.lines(square.node, words)) > warned,
                     '%s to warn of odometry with %s' % (square.node, words))
         start = square.count()
         assert_soon(self, WAIT_LIMIT, lambda: square.count() >= start + int(WATCH / PERIOD),
@@ -118,16 +126,20 @@ class BadOdometry(unittest.TestCase):
 
     def test_odometry_going_bad_mid_run_stops_the_robot(self):
         square = self.squares['mid_run']
-        for odom, words in ((NAN_POSITION, 'position (nan, 0.0) is not finite'),
-                            (NAN_ORIENTATION, 'is not a unit quaternion (norm nan)'),
-                            (ZERO_QUATERNION, 'is not a unit quaternion (norm 0.0)'),
-                            (odometry(x=5.0), 'it jumped 5.00 m')):
-            square.odom = odometry()
+        for odom, stamp, words in (
+                (NAN_POSITION, None, 'position (nan, 0.0) is not finite'),
+                (NAN_ORIENTATION, None, 'is not a unit quaternion (norm nan)'),
+                (ZERO_QUATERNION, None, 'is not a unit quaternion (norm 0.0)'),
+                (odometry(), YEAR_2100, FAR_AHEAD),
+                (odometry(), LARGEST_STAMP, FAR_AHEAD),
+                (odometry(x=5.0), None, 'it jumped 5.00 m')):
+            square.odom, square.stamp = odometry(), None
             start = square.count()
             assert_soon(self, WAIT_LIMIT, lambda: any(
                 c != STANDING for c in square.since(start)), 'driving on good odometry')
-            square.odom = odom
-            self.assert_stands_and_warns(square, words)
+            warned = len(self.log.lines(square.node, words))
+            square.odom, square.stamp = odom, stamp
+            self.assert_stands_and_warns(square, words, warned)
         square.odom = odometry(x=5.0)
         self.assert_stands_and_warns(square, 'the square is given up')
 

@@ -21,8 +21,8 @@ from nav_msgs.msg import Odometry
 from sim_probe import SimProbe, pose_of
 from waiting import wait_until
 
-from wall_follower.nodes.course_monitor import node_alive
 from wall_follower.msg import OdomRecordActionFeedback
+from wall_follower.nodes.shared.course_monitor import node_alive
 
 WAIT_LIMIT = 60.0   # wall s
 STOP_AFTER = 1.0    # metres recorded before the odometry stops

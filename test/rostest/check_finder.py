@@ -12,7 +12,7 @@ import rospy
 import rostest
 from drive_guard import DriveGuard
 
-from wall_follower.nodes.find_trials import FindTrials
+from wall_follower.nodes.evaluation.find_trials import FindTrials
 from wall_follower.params import defaults
 from wall_follower.params.wall_finder import FINDER
 

@@ -12,9 +12,9 @@ import rospy
 import rostest
 from drive_guard import DriveGuard
 
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.sim.stage_interface import world_path
-from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.evaluation.scoring import CourseMap
 
 
 class FollowLap(unittest.TestCase):

@@ -18,8 +18,8 @@ import rostest
 
 from paused_world import GroundTruthRun
 from waiting import wait_until
-from wall_follower.evaluation.geometry import cast_rays
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.geometry import cast_rays
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.sim.stage_interface import world_path
 
 STILL = 1e-5          # m per step: below this the robot stands

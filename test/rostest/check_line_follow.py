@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """rostest: line_follower keeps the base on a line world's line, scored from ground truth.
 
-The base's distance to the course's centreline (evaluation.line_track,
+The base's distance to the course's centreline (evaluation.scoring.line_track,
 the centreline the world's bitmap is drawn from: the course file beside
 the world, or ~course) at every ground-truth pose. On a closed line, one
 full lap (progress along the centreline, from where the robot starts, up
@@ -23,8 +23,8 @@ import rostest
 
 from paused_world import GroundTruthRun
 from waiting import wait_until
-from wall_follower.evaluation.line_scoring import cross_track, progress
-from wall_follower.evaluation.line_track import load_centreline
+from wall_follower.evaluation.scoring.line import cross_track, progress
+from wall_follower.evaluation.scoring.line_track import load_centreline
 from wall_follower.sim.stage_interface import world_path
 
 STILL = 1e-4      # m, rad: a pose within this of the last one has not moved (nor turned)

@@ -23,8 +23,7 @@ import rospy
 import rostest
 
 from installed import real_stage_suite
-from wall_follower.evaluation.benchmarks.launching import display_wrapper, free_port, \
-    launch_command
+from wall_follower.evaluation.launching import display_wrapper, free_port, launch_command
 
 WORLD = 'line_lab'
 # Wall seconds: real Stage runs at the world's pace (speedup 1); the lab's lap takes 50 s.

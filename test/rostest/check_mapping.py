@@ -3,7 +3,7 @@
 
 The saved map must match the world (precision and recall at least
 ~min_precision and ~min_recall, 99 % unless mapping.test is told
-otherwise; see wall_follower/evaluation/map_scoring.py), and once the robot has stopped
+otherwise; see wall_follower/evaluation/scoring/map_quality.py), and once the robot has stopped
 after the lap, the mapper's pose (tf map -> base_footprint) must be within
 3 cm and 1 degree of the true pose, while the raw odometry was off by more
 somewhere on the lap (a scale error alone closes the lap again, as in the
@@ -31,14 +31,14 @@ from drive_guard import DriveGuard
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
-from wall_follower.evaluation.map_scoring import map_quality
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.mapping.mapfile import load_map
 from wall_follower.mapping.poses import between, wrap
-from wall_follower.nodes.common import pose_of, yaw_of
-from wall_follower.sim.stage_interface import world_path
+from wall_follower.nodes.shared.messages import pose_of, yaw_of
 from wall_follower.params import defaults
 from wall_follower.params.slam import TABLE
+from wall_follower.sim.stage_interface import world_path
 
 # Wall seconds for the lap, the saved map and the robot to settle.
 RUN_LIMIT = 280.0

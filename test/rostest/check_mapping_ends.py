@@ -17,7 +17,7 @@ import numpy as np
 import rospy
 import rostest
 
-from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 from wall_follower.mapping.mapfile import load_map
 
 # Wall seconds for the whole launch: start-up, a lap of the room (about a minute

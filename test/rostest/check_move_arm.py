@@ -3,16 +3,21 @@
 
 In simulated time, the built-in controller driving /clock: moves to named targets and
 to points (given in world and in a frame that moves with the arm) put the `hand` frame,
-as tf has it, within 2 mm of the goal; an unreachable point, a point below the floor and
-a point the hand can reach only through the floor fail with a message saying which, and
-the arm does not move; a new goal pre-empts the running one and a cancel stops the arm
-short of its goal. No joint_states heard breaks a limit or puts a link into the floor or
-into another.
+as tf has it, within 2 mm of the goal; an unreachable point, a point below the floor, a
+point the hand can reach only through the floor, a point that is not finite, one with
+no frame and a velocity_scaling too small to end fail with a message saying which, and
+the arm does not move (nor does move_arm's memory grow); a new goal pre-empts the
+running one and a cancel stops the arm short of its goal, within its acceleration
+limits, and the result says where it came to rest: it goes no further. No joint_states
+heard breaks a limit or puts a link into the floor or into another.
 """
+import re
 import unittest
+from xmlrpc.client import ServerProxy
 
 import actionlib
 import numpy as np
+import rosgraph
 import rospy
 import rostest
 import tf2_ros
@@ -22,10 +27,16 @@ from geometry_msgs.msg import PointStamped
 from arm_watch import WALL_LIMIT, ArmWatch
 from waiting import wait_until
 from wall_follower.arm.kinematics import tool_position
+from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.msg import MoveArmAction, MoveArmGoal
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = rospy.Duration(60.0)   # simulated s
+# rad between where a result says the arm stopped (to 3 decimals) and where it rests
+STOP_TOLERANCE = 0.002
+# bytes move_arm's resident memory may grow by over a refused goal (a crawling goal once
+# grew it by 70 MB a second)
+MEMORY_GROWTH_LIMIT = 20e6
 
 
 def point_goal(x, y, z, frame='world', scaling=0.0):
@@ -33,6 +44,15 @@ def point_goal(x, y, z, frame='world', scaling=0.0):
     target.header.frame_id = frame
     target.point.x, target.point.y, target.point.z = x, y, z
     return MoveArmGoal(target=target, velocity_scaling=scaling)
+
+
+def resident_memory(node):
+    """A node's resident memory [bytes], from /proc (the node runs on this machine)."""
+    caller = rospy.get_name()
+    _, _, pid = ServerProxy(rosgraph.Master(caller).lookupNode(node)).getPid(caller)
+    with open('/proc/%d/status' % pid) as status:
+        fields = dict(line.split(':', 1) for line in status)
+    return int(fields['VmRSS'].split()[0]) * 1024
 
 
 class MoveArmTest(unittest.TestCase):
@@ -67,7 +87,10 @@ class MoveArmTest(unittest.TestCase):
         self.assertLess(result.position_error, POSITION_TOLERANCE)
         error = np.linalg.norm(self.hand() - where)
         self.assertLess(error, POSITION_TOLERANCE, 'hand %.4f m from %s' % (error, where))
-        self.assertTrue(self.progress and self.progress[-1] == 1.0)
+        # feedback and result come on connections of their own: the last feedback may
+        # still be on its way when the result is in
+        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] == 1.0,
+                                   WALL_LIMIT), 'progress %s' % self.progress[-3:])
         self.assertEqual(self.progress, sorted(self.progress))
 
     def assert_refused(self, goal, words):
@@ -111,6 +134,19 @@ class MoveArmTest(unittest.TestCase):
         self.assert_refused(MoveArmGoal(named_target='dance'), "no named target 'dance'")
         self.assert_refused(MoveArmGoal(named_target='ready', velocity_scaling=1.5),
                             'velocity_scaling 1.5 is not within 0 to 1')
+        self.assert_refused(point_goal(float('nan'), 0.0, 0.5), 'point (nan, 0.0, 0.5) is not '
+                            'finite')
+        self.assert_refused(point_goal(0.3, float('inf'), 0.5), 'is not finite')
+        self.assert_refused(point_goal(0.4, -0.3, 0.6, frame=''), 'target has no frame_id')
+
+    def test_4a_a_crawling_velocity_scaling_is_refused_and_the_memory_stays_flat(self):
+        before = resident_memory('/move_arm')
+        self.assert_refused(MoveArmGoal(named_target='ready', velocity_scaling=1e-9),
+                            'velocity_scaling 1e-09 is below the least allowed, 0.01')
+        self.assertLess(resident_memory('/move_arm') - before, MEMORY_GROWTH_LIMIT)
+        ready = [self.watch.semantics.states['ready'][joint] for joint in self.watch.model.names]
+        self.assert_reached(MoveArmGoal(named_target='ready', velocity_scaling=0.5),
+                            tool_position(self.watch.model, ready))
 
     def test_5_a_new_goal_pre_empts_and_a_cancel_stops(self):
         self.assert_reached(MoveArmGoal(named_target='home'),
@@ -127,7 +163,8 @@ class MoveArmTest(unittest.TestCase):
         self.assertTrue(self.client.wait_for_result(RESULT_LIMIT))
         self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
         self.assertFalse(self.client.get_result().success)
-        self.assertIn('pre-empted', self.client.get_result().message)
+        pre_empted = self.client.get_result().message
+        self.assertIn('pre-empted', pre_empted)
         self.assertTrue(other.wait_for_result(RESULT_LIMIT))
         self.assertEqual(other.get_state(), GoalStatus.SUCCEEDED, other.get_result().message)
         self.assertLess(np.linalg.norm(self.hand() - (0.4, 0.4, 0.5)), POSITION_TOLERANCE)
@@ -137,14 +174,38 @@ class MoveArmTest(unittest.TestCase):
         self.client.send_goal(far, feedback_cb=lambda f: self.progress.append(f.progress))
         self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] > 0.3,
                                    WALL_LIMIT))
+        cancelled = self.watch.latest()[0]
         self.client.cancel_goal()
         self.assertTrue(self.client.wait_for_result(RESULT_LIMIT))
         self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
-        cancelled = self.watch.latest()[0]
-        self.assertTrue(self.watch.wait_for_time(cancelled + 1.5))
-        still = self.watch.since(cancelled + 1.0)
-        self.assertTrue(all(np.allclose(s[2], 0.0) for s in still), 'still moving')
+        message = self.client.get_result().message
+        reported = self.stop_in(message)
+        answered = self.watch.latest()[0]
+        self.assertTrue(self.watch.wait_for_time(answered + 1.5))
+        for state in self.watch.since(answered):      # where it said, and no further
+            self.assertTrue(np.allclose(state[1], reported, atol=STOP_TOLERANCE),
+                            'at %.2f s: joints at %s, stopped at %s by the result' % (
+                                state[0], state[1], reported))
+        self.assertTrue(all(np.allclose(s[2], 0.0) for s in self.watch.since(answered + 1.0)),
+                        'still moving')
+        acceleration = read_acceleration_limits(
+            rospy.get_param('robot_description_planning'), self.watch.model)
+        braking = self.watch.since(cancelled)
+        for previous, state in zip(braking, braking[1:]):
+            change = np.abs(state[2] - previous[2]) / (state[0] - previous[0])
+            self.assertTrue((change <= acceleration * 1.001).all(),
+                            'at %.2f s: %s rad/s^2' % (state[0], change))
         self.assertGreater(np.linalg.norm(self.hand() - (-0.4, 0.3, 0.2)), 0.1)
+        self.assertIn('cancelled: the arm stopped at', message)
+        self.assertIn('pre-empted by a new goal: the arm stopped at', pre_empted)
+
+    def stop_in(self, message):
+        """The joint positions that end a result's message ('... at hip 0.532, ...')."""
+        found = re.search(r' at ((?:\w+ -?\d+\.\d+, )*\w+ -?\d+\.\d+)$', message)
+        self.assertTrue(found, message)
+        given = dict((name, float(value)) for name, value in
+                     (pair.split() for pair in found.group(1).split(', ')))
+        return np.array([given[name] for name in self.watch.model.names])
 
     def test_6_no_limit_broken_and_no_contact_in_any_joint_state(self):
         self.watch.assert_safe(self)

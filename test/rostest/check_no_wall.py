@@ -19,7 +19,7 @@ from rosout_log import RosoutLog
 from sim_probe import SimProbe, pose_of
 from waiting import wait_until
 
-from wall_follower.nodes.course_monitor import node_alive
+from wall_follower.nodes.shared.course_monitor import node_alive
 
 EXIT_LIMIT = 60.0   # wall s
 

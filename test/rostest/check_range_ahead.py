@@ -20,9 +20,9 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Log
 
 from waiting import wait_until
-from wall_follower.evaluation.geometry import cast_rays
-from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import pose_message, pose_of
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.geometry import cast_rays
+from wall_follower.nodes.shared.messages import pose_message, pose_of
 from wall_follower.sim.stage_interface import world_path
 
 QUEUE = 10000

@@ -20,8 +20,8 @@ import rospy
 import rostest
 
 from installed import real_stage_suite
-from wall_follower.evaluation.benchmarks.launching import (display_wrapper, free_port,
-                                                           launch_and_wait, launch_command)
+from wall_follower.evaluation.launching import (display_wrapper, free_port, launch_and_wait,
+                                                launch_command)
 from wall_follower.params import defaults
 from wall_follower.params.wall_finder import FINDER
 

@@ -20,11 +20,11 @@ from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
 from waiting import wait_until
-from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.nodes.common import pose_of
-from wall_follower.sim.stage_interface import world_path
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.params import defaults
 from wall_follower.params.wall_following import TABLE
+from wall_follower.sim.stage_interface import world_path
 
 NEW_DISTANCE = 0.22
 CHANGE_AT = 6.0         # simulated s: on the first straight, settled at the default

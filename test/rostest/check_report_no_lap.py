@@ -17,7 +17,7 @@ import unittest
 import rospy
 import rostest
 
-from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 
 WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'open_field.world')
 # Wall seconds for the whole launch: start-up, find_wall's answer, and the

@@ -40,10 +40,11 @@ import rospy
 import rostest
 import yaml
 
-from wall_follower.evaluation.rviz_picture import (error_text_pixels, expected_corner,
-                                                   material_colours, material_share,
-                                                   render_panel, wall_template, walls_drawn)
-from wall_follower.evaluation.rviz_screen import Launch, VirtualScreen, missing_tools
+from wall_follower.evaluation.pictures.rviz_picture import (error_text_pixels, expected_corner,
+                                                            material_colours, material_share,
+                                                            render_panel, wall_template,
+                                                            walls_drawn)
+from wall_follower.evaluation.pictures.rviz_screen import Launch, VirtualScreen, missing_tools
 from wall_follower.sim.world_map import world_map
 from wall_follower.sim.worldfile import load_world
 

@@ -17,7 +17,7 @@ import rostest
 
 from paused_world import GroundTruthRun
 from waiting import wait_until
-from wall_follower.control.scan import wrap_angle
+from wall_follower.rotation import wrap_angle
 
 STILL = 1e-5          # m per step: below this the robot stands
 TURNING = 1e-4        # rad per step: above this it turns

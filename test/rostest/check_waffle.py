@@ -13,9 +13,9 @@ import rostest
 from drive_guard import DriveGuard
 from rosout_log import RosoutLog
 
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.sim.stage_interface import world_path
-from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.evaluation.scoring import CourseMap
 
 WAFFLE_LASER_X = -0.064
 TAKEN = 'laser_x %.3f m (from tf base_link -> base_laser_link)' % WAFFLE_LASER_X

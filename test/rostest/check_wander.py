@@ -17,9 +17,9 @@ import rostest
 
 from paused_world import GroundTruthRun
 from waiting import wait_until
-from wall_follower.evaluation.coverage import visited_share
+from wall_follower.evaluation.scoring.coverage import visited_share
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.grid import footprint_corners
 

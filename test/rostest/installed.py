@@ -4,7 +4,7 @@ import unittest
 
 import rospkg
 
-from wall_follower.evaluation.benchmarks.launching import display_wrapper
+from wall_follower.evaluation.launching import display_wrapper
 
 
 def package_installed(name):

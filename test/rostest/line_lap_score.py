@@ -13,8 +13,8 @@ import numpy as np
 import rospy
 from nav_msgs.msg import Odometry
 
-from wall_follower.evaluation.line_scoring import cross_track, progress
-from wall_follower.evaluation.line_track import load_centreline
+from wall_follower.evaluation.scoring.line import cross_track, progress
+from wall_follower.evaluation.scoring.line_track import load_centreline
 from wall_follower.sim.stage_interface import world_path
 
 

@@ -16,7 +16,7 @@ from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 from waiting import wait_until
 
-from wall_follower.nodes.common import pose_of
+from wall_follower.nodes.shared.messages import pose_of
 
 TRUTH_QUEUE = 100000   # ground truth messages held while the test is busy
 

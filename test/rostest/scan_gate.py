@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """A test relay: forwards scan to gated_scan while open; ~set_open (std_srvs/SetBool) opens and
-closes it, answering with the ROS time of the last scan it forwarded."""
+closes it, answering with the ROS time of the last scan it forwarded. On opening it reads
+~stamp (s, default 0): other than 0, every scan it forwards carries that stamp for its own."""
 import threading
 
 import rospy
@@ -13,6 +14,7 @@ class ScanGate(object):
     def __init__(self):
         self.lock = threading.Lock()
         self.open = True
+        self.stamp = None
         self.last_forwarded = 0.0
         self.publisher = rospy.Publisher('gated_scan', LaserScan, queue_size=1)
         rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=1)
@@ -21,12 +23,17 @@ class ScanGate(object):
     def on_scan(self, msg):
         with self.lock:
             if self.open:
+                if self.stamp is not None:
+                    msg.header.stamp = self.stamp
                 self.publisher.publish(msg)
                 self.last_forwarded = rospy.get_time()
 
     def set_open(self, request):
         with self.lock:
             self.open = request.data
+            if self.open:
+                stamp = rospy.get_param('~stamp', 0.0)
+                self.stamp = rospy.Time.from_sec(stamp) if stamp else None
             return SetBoolResponse(True, repr(self.last_forwarded))
 
 

@@ -15,7 +15,8 @@ from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 from tf2_msgs.msg import TFMessage
 
-from wall_follower.nodes.common import pose_message, pose_of, yaw_of  # noqa: F401 (re-exported)
+from wall_follower.nodes.shared.messages import (  # noqa: F401 (re-exported)
+    pose_message, pose_of, yaw_of)
 
 WAIT_LIMIT = 20.0
 

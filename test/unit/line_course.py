@@ -1,24 +1,28 @@
-"""A synthetic line course and camera for closed-loop tests of the line follower's logic.
+"""A synthetic line course and camera for closed-loop tests of the line follower's step.
 
-The course is a centreline; the camera "sees" the points of a painted
-band of the line's width that fall in its view (FloorProjection.sees), as
-the vision pipeline would hand them over after projecting the mask. The
+The course is a centreline, painted on the floor as a band of the line's
+width; the camera renders it (the floor's pixels through the camera's
+projection, yellow on the band, white elsewhere), and the frame goes through
+the line follower's own step (vision.line_step), as the node runs it. The
 robot moves as a unicycle in steps of STEP, one frame a step, as the
-built-in simulator in lockstep does.
+built-in simulator in lockstep does, and never forward unless the step says
+the line is known ahead (as the node's drive loop holds it).
 """
 import math
 
+import cv2
 import numpy as np
 
-from wall_follower.control.motion import clamp
+from wall_follower.control.motion import Command, clamp
+from wall_follower.params import defaults
+from wall_follower.params.line_follower import TABLE
 from wall_follower.vision.floor import FloorProjection, Intrinsics, level_camera_axes
-from wall_follower.vision.line_path import LinePath
-from wall_follower.vision.line_pursuit import LinePursuit, in_base_frame
-from wall_follower.params import defaults, pick
-from wall_follower.params.line_follower import NODE, PATH, PURSUIT
+from wall_follower.vision.line_step import LineStep
 
 STEP = 0.1
 LINE_WIDTH = 0.045
+PAINT_CELL = 0.0025    # m: the painted floor's raster
+YELLOW, WHITE = (0, 255, 255), (255, 255, 255)
 
 
 def arc(centre, radius, start, sweep, spacing=0.002):
@@ -34,15 +38,39 @@ def segment(a, b, spacing=0.002):
     return np.asarray(a) * (1 - t) + np.asarray(b) * t
 
 
-def band(centreline, width, spacing=0.005):
-    """Points painted over a band of width about the centreline."""
-    tangent = np.gradient(centreline, axis=0)
-    normal = np.column_stack((-tangent[:, 1], tangent[:, 0]))
-    normal /= np.hypot(*normal.T)[:, None]
-    offsets = np.arange(-width / 2.0, width / 2.0 + 1e-9, spacing)
-    points = np.vstack([centreline + o * normal for o in offsets])
-    keys = np.unique(np.round(points / spacing).astype(int), axis=0)
-    return keys * spacing
+class PaintedFloor(object):
+    """The centreline painted width [m] wide on a raster of the floor, and frames of it."""
+
+    def __init__(self, centreline, width=LINE_WIDTH, margin=3.0):
+        self.origin = centreline.min(axis=0) - margin
+        size = np.ceil((centreline.max(axis=0) + margin - self.origin) / PAINT_CELL).astype(int)
+        self.raster = np.zeros((size[1], size[0]), np.uint8)
+        cells = np.round((centreline - self.origin) / PAINT_CELL).astype(np.int32)
+        cv2.polylines(self.raster, [cells.reshape(-1, 1, 2)], False, 255,
+                      thickness=int(round(width / PAINT_CELL)))
+        self._floor_view = (None, None)    # (projection key, pixels that see the floor)
+
+    def frame(self, projection, base):
+        """The BGR image the camera of projection sees from the base at (x, y, yaw)."""
+        k = projection.intrinsics
+        x, y, yaw = base
+        c, s = math.cos(yaw), math.sin(yaw)
+        to_raster = np.array([[1.0 / PAINT_CELL, 0.0, -self.origin[0] / PAINT_CELL],
+                              [0.0, 1.0 / PAINT_CELL, -self.origin[1] / PAINT_CELL],
+                              [0.0, 0.0, 1.0]])
+        to_world = np.array([[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]])
+        to_floor = np.linalg.inv(projection.homography())
+        painted = cv2.warpPerspective(self.raster, to_raster.dot(to_world).dot(to_floor),
+                                      (k.width, k.height),
+                                      flags=cv2.INTER_NEAREST | cv2.WARP_INVERSE_MAP)
+        if self._floor_view[0] != projection.key():
+            self._floor_view = (projection.key(), FloorProjection(
+                k, projection.axes, projection.centre, 1e3).floor_view())
+        floor = self._floor_view[1]
+        image = np.empty((k.height, k.width, 3), np.uint8)
+        image[:] = WHITE
+        image[(painted > 0) & floor] = YELLOW
+        return image
 
 
 def distance_to(centreline, point):
@@ -57,30 +85,31 @@ def camera(height=0.25, tilt_deg=40.0, width=320, image_height=240, hfov=62.2, v
                            level_camera_axes(math.radians(tilt_deg)), (0.0, 0.0, height), 1.5)
 
 
-def run(centreline, start, steps, projection=None, values=None, lose_after=None):
+def run(centreline, start, steps, projection=None, values=None, lose_after=None, spoil=None):
     """Drive the follower on the course; returns (poses, commands, states).
 
-    lose_after: from this step on the camera sees nothing (a covered lens)."""
+    lose_after: from this step on the camera sees nothing (a covered lens). spoil(step,
+    image): the image to show instead at that step (None: the course's)."""
     projection = projection or camera()
-    values = dict(defaults(PATH + PURSUIT), **(values or {}))
-    margin = defaults(NODE)['view_margin']
-    memory = LinePath(**pick(values, PATH))
-    pursuit = LinePursuit(**pick(values, PURSUIT))
-    painted = band(centreline, LINE_WIDTH)
+    values = dict(defaults(TABLE), **(values or {}))
+    line_step = LineStep(values)
+    floor = PaintedFloor(centreline)
     pose = np.array(start, float)
     poses, commands, states = [], [], []
     for step in range(steps):
         base = tuple(pose)
-        local = in_base_frame(painted, base)
-        seen = painted[projection.sees(local, 0.0)]
+        image = floor.frame(projection, base)
         if lose_after is not None and step >= lose_after:
-            seen = seen[:0]
-        memory.update(seen, lambda p, b=base: projection.sees(in_base_frame(p, b), margin),
-                      base, lambda p, b=base: projection.sees(in_base_frame(p, b), margin)[0])
-        command = clamp(pursuit.update(memory.path, memory.end_seen, base))
+            image[:] = WHITE
+        if spoil is not None and spoil(step, image) is not None:
+            image = spoil(step, image)
+        answer = line_step.update(image, projection, base, values['ahead_half_width']).answer
+        command = clamp(answer.command)
+        if command.linear > 0.0 and not answer.ahead_known:
+            command = Command(0.0, command.angular)
         poses.append(base)
         commands.append(command)
-        states.append(pursuit.state)
+        states.append(line_step.pursuit.state)
         x, y, yaw = pose
         pose = np.array([x + command.linear * STEP * math.cos(yaw),
                          y + command.linear * STEP * math.sin(yaw),

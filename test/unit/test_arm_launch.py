@@ -10,7 +10,7 @@ import rospkg
 import roslaunch.config
 from roslaunch.core import RLException
 
-from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 
 LAUNCH = os.path.join(os.path.dirname(__file__), '..', '..', 'launch', 'arm.launch')
 # Wall seconds for roslaunch to read the launch file and give up.

@@ -6,7 +6,9 @@ import pytest
 from arm_files import limits, model, semantics
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.kinematics import tool_position
-from wall_follower.arm.planning import Planner, PlanningError
+from wall_follower.arm.planning import (MIN_VELOCITY_SCALING, Planner, PlanningError,
+                                        velocity_factor)
+from wall_follower.arm.timing import TimedMove
 
 
 def planner(**options):
@@ -55,6 +57,17 @@ def test_another_wrist_angle_is_tried_when_keeping_it_collides():
     (lambda p: p.to_point((1.5, 0.0, 0.5), np.zeros(4)), 'unreachable: out of reach'),
     (lambda p: p.to_point((0.5, 0.0, 0.01), np.zeros(4)),
      'reachable only in collision: in collision .* \\(hand .* below the floor\\)'),
+    # a NaN once ended in "cannot convert float NaN to integer" deep in the kinematics
+    (lambda p: p.to_point((float('nan'), 0.0, 0.5), np.zeros(4)),
+     'point \\(nan, 0.0, 0.5\\) is not finite'),
+    (lambda p: p.to_point((0.3, float('inf'), 0.5), np.zeros(4)), 'inf, 0.5\\) is not finite'),
+    (lambda p: p.to_point((0.3, 0.0, float('-inf')), np.zeros(4)), 'is not finite'),
+    (lambda p: p.to_state('ready', np.zeros(4), 1e-9),
+     'velocity_scaling 1e-09 is below the least allowed, 0.01'),
+    (lambda p: p.to_point((0.4, -0.3, 0.6), np.zeros(4), 1e-9), 'below the least allowed'),
+    (lambda p: p.to_state('ready', np.zeros(4), 1.5), 'velocity_scaling 1.5 is not within 0 to 1'),
+    (lambda p: p.to_state('ready', np.zeros(4), -0.5), 'velocity_scaling -0.5 is not within'),
+    (lambda p: p.to_state('ready', np.zeros(4), float('nan')), 'velocity_scaling nan is not'),
 ])
 def test_a_goal_that_cannot_be_planned_says_why(call, words):
     with pytest.raises(PlanningError, match=words):
@@ -70,3 +83,25 @@ def test_a_line_through_a_collision_is_refused():
     velocity, acceleration = limits(arm)
     with pytest.raises(PlanningError, match='named target back: in collision .*% of the way'):
         Planner(arm, semantic, acceleration, velocity).to_state('back', current)
+
+
+def test_the_least_velocity_scaling_is_allowed_and_zero_means_full_speed():
+    assert velocity_factor(0.0) == 1.0
+    assert velocity_factor(MIN_VELOCITY_SCALING) == MIN_VELOCITY_SCALING
+    assert velocity_factor(1.0) == 1.0
+    arm = model()
+    velocity, acceleration = limits(arm)
+    longest = TimedMove(arm.lower, arm.upper, velocity * MIN_VELOCITY_SCALING, acceleration)
+    assert 5 * 60.0 < longest.duration < 15 * 60.0     # about ten minutes, as documented
+
+
+def test_a_move_s_time_share_is_exactly_one_from_its_end_on():
+    """move_arm's feedback: a move judged at its end (started + duration) is reported done,
+    not a rounding short of it ((0.1 + 4.0) - 0.1 is a shade under 4.0)."""
+    move = TimedMove([0.0], [1.0], [0.25], [1e9])
+    assert move.duration == pytest.approx(4.0)
+    move.duration = 4.0
+    assert move.time_share(0.1, 0.1 + 4.0) == 1.0
+    assert move.time_share(0.1, 9.0) == 1.0
+    assert move.time_share(0.1, 2.1) == pytest.approx(0.5)
+    assert move.time_share(0.1, 0.0) == 0.0

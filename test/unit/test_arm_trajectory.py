@@ -7,9 +7,10 @@ import pytest
 
 from arm_files import limits, model
 from wall_follower.arm.spline import CUBIC, LINEAR, QUINTIC, Segment
-from wall_follower.arm.timing import TimedMove, fastest_duration, stopping, trapezoid_duration
+from wall_follower.arm.timing import (MAX_WAYPOINTS, TimedMove, fastest_duration, stopping,
+                                      trapezoid_duration)
 from wall_follower.arm.trajectory import (Command, Rejected, Trajectory, TrajectoryPoint,
-                                          accept)
+                                          accept, stop)
 from wall_follower.sim.arm_joints import ArmJoints
 
 NAMES = ['hip', 'shoulder', 'elbow', 'wrist']
@@ -97,6 +98,20 @@ def test_waypoints_fall_on_the_phase_changes_and_the_end():
     assert 0.5 in times and any(math.isclose(t, 2.0) for t in times)
     assert math.isclose(times[-1], 2.5) and times[0] > 0.0
     assert all(b - a <= 0.2 + 1e-9 for a, b in zip([0.0] + times, times))
+
+
+def test_a_crawling_move_is_sampled_by_a_bounded_number_of_points():
+    """velocity_scaling 1e-9 once made move_arm list a point every 0.1 s of a move lasting
+    years, and grow by 70 MB/s; the points are bounded whatever the move's length, and the
+    move is still met at each of them."""
+    arm = model()
+    velocity, acceleration = limits(arm)
+    move = TimedMove(arm.lower, arm.upper, velocity * 1e-4, acceleration)
+    assert move.duration > 1e4
+    times = move.waypoint_times(0.1)
+    assert len(times) <= MAX_WAYPOINTS
+    assert math.isclose(times[-1], move.duration) and times == sorted(times)
+    assert {move.ramp, move.ramp + move.cruise} <= set(times)
 
 
 def test_a_move_to_where_the_arm_is_takes_no_time():
@@ -198,12 +213,60 @@ def test_a_rejected_command_leaves_the_current_trajectory_alone():
     assert first.segments == segments
 
 
-def test_an_empty_command_stops_the_arm_where_it_is_meant_to_be():
-    first = accept(model(), Command(NAMES, 0.0, [point(4.0, [0.4, 0, 0, 0])]), 0.0, REST)
-    stopped = accept(model(), Command(NAMES, 0.0, []), 2.0, first)
-    assert np.allclose(stopped.sample(2.0)[0], [0.2, 0, 0, 0])
-    assert np.allclose(stopped.sample(5.0)[0], [0.2, 0, 0, 0])
-    assert np.allclose(stopped.sample(5.0)[1], 0.0)
+def test_a_single_point_due_now_is_rejected_saying_why():
+    """As ros_control's JointTrajectoryController: a point due now (time_from_start 0 of a
+    zero stamp) is dropped with those already past, and a command of that point alone has
+    nothing left to follow."""
+    command = Command(NAMES, 0.0, [point(0.0, [0.3, 0, 0, 0])])
+    with pytest.raises(Rejected, match='its last point is due now \\(time_from_start 0.000 s '
+                       'from a zero stamp.*give it a time_from_start above 0'):
+        accept(model(), command, 10.0, REST)
+
+
+def test_a_first_point_due_now_is_dropped_and_the_rest_followed():
+    command = Command(NAMES, 0.0, [point(0.0, [0.3, 0, 0, 0]), point(2.0, [0.4, 0, 0, 0])])
+    trajectory = accept(model(), command, 10.0, REST)
+    assert np.allclose(trajectory.sample(11.0)[0], [0.2, 0, 0, 0])   # from REST, not 0.3
+    assert np.allclose(trajectory.sample(12.0)[0], [0.4, 0, 0, 0])
+
+
+def test_an_empty_command_is_a_stop_not_a_trajectory():
+    with pytest.raises(Rejected, match='an empty command is a stop'):
+        accept(model(), Command([], 0.0, []), 2.0, REST)
+
+
+def test_the_stop_brakes_from_the_actual_state_within_the_acceleration_limits():
+    """JointTrajectoryController's way: from where the joints are and how fast they go (here
+    behind what was desired of them), not from the desired state, to rest as soon as the
+    acceleration limits allow, never turning back, and held there."""
+    arm = model()
+    _, acceleration = limits(arm)
+    positions, velocities = np.array([0.4, -0.2, 1.0, 0.1]), np.array([0.8, -0.5, 0.0, 1.2])
+    stopped = stop(positions, velocities, 5.0, acceleration)
+    start = stopped.sample(5.0)
+    assert np.allclose(start[0], positions) and np.allclose(start[1], velocities)
+    place, duration = stopping(positions, velocities, acceleration)
+    assert math.isclose(stopped.end, 5.0 + duration)
+    times = np.linspace(5.0, stopped.end, 201)
+    samples = [stopped.sample(t) for t in times]
+    assert np.max([np.abs(s[2]) / acceleration for s in samples]) <= 1.0 + 1e-9
+    for (p, _, _), (q, _, _) in zip(samples, samples[1:]):
+        assert (np.sign(q - p) * np.sign(velocities) >= 0).all()
+    for later in (stopped.end, stopped.end + 10.0):
+        held = stopped.sample(later)
+        assert np.allclose(held[0], place) and np.allclose(held[1], 0.0)
+
+
+@pytest.mark.parametrize('velocities, acceleration', [
+    ([0.0, 0.0, 0.0, 0.0], [2.0, 2.0, 2.5, 3.0]),      # at rest: nothing to brake
+    ([0.8, -0.5, 0.0, 1.2], [np.inf] * 4),             # no limits: at once, JTC's hold
+])
+def test_a_stop_with_nothing_to_brake_holds_the_actual_position(velocities, acceleration):
+    positions = np.array([0.4, -0.2, 1.0, 0.1])
+    stopped = stop(positions, velocities, 5.0, np.array(acceleration))
+    for time in (5.0, 6.0):
+        assert np.allclose(stopped.sample(time)[0], positions)
+        assert np.allclose(stopped.sample(time)[1], 0.0)
 
 
 # --- the simulated joints --------------------------------------------------------------

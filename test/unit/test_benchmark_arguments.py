@@ -4,7 +4,7 @@ runs and status 0 (find, follow, wander). Needs the package on ROS_PACKAGE_PATH 
 are found through rospkg), no master."""
 import pytest
 
-from wall_follower.evaluation.benchmark import main
+from wall_follower.evaluation.benchmarks.cli import main
 
 # Parts are imported by name on demand: all of them, and each refusal, come before any run.
 CASES = [
@@ -14,8 +14,12 @@ CASES = [
     (['mapping', '--worlds', 'pillars'], 'argument --worlds: no world ', 'pillars_odom.world'),
     (['find', '--worlds', 'nowhere'], 'argument --worlds: no world ', 'nowhere.world'),
     (['find', '--laser-profile', 'sonar'], "no laser profile 'sonar'", ''),
-    (['follow', '--worlds', 'room', 'nowhere'], 'argument --worlds: no world ', 'nowhere.world'),
-    (['follow', '--profiles', 'sonar'], "argument --profiles: no laser profile 'sonar'", ''),
+    # The follower's part grades generated worlds through grade, which reads launch files
+    # with roslaunch and names with rosgraph.
+    pytest.param(['follow', '--worlds', 'room', 'nowhere'], 'argument --worlds: no world ',
+                 'nowhere.world', marks=pytest.mark.ros),
+    pytest.param(['follow', '--profiles', 'sonar'], "argument --profiles: no laser profile 'sonar'",
+                 '', marks=pytest.mark.ros),
     (['wander', '--worlds', '/nowhere/x.world'], 'argument --worlds: no world /nowhere/x.world',
      ''),
 ]
@@ -31,6 +35,7 @@ def test_an_unknown_world_or_profile_is_a_usage_error(capsys, argv, says, names)
     assert says in error and error.endswith(names)
 
 
+@pytest.mark.ros
 @pytest.mark.parametrize('argv, profiles', [
     (['--generated', '2'], ['stage', 'lds01', 'lds02', 'gazebo', 'course720']),
     (['--generated', '2', '--profiles', 'lds01', 'course720'], ['lds01', 'course720'])])

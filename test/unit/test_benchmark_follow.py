@@ -3,7 +3,7 @@ a lap against its T*."""
 import numpy as np
 import pytest
 
-from wall_follower.evaluation import lap_bound
+from wall_follower.evaluation.scoring import lap_bound
 from wall_follower.evaluation.benchmarks import follow_generated
 from wall_follower.evaluation.benchmarks.follow import combined
 

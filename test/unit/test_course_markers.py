@@ -2,8 +2,8 @@
 import pytest
 import rospy
 
-from wall_follower.evaluation.scoring import BAND
-from wall_follower.nodes.course_markers import band_marker, find_wall_marker
+from wall_follower.evaluation.scoring.course import BAND
+from wall_follower.nodes.shared.course_markers import band_marker, find_wall_marker
 
 
 @pytest.mark.parametrize('laser_x', [-0.032, -0.064, 0.0])

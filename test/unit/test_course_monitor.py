@@ -13,10 +13,10 @@ from actionlib_msgs.msg import GoalID
 from geometry_msgs.msg import Point
 from nav_msgs.msg import Odometry
 
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import OdomRecordActionGoal, OdomRecordActionResult
-from wall_follower.nodes.course_monitor import (BUILTIN, NEEDED_TOPICS, STAGEROS, CourseMonitor,
-                                                simulator_of)
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.nodes.shared.course_monitor import (BUILTIN, NEEDED_TOPICS, STAGEROS,
+                                                       CourseMonitor, simulator_of)
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 SPEED = 0.19    # m/s along x, one ground truth per 0.1 s

@@ -6,7 +6,7 @@ each poll advances the clock by one second.
 import itertools
 import threading
 
-from wall_follower.nodes.course_report import RESULT_GRACE, no_lap_reason
+from wall_follower.nodes.evaluation.course_report import RESULT_GRACE, no_lap_reason
 
 
 class Monitor(object):

@@ -1,4 +1,4 @@
-"""DriveLoop with a scripted clock, scan and commander: when it answers, stops and gives up.
+"""DriveLoop with a scripted clock, source and commander: when it answers, stops and gives up.
 
 Needs ROS's Python modules but no master: rospy's clock and shutdown flag
 are replaced by the test's.
@@ -8,10 +8,11 @@ import math
 import pytest
 import rospy
 
-from wall_follower.control.motion import STOP, Command
+from wall_follower.control.motion import STOP, Answer, Command
 from wall_follower.control.scan_check import check_scan
-from wall_follower.nodes.common import Reading
-from wall_follower.nodes.drive_loop import FINISHED_NO_SCAN, DriveLoop
+from wall_follower.nodes.shared.drive_loop import FINISHED_NO_INPUT, DriveLoop, tune_drive_loop
+from wall_follower.nodes.shared.latest_scan import Reading
+from wall_follower.params.driving import CAMERA_INPUT, LASER_INPUT
 
 PERIOD = 0.05
 
@@ -93,7 +94,7 @@ def ros_clock(monkeypatch):
 
 def run(script, until, answer=lambda view, taken: Command(0.1, 0.2), **kwargs):
     scans, commander = Scans(script), Commander()
-    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5)
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5)
     outcome = loop.run(answer, lambda: 'end' if Clock.now >= until else None, **kwargs)
     return outcome, commander.sent, scans
 
@@ -155,7 +156,7 @@ def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():
 
 def test_with_patience_the_loop_gives_up_without_a_usable_scan():
     outcome, sent, _ = run([(0.1, DEAD)], until=10.0, patience=1.0)
-    assert outcome == FINISHED_NO_SCAN
+    assert outcome == FINISHED_NO_INPUT
     assert Clock.now == pytest.approx(1.05, abs=PERIOD)
     assert all(c == STOP for t, c in sent)
 
@@ -174,7 +175,7 @@ def test_a_clock_moving_back_drops_the_scan_and_tells_the_node():
 
 def test_with_a_tick_the_loop_answers_on_a_steady_beat_between_scans():
     scans, commander = Scans([(0.1 + 0.2 * i, GOOD) for i in range(5)]), Commander()
-    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
                      tick=0.1)
     answers = []
     loop.run(lambda view, taken: answers.append(Clock.now) or Command(0.1, 0.0),
@@ -187,25 +188,40 @@ def test_with_a_tick_the_loop_answers_on_a_steady_beat_between_scans():
 
 def test_with_a_tick_a_stale_scan_still_stops_the_robot():
     scans, commander = Scans([(0.1, GOOD)]), Commander()
-    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
                      tick=0.1)
     loop.run(lambda view, taken: Command(0.1, 0.0), lambda: 'end' if Clock.now >= 1.5 else None)
     assert all(c == STOP for t, c in commander.sent if t > 0.65)
 
 
-def test_another_sensor_says_what_it_knows_ahead():
-    known = []
-
-    def ahead_known(view, half_width):
-        known.append(half_width)
-        return False
-
-    scans, commander = Scans([(0.1, GOOD)]), Commander()
-    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, scan_timeout=0.5,
-                     ahead_half_width=0.3, ahead_known=ahead_known,
-                     ahead_missing='no line known')
-    loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= 0.5 else None)
-    assert known and known[0] == 0.3
+def test_an_answer_says_what_its_sensor_knows_ahead():
+    """A camera's controller answers with an Answer: its word on the way ahead, not a share
+    of beams, decides whether it may drive forward; without beams, a bare Command may not."""
+    answers = iter([Answer(Command(0.1, 0.2), False), Answer(Command(0.1, 0.2), True),
+                    Command(0.1, 0.2)])
+    scans, commander = Scans([(0.1, BLIND_AHEAD), (0.2, GOOD), (0.3, GOOD)]), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
+                     ahead_half_width=0.3, ahead_min_known=None, ahead_missing='no line known')
+    loop.run(lambda view, taken: next(answers), lambda: 'end' if Clock.now >= 0.35 else None)
+    answered = [c for t, c in commander.sent if c != STOP]
+    assert answered == [Command(0.0, 0.2), Command(0.1, 0.2), Command(0.0, 0.2)]
     assert Clock.warnings == ['no line known within 17 deg ahead; not driving forward']
-    assert all(c.linear == 0.0 for t, c in commander.sent)
-    assert any(c == Command(0.0, 0.2) for t, c in commander.sent)
+
+
+class Source(object):
+    def __init__(self, parameters):
+        self.parameters = parameters
+
+
+@pytest.mark.parametrize('parameters,timeout,min_known', [
+    (LASER_INPUT, 0.7, 0.2), (CAMERA_INPUT, 0.3, None)])
+def test_a_loop_is_tuned_from_the_parameters_its_source_names(parameters, timeout, min_known):
+    values = {'rate': 10.0, 'keepalive': 0.1, 'scan_timeout': 0.7, 'image_timeout': 0.3,
+              'ahead_half_width': 0.4, 'ahead_min_known': 0.2, 'max_linear': 0.1,
+              'max_angular': 0.3}
+    loop = DriveLoop('test', Source(parameters), Commander(), 1.0 / PERIOD, keepalive=0.15,
+                     input_timeout=0.5)
+    tune_drive_loop(loop, values)
+    assert (loop.input_timeout, loop.ahead_min_known, loop.ahead_half_width) == (
+        timeout, min_known, 0.4)
+    assert (loop.commander.max_linear, loop.commander.max_angular) == (0.1, 0.3)

@@ -1,7 +1,7 @@
 """find_trials refuses a start pose that is not [x, y, yaw_deg] before it runs any trial."""
 import pytest
 
-from wall_follower.nodes.find_trials import is_pose
+from wall_follower.nodes.evaluation.find_trials import is_pose
 
 
 @pytest.mark.parametrize('start, ok', [

@@ -6,6 +6,7 @@ declared after 6 m (premature), and one never declared. The messages are
 handed to the monitor's callbacks directly, as in test_course_monitor:
 the built workspace's messages, no master.
 """
+import json
 import math
 import os
 import re
@@ -17,12 +18,15 @@ from actionlib_msgs.msg import GoalID, GoalStatus
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry
 
-from wall_follower.evaluation.grading import grade_case, grades
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.grading.commands import CommandLog
+from wall_follower.evaluation.grading.criteria import grade_case, grades, shown
+from wall_follower.evaluation.grading.service_calls import CallWatch, PortWatch, peers_by_port
+from wall_follower.evaluation.pictures.course_plot import plot_course, plt, points_label
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
-from wall_follower.nodes.course_monitor import CourseMonitor
-from wall_follower.nodes.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.evaluation.grade_case import SolutionSeen, _json_safe, case_record
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2].
@@ -72,21 +76,27 @@ def truth(stamp, pose):
 GOAL_ID = GoalID(stamp=rospy.Time.from_sec(0.0), id='lap')
 
 
-def run(declare_after=None, lap_rule=True, off=OFF):
+def run(declare_after=None, lap_rule=True, off=OFF, command_at=None):
     """A record of the track off metres from the walls, with the lap declared after
-    declare_after metres (None: by the recorder's lap rule when lap_rule, else never)."""
+    declare_after metres (None: by the recorder's lap rule when lap_rule, else never);
+    command_at: (time, field, value) of one command of its own."""
     monitor = CourseMonitor(CourseMap(ROOM))
     goal = OdomRecordActionGoal()
     goal.goal_id = GOAL_ID
     monitor._on_goal(goal)
     travelled, last, points, end = 0.0, None, [], None
+    commands = CommandLog()
     poses = lap_track(off=off)
     for index, pose in enumerate(poses):
         stamp = index * STEP
         monitor._on_truth(truth(stamp, pose))
         command = Twist()
         command.linear.x = SPEED
+        if command_at is not None and abs(stamp - command_at[0]) < STEP / 2:
+            setattr(command.linear if command_at[1] == 'linear.x' else command.angular,
+                    command_at[1][-1], command_at[2])
         monitor._on_command(command)
+        commands.add(stamp, command.linear.x, command.angular.z)
         if last is not None:
             travelled += math.hypot(pose[0] - last[0], pose[1] - last[1])
         last = pose
@@ -112,7 +122,8 @@ def run(declare_after=None, lap_rule=True, off=OFF):
     seen = SolutionSeen()
     seen.find_wall_service, seen.action_server = '/find_wall', True
     record = case_record(monitor, PARAMS, seen, 'result' if end is not None else 'no lap',
-                         0.0, (-1.0, -1.0, 1.0), SimpleNamespace(first=0.0))
+                         0.0, (-1.0, -1.0, 1.0), SimpleNamespace(first=0.0, commands=commands),
+                         end_time=len(poses) * STEP)
     monitor.close()
     return record
 
@@ -168,11 +179,21 @@ def test_a_robot_that_never_moved_fails_find_wall():
 
 
 def test_a_case_without_a_record_fails_with_its_error():
-    graded = grades([{'world': 'w', 'error': 'the case wrote no record'}])
-    assert graded['summary'] == {'cases': 1, 'laps': 0, 'passed': 0}
+    graded = grades([{'world': 'w', 'error': 'it ran out of its 900 wall seconds'}])
+    assert graded['summary'] == {'cases': 1, 'laps': 0, 'passed': 0, 'not_graded': 0}
     case = graded['cases'][0]
-    assert case['reason'] == 'the case wrote no record'
+    assert case['reason'] == 'it ran out of its 900 wall seconds'
     assert case['in_band'] is None and not case['lap_genuine']
+
+
+def test_a_case_the_grader_failed_is_not_graded():
+    graded = grades([{'world': 'w', 'grader_error': 'its master did not start'}, run()])
+    assert graded['summary'] == {'cases': 2, 'laps': 1, 'passed': 1, 'not_graded': 1}
+    case = graded['cases'][0]
+    assert case['grader_error'] == 'its master did not start'
+    assert case['reason'] == 'not graded: the grader failed (its master did not start)'
+    assert not any(verdict['passed'] for verdict in case['criteria'].values())
+    assert graded['cases'][1]['grader_error'] is None
 
 
 def test_grades_json_fields(genuine):
@@ -202,3 +223,172 @@ def test_a_track_too_far_from_the_walls_fails_following_where_it_began():
     assert float(found.group(1)) > 50.0
     assert float(found.group(2)) == pytest.approx(-0.5, abs=0.05)
     assert float(found.group(3)) == pytest.approx(-0.87, abs=0.005)
+
+
+def json_round_trip(record):
+    """The record as grade_case writes it and grade reads it back."""
+    return json.loads(json.dumps(_json_safe(record)))
+
+
+@pytest.mark.parametrize('field, value, text', [
+    ('angular.z', -math.inf, '-inf'), ('linear.x', math.nan, 'nan')])
+def test_a_non_finite_command_fails_safety_named_with_its_time(field, value, text):
+    case = run(command_at=(12.3, field, value))
+    graded = grade_case(json_round_trip(case))
+    assert graded['criteria']['safety']['passed'] is False
+    assert graded['criteria']['safety']['reason'] == 'commanded %s = %s at 12.3 s' % (
+        field, text)
+    # Kept, not dropped to null (nor to the largest finite command) in grades.json.
+    key = 'max_angular' if field == 'angular.z' else 'max_linear'
+    assert graded[key] == text.lstrip('-')
+    assert json.loads(json.dumps(graded))[key] == text.lstrip('-')
+
+
+def test_figures_are_printed_so_that_a_failing_one_never_reads_as_passing():
+    assert shown(0.3036, 0.20, 0.30) == '0.304'
+    assert shown(0.2996, 0.20, 0.30) == '0.30'
+    assert shown(0.3503, 0.25, 0.35) == '0.3503'
+    assert shown(10.4, None, 10.0, 0) == '10.4'
+    case = run()
+    case['figures']['time_in_band'] = 0.9
+    case['out_of_band'] = [{'after': 1.0, 'seconds': 2.0, 'x': 0.0, 'y': 0.0,
+                            'distance': 0.3036}]
+    assert 'at worst 0.304 m from the wall' in grade_case(case)['criteria']['following'][
+        'reason']
+
+
+def test_find_wall_names_the_heading_too_when_it_is_off():
+    case = run()
+    case['figures'].update(found_distance=0.19, found_heading_error_deg=-21.7)
+    reason = grade_case(case)['criteria']['find_wall']['reason']
+    assert reason == ('the wall on the right was 0.19 m away (0.25-0.35 m expected) and the '
+                      'heading was 22 deg off parallel to it (10 deg at most) when the lap '
+                      'began (find_wall was never called, or never replied)')
+
+
+def test_find_wall_names_the_heading_alone_against_the_wall():
+    case = run()
+    case['figures'].update(found_distance=0.28, found_heading_error_deg=60.2)
+    assert grade_case(case)['criteria']['find_wall']['reason'].startswith(
+        'the heading was 60 deg off parallel to the wall (10 deg at most) when the lap began')
+
+
+def call(called, replied, moved=0.8, turned=90.0, distance=0.28, heading=2.0):
+    return {'called': called, 'replied': replied, 'seconds': replied - called, 'moved': moved,
+            'turned_deg': turned, 'distance': distance, 'heading_error_deg': heading,
+            'calls': 1, 'all': [(called, replied)]}
+
+
+def test_find_wall_is_judged_when_its_call_replied_even_after_the_goal():
+    case = run()
+    # The lap began where the robot stood (nothing beside it): find_wall came after.
+    case['figures'].update(found_distance=0.28, found_heading_error_deg=2.0)
+    case['moved_before_lap'] = False
+    case['find_wall_call'] = call(5.0, 175.0)
+    assert grade_case(case)['criteria']['find_wall'] == {'passed': True, 'reason': ''}
+
+
+def test_a_find_wall_that_did_nothing_says_what_happened_in_numbers():
+    case = run()
+    case['find_wall_call'] = call(3.0, 173.0, moved=0.02, turned=3.0)
+    reason = grade_case(case)['criteria']['find_wall']['reason']
+    assert reason == ('find_wall did nothing: it replied at 173.0 s, and moved the robot '
+                      '0.02 m in 170 s (turned 3 deg)')
+
+
+def test_commands_sent_once_are_named_as_the_watchdog_stopping_them():
+    case = run(lap_rule=False)
+    log = CommandLog(0.2)
+    for stamp in (1.0, 5.0, 9.0):
+        log.add(stamp, 0.10, 0.196)
+    log.finish(40.0)
+    case['commands'] = log.record()
+    case['find_wall_call'] = call(0.5, 2.0, moved=0.02, turned=1.0)
+    graded = grade_case(case)
+    note = ("each command was sent once and stopped by the simulator's 0.2 s watchdog: "
+            "publish cmd_vel continuously")
+    assert note in graded['criteria']['lap']['reason']
+    assert note in graded['criteria']['find_wall']['reason']
+
+
+def test_commands_sent_continuously_get_no_watchdog_note(genuine):
+    case = run(lap_rule=False)
+    assert case['commands']['cut_by_watchdog'] == 0
+    assert 'watchdog' not in grade_case(case)['reason']
+
+
+def test_a_preempted_result_is_judged_for_what_it_holds_and_said_to_be_preempted():
+    case = run()
+    case['result_status'] = 'preempted'
+    graded = grade_case(case)
+    points = len(case['recorded_spans'])
+    assert graded['criteria']['recording'] == {
+        'passed': True, 'reason': "judged on the preempted goal's result (%d points)" % points}
+    case['figures']['recorded_distance'] *= 1.2
+    reason = grade_case(case)['criteria']['recording']['reason']
+    assert reason.startswith("the preempted goal's result (%d points): the feedback said"
+                             % points)
+
+
+def test_the_plot_legend_says_what_the_points_are():
+    assert points_label(362, 56.2) == '362 record_odom points over 56 s'
+    assert points_label(1) == '1 record_odom point'
+
+
+def test_a_robot_that_never_moved_has_its_start_in_the_plot(tmp_path, monkeypatch):
+    labels = []
+    real_legend = plt.Axes.legend
+
+    def legend(axes, *args, **kwargs):
+        labels.extend(line.get_label() for line in axes.get_lines())
+        return real_legend(axes, *args, **kwargs)
+    monkeypatch.setattr(plt.Axes, 'legend', legend)
+    out = str(tmp_path / 'plot.png')
+    plot_course(CourseMap(ROOM), [], None, out, start=(0.1, 0.2, 0.0))
+    assert labels == ['start'] and os.path.getsize(out) > 0
+
+
+def test_the_largest_command_keeps_a_nan():
+    score = CourseMonitor(CourseMap(ROOM)).score
+    for linear in (0.1, math.nan, 0.15):
+        score.add_command(linear, 0.0)
+    assert math.isnan(score.max_linear)
+
+
+# /proc/net/tcp: a node's port 0x9C40 (40000) listening, a subscriber of its topic and a
+# call in progress (the server's side, established, and the client's), a probe already
+# closed by its client.
+TCP_TABLE = '''  sl  local_address rem_address   st tx_queue rx_queue tr tm->when retrnsmt   uid
+   0: 00000000:9C40 00000000:0000 0A 00000000:00000000 00:00000000 00000000     0
+   1: 0100007F:9C40 0100007F:D430 01 00000000:00000000 00:00000000 00000000     0
+   2: 0100007F:9C40 0100007F:D431 01 00000000:00000000 00:00000000 00000000     0
+   3: 0100007F:D431 0100007F:9C40 01 00000000:00000000 00:00000000 00000000     0
+   4: 0100007F:9C40 0100007F:D432 08 00000000:00000000 00:00000000 00000000     0
+'''
+
+
+def test_the_connections_to_a_services_port_are_told_by_their_peers():
+    peers = peers_by_port(TCP_TABLE)
+    assert peers[40000] == {'0100007F:D430', '0100007F:D431'}
+    assert peers[0xD431] == {'0100007F:9C40'}
+    assert 40001 not in peers
+
+
+def test_a_call_that_ended_before_its_service_was_seen_is_kept():
+    watch = PortWatch()
+    for time, peers in ((0.0, {}), (1.0, {40000: {'call'}, 50000: {'x'}}), (5.0, {})):
+        watch.look(time, peers, (0.0, 0.0, 0.0))
+    assert [(c['start'], c['end']) for c in watch.of(40000).calls] == [(1.0, 5.0)]
+    assert watch.of(None).judged() is None
+
+
+def test_a_call_is_a_connection_that_came_and_went_and_the_first_that_lasted_is_judged():
+    watch = CallWatch()
+    topic = 'subscriber'
+    for time, peers, pose in ((0.0, {topic}, 'a'), (1.0, {topic, 'probe'}, 'b'),
+                              (1.0, {topic}, 'c'), (2.0, {topic, 'call'}, 'd'),
+                              (9.0, {topic}, 'e'), (10.0, {topic, 'late'}, 'f')):
+        watch.look(time, peers, pose)
+    calls = [(c['start'], c['end']) for c in watch.calls]
+    assert calls == [(1.0, 1.0), (2.0, 9.0)]
+    assert watch.judged()['end_pose'] == 'e'

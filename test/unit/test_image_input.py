@@ -1,11 +1,14 @@
-"""Frames as line_follower reads them (nodes.image_input): every encoding cv_bridge reads into
-colour, and every bad frame named in words instead of raised."""
+"""Frames as line_follower reads them (nodes.shared.latest_image): every encoding cv_bridge
+reads into colour, every bad frame named in words instead of raised, and a frame stamped in
+the future held as stale input (no time arithmetic meets its stamp). Needs ROS's Python
+modules but no master: LatestImage's subscriber is only created, its callback called here."""
 import cv2
 import numpy as np
 import pytest
+import rospy
 from sensor_msgs.msg import CompressedImage, Image
 
-from wall_follower.nodes.image_input import read_compressed, read_image
+from wall_follower.nodes.shared.latest_image import LatestImage, read_compressed, read_image
 
 
 def image_msg(array, encoding):
@@ -67,3 +70,31 @@ def test_compressed_frames():
     assert read_compressed(msg)[0] is None
     msg.data = b''
     assert read_compressed(msg) == (None, 'an empty compressed image')
+
+
+def frame_stamped(secs, nsecs=0):
+    msg = image_msg(np.zeros((6, 8, 4), np.uint8), 'rgba8')
+    msg.header.stamp = rospy.Time(secs, nsecs)
+    return msg
+
+
+def test_a_frame_stamped_in_the_future_is_stale_input(clock):
+    images = LatestImage()
+    clock.now = 10.0
+    images._on_image(frame_stamped(4102444800))           # 2100-01-01
+    reading = images.latest(0.3)
+    assert reading.view is None and 'ahead of this node' in reading.problem
+    images._on_image(frame_stamped(2 ** 32 - 1, 2 ** 32 - 1))   # the largest stamp there is
+    assert 'ahead of this node' in images.latest(0.3).problem
+    images._on_image(frame_stamped(10, 200000000))         # a step ahead: a clock not yet in
+    assert images.latest(0.3).view is not None
+
+
+def test_a_frame_of_a_camera_far_behind_is_read(clock):
+    """Age counts from arrival, as a scan's: a camera host whose clock is behind still
+    delivers fresh frames."""
+    images = LatestImage()
+    clock.now = 10.0
+    images._on_image(frame_stamped(3))
+    reading = images.latest(0.3)
+    assert reading.view is not None and reading.taken == pytest.approx(3.0)

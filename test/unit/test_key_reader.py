@@ -5,7 +5,7 @@ import io
 import os
 import time
 
-from wall_follower.nodes.teleop_key import KeyReader
+from wall_follower.nodes.exercises.teleop_key import KeyReader
 
 WAIT = 5.0
 

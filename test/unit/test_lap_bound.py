@@ -6,8 +6,8 @@ import textwrap
 import numpy as np
 import pytest
 
-from wall_follower.evaluation import lap_bound
-from wall_follower.evaluation.geometry import cast_rays, solid_edges
+from wall_follower.evaluation.scoring import lap_bound
+from wall_follower.evaluation.scoring.geometry import cast_rays, solid_edges
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.sim.worldfile import load_world
 

@@ -4,8 +4,7 @@ import math
 import pytest
 from geometry_msgs.msg import TransformStamped
 
-from wall_follower.nodes.laser_mount import BURGER_LASER_X, Mount, choose_laser_x, mount_of, \
-    wait_for_transform
+from wall_follower.nodes.shared.laser_mount import BURGER_LASER_X, Mount, choose_laser_x, mount_of
 
 
 def transform(x, y=0.0, yaw=0.0):
@@ -13,33 +12,6 @@ def transform(x, y=0.0, yaw=0.0):
     t.transform.translation.x, t.transform.translation.y = x, y
     t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2), math.cos(yaw / 2)
     return t
-
-
-class FakeBuffer(object):
-    """A tf2 buffer that has the transform from its `ready_after`-th poll on."""
-
-    def __init__(self, ready_after, found=None):
-        self.ready_after = ready_after
-        self.found = found if found is not None else transform(-0.064)
-        self.polls = 0
-
-    def can_transform(self, target, source, _time):
-        self.polls += 1
-        return self.ready_after is not None and self.polls > self.ready_after
-
-    def lookup_transform(self, target, source, _time):
-        return self.found
-
-
-class FakeClock(object):
-    def __init__(self):
-        self.now = 0.0
-
-    def __call__(self):
-        return self.now
-
-    def sleep(self, seconds):
-        self.now += seconds
 
 
 def test_a_waffle_mount_gives_its_laser_x_and_no_warning():
@@ -70,19 +42,3 @@ def test_a_turned_laser_is_used_but_warned_about():
 def test_mount_of_reads_translation_and_yaw():
     assert mount_of(transform(-0.064, 0.01, 0.5)) == pytest.approx((-0.064, 0.01, 0.5))
     assert mount_of(None) is None
-
-
-def test_the_transform_is_waited_for_in_the_given_clock():
-    clock = FakeClock()
-    found = wait_for_transform(FakeBuffer(ready_after=10), 'base_link', 'base_scan', 5.0,
-                               clock=clock, sleep=clock.sleep)
-    assert mount_of(found).x == pytest.approx(-0.064)
-    assert clock.now == pytest.approx(0.5)
-
-
-def test_a_transform_that_never_comes_ends_the_wait_at_its_bound():
-    clock = FakeClock()
-    buffer = FakeBuffer(ready_after=None)
-    assert wait_for_transform(buffer, 'base_link', 'base_scan', 2.0,
-                              clock=clock, sleep=clock.sleep) is None
-    assert clock.now == pytest.approx(2.0, abs=0.06)

@@ -7,16 +7,7 @@ import pytest
 import rospy
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.nodes.common import LatestScan
-
-
-@pytest.fixture
-def clock(monkeypatch):
-    """A settable ROS clock: clock.now = t (seconds)."""
-    class Clock(object):
-        now = 0.0
-    monkeypatch.setattr(rospy.Time, 'now', staticmethod(lambda: rospy.Time.from_sec(Clock.now)))
-    return Clock
+from wall_follower.nodes.shared.latest_scan import LatestScan
 
 
 def scan_taken_at(stamp):
@@ -84,3 +75,26 @@ def test_a_scan_that_came_before_the_clock_started_is_aged_from_its_start(clock)
     assert reading.view is not None and reading.taken == pytest.approx(0.9)
     clock.now = 2.2
     assert scan.latest(1.0).view is None
+
+
+@pytest.mark.parametrize('secs, nsecs, words', [
+    (4102444800, 0, 'over 73 years'), (2 ** 32 - 1, 999999999, 'over 79 years')])
+def test_a_scan_stamped_far_ahead_of_the_clock_is_stale_saying_so(clock, secs, nsecs, words):
+    """A laser on a clock set to 2100, or a header's largest stamp: no view to drive on."""
+    scan = LatestScan()
+    clock.now = 1795878000.0
+    msg = scan_taken_at(0.0)
+    msg.header.stamp = rospy.Time(secs, nsecs)
+    scan._on_scan(msg)
+    reading = scan.latest(0.5)
+    assert reading.view is None and reading.taken is None and reading.check is not None
+    assert reading.problem == ("the scan on /scan is stale: it is stamped %s ahead of this "
+                               "node's clock" % words)
+
+
+def test_a_scan_stamped_an_hour_ahead_is_used(clock):
+    """A laser host whose clock runs an hour ahead of this one."""
+    scan = LatestScan()
+    clock.now = 1795878000.0
+    scan._on_scan(scan_taken_at(1795878000.0 + 3600.0))
+    assert scan.latest(0.5).taken == pytest.approx(1795878000.0 + 3600.0)

@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.line_scoring import cross_track, progress, speed_bound
-from wall_follower.evaluation.line_track import Centreline
+from wall_follower.evaluation.scoring.line import cross_track, progress, speed_bound
+from wall_follower.evaluation.scoring.line_track import Centreline
 
 
 def circle(radius, closed=True):

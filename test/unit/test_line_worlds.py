@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.evaluation.line_scoring import speed_bound
-from wall_follower.evaluation.line_track import (CourseError, course_path, load_centreline,
-                                                 read_course, trace_path)
+from wall_follower.evaluation.scoring.line import speed_bound
+from wall_follower.evaluation.scoring.line_track import (CourseError, course_path, load_centreline,
+                                                         read_course, trace_path)
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 

@@ -5,7 +5,7 @@ import os
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.map_scoring import map_quality
+from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.mapfile import SavedMap, load_map, save_map
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher

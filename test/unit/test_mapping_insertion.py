@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.geometry import cast_rays
+from wall_follower.evaluation.scoring.geometry import cast_rays
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher
 from wall_follower.mapping.poses import between, compose

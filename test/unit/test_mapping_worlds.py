@@ -14,8 +14,8 @@ import pytest
 from PIL import Image
 
 from bitmap_generator import generator
-from wall_follower.evaluation.geometry import cast_rays
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.geometry import cast_rays
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.sim.worldfile import load_world
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)

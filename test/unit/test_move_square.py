@@ -8,8 +8,8 @@ import math
 import pytest
 
 from wall_follower.control.motion import STOP
-from wall_follower.control.scan import wrap_angle
 from wall_follower.exercises.move_square import CORNER, SIDE, SquareDriver
+from wall_follower.rotation import wrap_angle
 from wall_follower.sim.kinematics import diff_drive_step
 
 STEP = 0.1

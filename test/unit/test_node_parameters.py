@@ -1,7 +1,7 @@
 """NodeParameters at start and under reconfiguration, on a stand-in parameter server."""
 import pytest
 
-from wall_follower.nodes import parameters
+from wall_follower.nodes.shared import parameters
 from wall_follower.params import Parameter, Section
 
 TABLE = (Section('node', (Parameter('target_distance', 0.25, 'wanted distance [m]', 0.1, 1.0),
@@ -35,6 +35,9 @@ class FakeRospy(object):
 
     loginfo, logwarn = _logger('info'), _logger('warn')
     logerr, logfatal = _logger('error'), _logger('fatal')
+
+    class ServiceException(Exception):
+        """What a service handler raises to fail the call (rospy.ServiceException)."""
 
 
 @pytest.fixture
@@ -89,13 +92,15 @@ def test_a_change_is_handed_over_once(server):
     assert params.take_update() is None
 
 
-def test_a_change_that_cannot_be_used_is_refused_and_the_old_values_kept(server):
+def test_a_change_that_cannot_be_used_fails_the_call_and_the_old_values_stay(server):
     fake = server({})
     params = parameters.NodeParameters(TABLE)
     config = {'target_distance': 'far', 'wall_min_points': 6, 'find_wall': True, 'groups': {}}
-    answer = params._on_reconfigure(config, 0)
-    assert answer['target_distance'] == 0.25 and 'groups' in answer
+    # The set_parameters call fails, so that its client (dynparam) is told, not only the log.
+    with pytest.raises(FakeRospy.ServiceException, match='refused: target_distance'):
+        params._on_reconfigure(config, 0)
     assert params.take_update() is None
+    assert params.snapshot()['target_distance'] == 0.25
     assert fake.logs[-1][0] == 'error' and 'target_distance' in fake.logs[-1][1]
 
 
@@ -109,8 +114,10 @@ def test_values_that_break_a_rule_stop_the_node_or_are_refused_live(server):
     fake = server({'target_distance': 0.7})
     params = parameters.NodeParameters(TABLE, rules=(_near_unless_found,))
     config = {'target_distance': 0.7, 'wall_min_points': 6, 'find_wall': False, 'groups': {}}
-    assert params._on_reconfigure(config, 0)['find_wall'] is True
+    with pytest.raises(FakeRospy.ServiceException, match='at most 0.5 without find_wall'):
+        params._on_reconfigure(config, 0)
     assert params.take_update() is None
+    assert params.snapshot()['find_wall'] is True
     assert fake.logs[-1][0] == 'error' and 'at most 0.5 without find_wall' in fake.logs[-1][1]
     fake = server({'target_distance': 0.7, 'find_wall': False})
     with pytest.raises(SystemExit):

@@ -14,8 +14,36 @@ import threading
 import pytest
 import rospy
 
-from wall_follower.nodes import signals
-from wall_follower.nodes.common import init_node
+from wall_follower.nodes.shared import signals
+from wall_follower.nodes.shared.startup import init_node
+
+SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, 'scripts')
+
+# Runs the script given as argv[1] until its first Python function call, and says
+# then what answers SIGINT: the kernel's default action, or anything else.
+FIRST_CALL = """
+import _signal, os, sys
+script = sys.argv[1]
+def first_call(frame, event, _arg):
+    if event == 'call' and frame.f_code.co_filename != script:
+        default = _signal.getsignal(_signal.SIGINT) == _signal.SIG_DFL
+        os.write(1, b'default' if default else b'not default')
+        os._exit(0)
+with open(script) as stream:
+    code = compile(stream.read(), script, 'exec')
+sys.setprofile(first_call)
+exec(code, {'__name__': '__main__', '__file__': script})
+"""
+
+
+def node_scripts():
+    """The scripts of scripts/ that run a node of wall_follower.nodes."""
+    names = []
+    for name in sorted(os.listdir(SCRIPTS)):
+        with open(os.path.join(SCRIPTS, name)) as stream:
+            if 'from wall_follower.nodes' in stream.read():
+                names.append(name)
+    return names
 
 
 @pytest.fixture
@@ -65,3 +93,16 @@ def test_a_signal_before_init_node_ends_the_process_at_once():
         if child.poll() is None:
             child.kill()
             child.wait()
+
+
+@pytest.mark.parametrize('inherited', [signal.SIG_DFL, signal.SIG_IGN], ids=['default', 'ignored'])
+@pytest.mark.parametrize('script', node_scripts())
+def test_a_node_script_leaves_sigint_to_the_kernel_before_any_python_code_runs(script, inherited):
+    """Not Python's KeyboardInterrupt, which an import can swallow (the node would start
+    all the same), nor the ignore a shell's background job inherits: from the first
+    function call the script makes (its first import's), SIGINT ends the process."""
+    path = os.path.abspath(os.path.join(SCRIPTS, script))
+    answer = subprocess.run([sys.executable, '-c', FIRST_CALL, path], stdout=subprocess.PIPE,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, inherited),
+                            timeout=60.0, check=True).stdout
+    assert answer == b'default'

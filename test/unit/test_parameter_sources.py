@@ -7,6 +7,7 @@ files in config/ (which may hold only what differs from the defaults),
 the <param>s the launch files set (with their <arg> defaults) and the
 README's tables of defaults. Changing any of them alone makes a test fail.
 """
+import ast
 import glob
 import importlib
 import logging
@@ -17,6 +18,7 @@ import pytest
 import rosgraph.names
 import roslaunch.config
 import yaml
+from dynamic_reconfigure.encoding import extract_params
 
 from wall_follower.params import ParameterError, checked, defaults, parameters
 from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
@@ -84,6 +86,10 @@ def test_the_generated_config_is_the_table(node):
         assert config.type[p.name] == p.kind, p.name
         if p.minimum is not None:
             assert (config.min[p.name], config.max[p.name]) == (p.minimum, p.maximum), p.name
+    # A parameter with choices is an enum of them, and only such a one.
+    enums = dict((d['name'], [c['value'] for c in ast.literal_eval(d['edit_method'])['enum']])
+                 for d in extract_params(config.config_description) if d['edit_method'])
+    assert enums == dict((p.name, list(p.choices)) for p in parameters(table) if p.choices)
 
 
 @pytest.mark.parametrize('node', sorted(NODES))

@@ -1,10 +1,11 @@
 """Reading rviz screenshots: the walls found where the view puts them, displays in error."""
 import numpy as np
 
-from wall_follower.evaluation.rviz_picture import (BACKGROUND, ERROR_TEXT, error_text_pixels,
-                                                   expected_corner, material_colours,
-                                                   material_share, render_panel, wall_template,
-                                                   walls_drawn)
+from wall_follower.evaluation.pictures.rviz_picture import (BACKGROUND, ERROR_TEXT,
+                                                            error_text_pixels, expected_corner,
+                                                            material_colours, material_share,
+                                                            render_panel, wall_template,
+                                                            walls_drawn)
 
 RESOLUTION = 0.05
 SCALE = 40.0            # pixels per metre: 2 per cell

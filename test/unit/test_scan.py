@@ -6,7 +6,8 @@ import pytest
 
 from laser_conventions import CONVENTIONS, REVERSED, box, cast, scan_view
 from scan_queries import fit_wall, min_range, nearest, range_at
-from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView, wrap_angle
+from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView
+from wall_follower.rotation import wrap_angle
 
 ALL = CONVENTIONS + [REVERSED]
 

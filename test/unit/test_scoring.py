@@ -5,9 +5,9 @@ import os
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.geometry import polygon_clearance
-from wall_follower.evaluation.scoring import (CourseMap, RunScore, stretches_on_trail,
-                                              taken_every, true_lap_length)
+from wall_follower.evaluation.scoring.geometry import polygon_clearance
+from wall_follower.evaluation.scoring.course import (CourseMap, RunScore, stretches_on_trail,
+                                                     taken_every, true_lap_length)
 
 WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
 # room.world: free space x in [-1.5, 1.5], y in [-1.2, 1.2]; laser 32 mm behind the axle.

@@ -1,93 +1,95 @@
-"""The built-in camera against real Stage 4.3's frames of the line worlds.
+"""The built-in camera against real Stage 4.3's frames.
 
 test/data/stage_reference/camera/ holds what real stageros (with its window
 under xvfb-run) published at fixed robot poses (tools/record_stage_camera.py):
-the images, camera_info and the base_link -> camera transform. The built-in
-camera renders the same poses; its yellow line must cover the same pixels
-(intersection over union of the yellow masks >= MIN_IOU at every pose), and
-its geometry and camera_info must be stageros' own. Some poses lower the camera
-(`camera_z`, its pose z) to just above the body, which both then draw.
+the images, camera_info and the base_link -> camera transform, of the
+course's line worlds, of line worlds no other test uses seen obliquely, with
+the Waffle Pi's camera lowered onto its body, moved ahead of the robot's
+centre so that its own box shows, panned, turned by more than a turn, and
+of a calibration world of floating boxes. The built-in camera renders the
+same worlds (tools/stage_camera_frames.py writes them as real Stage got
+them): its yellow line must cover the same pixels (intersection over union
+of the yellow masks >= MIN_IOU at every frame of a line world), the rest
+may differ in a few pixels at most, the calibration frame in none, and its
+geometry and camera_info must be stageros' own.
 """
-import json
-import math
+import importlib.util
 import os
 
 import numpy as np
 import pytest
-from PIL import Image
 
-from wall_follower.sim.camera import CameraRenderer, CameraScene, camera_intrinsics, camera_mount
-from wall_follower.sim.worldfile import load_world
+from wall_follower.sim.camera import camera_intrinsics, camera_mount
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-WORLDS = os.path.join(HERE, os.pardir, os.pardir, 'worlds')
-DATA = os.path.join(HERE, os.pardir, 'data', 'stage_reference', 'camera')
-with open(os.path.join(DATA, 'camera.json')) as _stream:
-    RECORDING = json.load(_stream)
-FRAMES = RECORDING['frames']
-MIN_IOU = 0.9
-# Pixels of the rest of the image (floor, walls, background) may differ in colour at
-# the edges of what they show; the share that does is small.
-MAX_OTHER_DIFFERENT = 0.01
+_SPEC = importlib.util.spec_from_file_location(
+    'stage_camera_frames', os.path.join(HERE, os.pardir, os.pardir, 'tools',
+                                        'stage_camera_frames.py'))
+frames = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(frames)
+
+FRAMES = frames.recorded_frames()
+LINE_FRAMES = [frame for frame in FRAMES if frame['world'].startswith('line_')]
+MIN_IOU = 0.98
+# Pixels of the rest of the image (floor, walls, bodies, background) whose colour may
+# differ from real Stage's: a few dozen of a 320 x 240 frame.
+MAX_OTHER_DIFFERENT = 0.001
+GRAY20 = 51   # the Waffle's body
+BLACK = 0     # the camera's own box
 
 
-def yellow(rgb):
-    """The line's pixels: strong red and green, little blue (any HSV bounds would do)."""
-    rgb = rgb.astype(int)
-    return (rgb[..., 0] > 150) & (rgb[..., 1] > 150) & (rgb[..., 2] < 100)
+def _frame_id(frame):
+    return frame['file']
 
 
 @pytest.fixture(scope='module')
-def renderers():
-    cache = {}
-
-    def get(world):
-        if world not in cache:
-            loaded = load_world(os.path.join(WORLDS, world + '.world'))
-            robot = loaded.robots[0]
-            cache[world] = (robot, CameraRenderer(CameraScene(loaded), robot.camera))
-        return cache[world]
-    return get
+def rendered(tmp_path_factory):
+    """(RobotSpec, CameraFrame) of the built-in camera per recorded frame, by file."""
+    directory = str(tmp_path_factory.mktemp('worlds'))
+    return {frame['file']: frames.built_in_frame(frame, directory) for frame in FRAMES}
 
 
-def _render(renderers, frame):
-    robot, renderer = renderers(frame['world'])
-    if frame['camera_z'] is not None:
-        camera = robot.camera
-        camera = camera._replace(pose=camera.pose[:2] + (frame['camera_z'],) + camera.pose[3:],
-                                 height=robot.size[2] + frame['camera_z'])
-        robot = robot._replace(camera=camera)
-        renderer = CameraRenderer(renderer.scene, camera)
-    pose = (frame['x'], frame['y'], math.radians(frame['yaw_deg']))
-    return robot, renderer.render(pose, [(robot, pose)])
+def _is(rgb, value):
+    return np.all(rgb[..., :3] == value, axis=-1)
 
 
-def test_some_poses_see_the_robot_body():
-    lowered = [frame for frame in FRAMES if frame['camera_z'] is not None]
-    assert lowered
+def test_the_frames_show_what_they_are_recorded_for():
+    lowered = [frame for frame in FRAMES if frame['camera'].get('pose', [0, 0, 1])[2] < 0.1]
+    ahead = [frame for frame in FRAMES if frame['camera'].get('pose', [0])[0] > 0]
+    assert lowered and ahead and len(LINE_FRAMES) >= 20
     for frame in lowered:
-        real = np.asarray(Image.open(os.path.join(DATA, frame['file'])).convert('RGB'))
-        body = np.all(real == 51, axis=-1)   # the Waffle's gray20
-        assert body.mean() > 0.3
+        assert _is(frames.real_image(frame), GRAY20).mean() > 0.3
+    for frame in ahead:
+        box = _is(frames.real_image(frame), BLACK)
+        assert box.mean() > 0.01 and not box[-1].any(), 'the box shows only above the horizon'
 
 
-@pytest.mark.parametrize('frame', FRAMES, ids=lambda frame: frame['file'])
-def test_yellow_line_covers_the_pixels_real_stage_draws(renderers, frame):
-    _, rendered = _render(renderers, frame)
-    real = np.asarray(Image.open(os.path.join(DATA, frame['file'])).convert('RGB'))
-    assert rendered.rgba.shape[:2] == real.shape[:2]
-    ours, theirs = yellow(rendered.rgba[..., :3]), yellow(real)
-    assert theirs.sum() > 500, 'a reference pose should show a good length of line'
-    iou = (ours & theirs).sum() / float((ours | theirs).sum())
+@pytest.mark.parametrize('frame', LINE_FRAMES, ids=_frame_id)
+def test_yellow_line_covers_the_pixels_real_stage_draws(rendered, frame):
+    _, ours = rendered[frame['file']]
+    theirs = frames.real_image(frame)
+    assert ours.rgba.shape[:2] == theirs.shape[:2]
+    assert frames.yellow(theirs).sum() > 500, 'a reference frame should show a good length ' \
+        'of line'
+    iou, other = frames.comparison(ours.rgba, theirs)
     assert iou >= MIN_IOU, 'IoU %.3f' % iou
-    different = np.abs(rendered.rgba[..., :3].astype(int) - real.astype(int)).sum(axis=-1) > 30
-    assert (different & ~(ours | theirs)).mean() <= MAX_OTHER_DIFFERENT
+    assert other <= MAX_OTHER_DIFFERENT
 
 
-@pytest.mark.parametrize('frame', FRAMES, ids=lambda frame: frame['file'])
-def test_image_camera_info_and_tf_are_stageros_ones(renderers, frame):
-    robot, rendered = _render(renderers, frame)
-    height, width = rendered.depth.shape
+def test_the_calibration_frame_is_real_stage_s_pixel_for_pixel(rendered):
+    # Floating boxes before a level camera: every edge at a place its world file says,
+    # so that a pixel's colour tells where in the pixel the scene is sampled.
+    frame, = [frame for frame in FRAMES if frame['world'] == 'camera_calibration']
+    _, ours = rendered[frame['file']]
+    theirs = frames.real_image(frame)
+    assert (_is(theirs, (0, 0, 255))).sum() > 1000
+    assert np.array_equal(ours.rgba[..., :3], theirs)
+
+
+@pytest.mark.parametrize('frame', FRAMES, ids=_frame_id)
+def test_image_camera_info_and_tf_are_stageros_ones(rendered, frame):
+    robot, ours = rendered[frame['file']]
+    height, width = ours.depth.shape
     assert (frame['width'], frame['height'], frame['encoding'], frame['step']) == \
         (width, height, 'rgba8', 4 * width)
     assert frame['frame_id'] == 'camera'

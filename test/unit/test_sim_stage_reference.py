@@ -2,9 +2,11 @@
 
 The recordings (test/data/stage_reference, see its README) hold scans taken
 at exact poses in five worlds and, in ref_room, drive sequences with their
-command logs. Each scan is reproduced from the recorded ground-truth pose;
-each drive is replayed with stageros' timing: a command published after the
-update stamped T takes effect in the update stamped T + interval.
+command logs. Each scan is reproduced from the recorded ground-truth pose,
+as stage_sim starts there (its start check first: real Stage started every
+one of them, two a centimetre from a wall); each drive is replayed with
+stageros' timing: a command published after the update stamped T takes
+effect in the update stamped T + interval.
 """
 import json
 import math
@@ -14,11 +16,14 @@ import numpy as np
 import pytest
 
 from wall_follower.sim.engine import Simulation
+from wall_follower.sim.start_check import start_problems
 from wall_follower.sim.worldfile import load_world
 
 DATA = os.path.join(os.path.dirname(__file__), '..', 'data', 'stage_reference')
 WORLDS = ('ref_room', 'ref_shapes', 'ref_lidar270', 'ref_lidar270_yaw', 'ref_margin')
 DRIVES = ('(i)', '(ii)', '(iii)', '(iv)', '(iv-b)', '(v)')
+# Poses with a recorded scan, over all the worlds.
+SNAPSHOTS = 54
 # Drive records and snapshot ranges are rounded to 7 and 4 decimals in the recordings.
 POSE_TOLERANCE = 1e-6
 RANGE_ROUNDING = 5.1e-5
@@ -34,9 +39,16 @@ def _world(name):
 
 
 def _scan_at(world, gt):
-    """The scan a simulation of `world` publishes with the robot at ground truth `gt`."""
-    sim = Simulation(world, poses={0: (gt['x'], gt['y'], gt['yaw'])})
+    """The scan a simulation of `world` publishes with the robot started at ground truth `gt`
+    (as stage_sim starts it: only where its start check lets it)."""
+    pose = (gt['x'], gt['y'], gt['yaw'])
+    sim = Simulation(world, poses={0: pose})
+    assert start_problems(world, sim.grid, [pose]) == []
     return sim.step().robots[0]
+
+
+def test_every_recorded_pose_is_replayed():
+    assert sum(len(_reference(name)['snapshots']) for name in WORLDS) == SNAPSHOTS
 
 
 @pytest.mark.parametrize('name', WORLDS)

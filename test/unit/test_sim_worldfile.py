@@ -7,7 +7,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.geometry import obstacle_edges
+from wall_follower.evaluation.scoring.geometry import obstacle_edges
 from wall_follower.sim.worldfile import STAGE_VELOCITY_BOUNDS, WorldFileError, load_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))

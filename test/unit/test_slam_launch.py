@@ -17,7 +17,7 @@ import rospkg
 import roslaunch.config
 from roslaunch.core import RLException
 
-from wall_follower.evaluation.benchmarks.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 
 LAUNCH = os.path.join(os.path.dirname(__file__), '..', '..', 'launch')
 HOW_TO_GET_IT = ('sudo apt install ros-noetic-gmapping', 'tools/build-real-gmapping')

@@ -6,7 +6,7 @@ and in a unit_angle "radians" world) and without any (a world recorded in two
 runs) through straight, turn-in-place, past-the-bounds, sideways-commanded and
 reverse arcs, with a /reset_positions between, one of them into a post: /odom
 and ground truth of every update. Each run is replayed through `Simulation` on
-the same world file, read by worldfile.py: the recorded commands in, the
+the same world file, read by sim.worldfile: the recorded commands in, the
 odometry and ground truth out.
 """
 import json
@@ -16,7 +16,7 @@ import os
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.stage_odometry import step_scale_errors
+from wall_follower.evaluation.scoring.stage_odometry import step_scale_errors
 from wall_follower.sim.engine import DEFAULT_ODOM_ERROR_LIMITS, Simulation, _dead_reckoning
 from wall_follower.sim.kinematics import diff_drive_step
 from wall_follower.sim.worldfile import load_world

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from wall_follower.evaluation.outputs import output_problem
-from wall_follower.evaluation.scoring import CourseMap
+from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.mapping.mapfile import save_map
 from wall_follower.sim.worldfile import WorldFileError
 

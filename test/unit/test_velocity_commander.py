@@ -10,7 +10,7 @@ import pytest
 import rospy
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command
-from wall_follower.nodes.common import VelocityCommander
+from wall_follower.nodes.shared.velocity import VelocityCommander
 
 
 class Publisher(object):

@@ -1,4 +1,6 @@
 """The line mask, the lab's slice centroid and the line's pixels on synthetic images."""
+import math
+
 import cv2
 import numpy as np
 import pytest
@@ -83,10 +85,17 @@ def test_centroid_marked_by_a_red_dot_on_a_copy():
 
 
 def test_pixel_p_turns_toward_the_line_and_stops_without_one():
+    from line_course import camera
+    from wall_follower.control.motion import STOP, Answer
     from wall_follower.vision.pixel_p import PixelP
     follower = PixelP(0.2, 0.01, 0.75, 20 / 240.0)
-    right = line_mask(floor_with_line(320, 240, 260, 20), YELLOW)
-    command = follower.update(right)
-    assert command.linear == 0.2
-    assert command.angular == pytest.approx(-0.01 * (259.5 - 160.0))
-    assert follower.update(np.zeros((240, 320), np.uint8)) == (0.0, 0.0)
+    right = line_mask(floor_with_line(320, 240, 200, 20), YELLOW)
+    command, ahead_known = follower.update(right, camera(), math.radians(30.0))
+    assert command.linear == 0.2 and ahead_known
+    assert command.angular == pytest.approx(-0.01 * (199.5 - 160.0))
+    # The slice lies near the robot: 100 px off the middle is over 30 deg off its heading.
+    far_right = line_mask(floor_with_line(320, 240, 260, 20), YELLOW)
+    command, ahead_known = follower.update(far_right, camera(), math.radians(30.0))
+    assert command.angular == pytest.approx(-0.01 * (259.5 - 160.0)) and not ahead_known
+    assert follower.update(np.zeros((240, 320), np.uint8), camera(), math.radians(30.0)) == (
+        Answer(STOP, False))

@@ -2,7 +2,7 @@
 import threading
 import time
 
-from wall_follower.nodes.common import wait_in_wall_time
+from wall_follower.nodes.shared.waiting import wait_in_wall_time
 
 
 def test_a_wait_that_never_ends_gives_up_after_the_timeout():

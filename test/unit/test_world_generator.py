@@ -8,12 +8,12 @@ import random
 import numpy as np
 import pytest
 
-from wall_follower.evaluation import world_checks
-from wall_follower.evaluation.floorplan import Canvas, METRES_PER_PIXEL, to_centimetres
-from wall_follower.evaluation.geometry import cast_rays
-from wall_follower.evaluation.scoring import CourseMap
-from wall_follower.evaluation.world_generator import (GenerationError, Settings, free_space_of,
-                                                      generate, write_world)
+from wall_follower.evaluation.worlds import checks as world_checks
+from wall_follower.evaluation.worlds.floorplan import Canvas, METRES_PER_PIXEL, to_centimetres
+from wall_follower.evaluation.scoring.geometry import cast_rays
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.worlds.generator import (GenerationError, Settings, free_space_of,
+                                                       generate, write_world)
 
 REPO = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
 BURGER = os.path.join(REPO, 'worlds', 'burger.inc')

@@ -15,20 +15,16 @@ import math
 import numpy as np
 
 from wall_follower.arm.model import ModelError
+from wall_follower.rotation import axis_angle_matrix
 
 # Positions (m) and angles (rad) closer than this are the same.
 EPSILON = 1e-9
 
 
 def rotation(axis, angle):
-    """The 4x4 transform of a rotation by angle about a unit axis (Rodrigues)."""
-    x, y, z = axis
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
+    """The 4x4 transform of a rotation by angle about a unit axis."""
     matrix = np.eye(4)
-    matrix[:3, :3] = [[t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-                      [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-                      [t * x * z - s * y, t * y * z + s * x, t * z * z + c]]
+    matrix[:3, :3] = axis_angle_matrix(axis, angle)
     return matrix
 
 

@@ -11,6 +11,8 @@ import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 
+from wall_follower.rotation import rpy_matrix
+
 
 class ModelError(ValueError):
     """A description that cannot be used, with the reason in words."""
@@ -30,14 +32,8 @@ along z) or 'sphere' (radius,); origin its 4x4 transform in the link's frame."""
 
 def transform(xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)):
     """The 4x4 homogeneous transform of a URDF origin (fixed-axis roll, pitch, yaw)."""
-    roll, pitch, yaw = rpy
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
     matrix = np.eye(4)
-    matrix[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                      [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                      [-sp, cp * sr, cp * cr]]
+    matrix[:3, :3] = rpy_matrix(*rpy)
     matrix[:3, 3] = xyz
     return matrix
 

@@ -7,6 +7,7 @@ angle to the lower arm; only if every arm pose then touches something are other
 wrist angles tried, nearest first.
 """
 import collections
+import math
 
 import numpy as np
 
@@ -20,9 +21,28 @@ Plan = collections.namedtuple('Plan', 'goal move')
 # Wrist angles tried, as fractions of its range, when keeping it collides.
 WRIST_TRIES = 9
 
+# The least velocity scaling a goal may ask for (0 asks for full speed): at it the longest
+# move of cougarbot (the hip across its whole range) takes about ten minutes. Less is
+# refused rather than planned as a move that would not end in any useful time.
+MIN_VELOCITY_SCALING = 0.01
+
 
 class PlanningError(ValueError):
-    """No move: the reason in words (unreachable, colliding, unknown state)."""
+    """No move: the reason in words (unreachable, colliding, unknown state, bad goal)."""
+
+
+def velocity_factor(scaling):
+    """The share of the speed limits a goal's velocity_scaling asks for: 0 means 1 (full
+    speed), else it must lie within MIN_VELOCITY_SCALING and 1; PlanningError otherwise."""
+    if scaling == 0.0:
+        return 1.0
+    if 0.0 < scaling < MIN_VELOCITY_SCALING:
+        raise PlanningError('velocity_scaling %r is below the least allowed, %g: the move '
+                            'would not end in any useful time' % (scaling, MIN_VELOCITY_SCALING))
+    if not 0.0 < scaling <= 1.0:
+        raise PlanningError('velocity_scaling %r is not within 0 to 1 (the share of the '
+                            'joints\' speed limits; 0 means 1)' % scaling)
+    return float(scaling)
 
 
 class Planner(object):
@@ -45,6 +65,7 @@ class Planner(object):
 
     def to_state(self, name, current, scaling=1.0):
         """The Plan to the SRDF group state name."""
+        factor = velocity_factor(scaling)
         if name not in self.states:
             raise PlanningError('no named target %r (the SRDF has %s)' % (
                 name, ', '.join(sorted(self.states)) or 'none'))
@@ -52,11 +73,15 @@ class Planner(object):
         problem = self._path_problem(current, goal)
         if problem:
             raise PlanningError('named target %s: %s' % (name, problem))
-        return self._timed(current, goal, scaling)
+        return self._timed(current, goal, factor)
 
     def to_point(self, point, current, scaling=1.0):
         """The Plan that puts the hand origin on point (x, y, z in the root's frame [m])."""
+        factor = velocity_factor(scaling)
         current = np.asarray(current, dtype=float)
+        if not all(math.isfinite(value) for value in point):
+            raise PlanningError('point (%s) is not finite: every coordinate must be a number'
+                                % ', '.join(repr(float(value)) for value in point))
         if point[2] < 0.0:
             raise PlanningError('point (%.3f, %.3f, %.3f) is below the floor (z = 0)'
                                 % tuple(point))
@@ -68,7 +93,7 @@ class Planner(object):
         for goal in self._with_wrists(solutions, current):
             problem = self._path_problem(current, goal)
             if problem is None:
-                return self._timed(current, goal, scaling)
+                return self._timed(current, goal, factor)
             problems.append(problem)
         raise PlanningError('point (%.3f, %.3f, %.3f) reachable only in collision: %s' % (
             tuple(point) + (problems[0],)))
@@ -96,6 +121,5 @@ class Planner(object):
             'at the start' if fraction <= 0.0 else '%.0f%% of the way' % (100.0 * fraction))
         return 'in collision %s (%s)' % (where, ', '.join(contacts))
 
-    def _timed(self, current, goal, scaling):
-        scaling = 1.0 if scaling <= 0.0 else min(scaling, 1.0)
-        return Plan(goal, TimedMove(current, goal, self.velocity * scaling, self.acceleration))
+    def _timed(self, current, goal, factor):
+        return Plan(goal, TimedMove(current, goal, self.velocity * factor, self.acceleration))

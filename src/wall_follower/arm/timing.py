@@ -10,6 +10,11 @@ import math
 
 import numpy as np
 
+# The most points waypoint_times gives, however long the move: a move slowed to a crawl
+# (a tiny velocity scaling) is then sampled more coarsely instead of by millions of points.
+# The trajectory's splines meet the timed move exactly at any spacing (see waypoint_times).
+MAX_WAYPOINTS = 1000
+
 
 def trapezoid_duration(distance, velocity, acceleration):
     """The least time [s] to go distance at rest to rest within velocity and acceleration."""
@@ -77,6 +82,14 @@ class TimedMove(object):
         left = self.duration - t
         return 1.0 - 0.5 * self.gain * left * left, self.gain * left, -self.gain
 
+    def time_share(self, started, now):
+        """The share of the move's time past at now, for a move begun at started (both in
+        s): 0 to 1, and exactly 1 from its end (started + duration) on, so that a move
+        judged ended is never reported a rounding short of done."""
+        if self.duration == 0.0 or now >= started + self.duration:
+            return 1.0
+        return min(1.0, max(0.0, (now - started) / self.duration))
+
     def sample(self, time):
         """(positions, velocities, accelerations) at time [s] since the start."""
         s, rate, gain = self.progress(time)
@@ -84,8 +97,15 @@ class TimedMove(object):
 
     def waypoint_times(self, spacing):
         """Times [s] from the start for trajectory points: every phase change and about every
-        spacing seconds between, the last at the end (the first after 0)."""
+        spacing seconds between, the last at the end (the first after 0); never more than
+        MAX_WAYPOINTS of them, the spacing widened where the move is too long for it.
+
+        Any spacing is exact: each phase is a polynomial of degree two at most, which the
+        quintic spline through two of its points (positions, velocities and accelerations
+        given) follows exactly."""
         marks = sorted(set([self.ramp, self.ramp + self.cruise, self.duration]))
+        # each of the (at most three) phases gets at most one point more than its share
+        spacing = max(spacing, self.duration / (MAX_WAYPOINTS - len(marks)))
         times = []
         previous = 0.0
         for mark in marks:

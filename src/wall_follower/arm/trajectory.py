@@ -9,13 +9,20 @@ joins it to the trajectory being followed:
 - a zero stamp means now; each point's time_from_start counts from the stamp, and
   must increase from point to point;
 - every position must lie within the joint's limits;
-- points whose time has already come are dropped; if none is left the command is
-  rejected and the current trajectory goes on;
-- an empty command stops the arm where it is meant to be now;
+- points whose time has already come (a point at time_from_start 0 of a zero stamp
+  among them: it is due now) are dropped; if none is left the command is rejected and
+  the current trajectory goes on;
 - the new trajectory takes over at its start (its stamp, or now if that is past):
   a segment from the state the current trajectory has then (position, velocity,
   acceleration) to the first point left, so that the arm does not jump.
 A rejection raises Rejected with the reason, and leaves the current trajectory alone.
+
+An empty command (no points, whatever joints it names) is not a trajectory but a
+request to stop: stop() is the controller's one stop, JointTrajectoryController's
+way. JTC holds the arm's actual position, reached over its stop_trajectory_duration;
+here the arm brakes from its actual state (where the joints are and how fast they
+move, not where they were meant to be) to rest as fast as the acceleration limits
+allow, and is held there.
 """
 import bisect
 import collections
@@ -24,6 +31,7 @@ import math
 import numpy as np
 
 from wall_follower.arm.spline import Segment
+from wall_follower.arm.timing import stopping
 
 TrajectoryPoint = collections.namedtuple(
     'TrajectoryPoint', 'time_from_start positions velocities accelerations')
@@ -70,6 +78,21 @@ class Trajectory(object):
         """The segments from the one followed at time on (those before are done with)."""
         index = max(0, bisect.bisect_right(self._starts, time) - 1)
         return self.segments[index:]
+
+
+def stop(positions, velocities, time, acceleration):
+    """The Trajectory that stops the arm from its actual state at time [s]: positions
+    [rad] and velocities [rad/s] as the joints report them, braking within acceleration
+    [rad/s^2] (arrays over the joints; inf: at once, as JTC with no
+    stop_trajectory_duration holds the actual position) to rest, and held there."""
+    positions = np.asarray(positions, dtype=float)
+    velocities = np.asarray(velocities, dtype=float)
+    place, duration = stopping(positions, velocities, acceleration)
+    if not duration > 0.0:
+        return Trajectory.hold(positions, time)
+    zero = np.zeros_like(positions)
+    return Trajectory([Segment(time, time + duration, (positions, velocities, zero),
+                               (place, zero, zero))])
 
 
 def checked_points(model, command):
@@ -124,16 +147,25 @@ def checked_points(model, command):
 
 def accept(model, command, now, current):
     """The Trajectory to follow from now [s] on, given the current one; Rejected (the current
-    one goes on) if the command cannot be followed."""
+    one goes on) if the command cannot be followed. An empty command is a stop (see stop()),
+    not for accept()."""
+    if not command.points:
+        raise Rejected('no points: an empty command is a stop, not a trajectory')
     points = checked_points(model, command)
-    if not points:
-        position = current.sample(now)[0]
-        return Trajectory.hold(position, now)
     start = command.stamp if command.stamp > 0.0 else now
     due = [(start + point[0],) + point[1:] for point in points if start + point[0] > now]
     if not due:
+        late = now - start - points[-1][0]
+        if late <= 1e-9:
+            raise Rejected('its last point is due now (time_from_start %.3f s from %s): a point '
+                           'due now is dropped like those already past, as ros_control\'s '
+                           'JointTrajectoryController drops it, and none is left; give it a '
+                           'time_from_start above 0, the time the arm has to get there: the '
+                           'current trajectory goes on' % (
+                               points[-1][0], 'a zero stamp, which means now'
+                               if command.stamp <= 0.0 else 'its stamp'))
         raise Rejected('every point is in the past (the last was due %.3f s ago): '
-                       'the current trajectory goes on' % (now - start - points[-1][0]))
+                       'the current trajectory goes on' % late)
     takeover = max(start, now)
     segments = [segment for segment in current.since(now) if segment.start < takeover]
     state = current.sample(takeover)

@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import seen_after_move
-from wall_follower.control.scan import wrap_angle
+from wall_follower.rotation import wrap_angle
 
 
 class CornerArc(object):

@@ -37,10 +37,11 @@ from wall_follower.control.manoeuvre import FOLLOW, OUTER_CORNER, SEARCH, WALL_A
 from wall_follower.control.motion import Command
 from wall_follower.control.observation import Observation
 from wall_follower.control.outer_corner import OuterCorner
-from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.scan import RIGHT
 from wall_follower.control.search import Search
 from wall_follower.params import checked
 from wall_follower.params.wall_following import FOLLOWER
+from wall_follower.rotation import wrap_angle
 
 #: The controller's parameters: defaults, ranges, units and meanings.
 PARAMETERS = FOLLOWER

@@ -13,6 +13,10 @@ from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 Command = namedtuple('Command', ['linear', 'angular'])
 STOP = Command(0.0, 0.0)
 
+Answer = namedtuple('Answer', ['command', 'ahead_known'])
+"""A controller's Command with whether it knows the way ahead well enough to drive into it
+(a camera's controller says so; a laser's command is judged by its scan's beams)."""
+
 
 def clamp(command, max_linear=MAX_LINEAR, max_angular=MAX_ANGULAR):
     """Limit a Command to +-max_linear and +-max_angular (NaN becomes 0)."""

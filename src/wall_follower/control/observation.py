@@ -4,8 +4,9 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import seen_after_move
-from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.scan import RIGHT
 from wall_follower.control.wall_fit import along_the_way, right_wall, wall_through
+from wall_follower.rotation import wrap_angle
 
 
 class Observation(object):

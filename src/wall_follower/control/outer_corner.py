@@ -15,8 +15,9 @@ from wall_follower.control.corner import CornerArc, OuterTurn
 from wall_follower.control.follow_wall import steer
 from wall_follower.control.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
-from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.scan import RIGHT
 from wall_follower.control.wall_fit import along_the_way, from_centre
+from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the
 # one that ended is another wall [rad].

@@ -10,14 +10,11 @@ import math
 
 import numpy as np
 
+from wall_follower.rotation import wrap_angle
+
 FRONT = 0.0
 LEFT = math.pi / 2
 RIGHT = -math.pi / 2
-
-
-def wrap_angle(angle):
-    """Wrap an angle (scalar or array) into [-pi, pi)."""
-    return (np.asarray(angle) + math.pi) % (2.0 * math.pi) - math.pi
 
 
 class ScanView(object):

@@ -16,7 +16,8 @@ import math
 import numpy as np
 
 from wall_follower.control.lines import Line, consensus_line, fit_line
-from wall_follower.control.scan import RIGHT, wrap_angle
+from wall_follower.control.scan import RIGHT
+from wall_follower.rotation import wrap_angle
 
 
 def right_wall(points, params):

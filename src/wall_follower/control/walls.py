@@ -13,7 +13,7 @@ from collections import namedtuple
 import numpy as np
 
 from wall_follower.control.lines import Line, line_through
-from wall_follower.control.scan import wrap_angle
+from wall_follower.rotation import wrap_angle
 
 # A hit this much (m) nearer than the end of a run hides what lies beyond it.
 OCCLUSION_STEP = 0.05

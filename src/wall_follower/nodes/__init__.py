@@ -4,6 +4,6 @@ Importing it makes the process answer SIGINT and SIGTERM from now on, even
 if they came in ignored (see signals): scripts import a node's module
 before anything else.
 """
-from wall_follower.nodes import signals
+from wall_follower.nodes.shared import signals
 
 signals.catch()

@@ -32,20 +32,30 @@ import collections
 import numbers
 
 
-class Parameter(collections.namedtuple('Parameter', 'name default description minimum maximum')):
+_FIELDS = 'name default description minimum maximum choices'
+
+
+class Parameter(collections.namedtuple('Parameter', _FIELDS)):
     """One tunable value. The default fixes its type: bool, int, float or str, or
     dict for a structure read from YAML (dynamic_reconfigure has no type for
     one: only a node without live tuning can declare it).
 
     description: what it means, with its unit in brackets; it is what
     rqt_reconfigure shows. minimum, maximum: the range a number must lie
-    in (None: unbounded on that side).
+    in (None: unbounded on that side). choices: the only values it may take,
+    when there is a fixed set of them (the default among them); declare()
+    makes them an enum, which rqt_reconfigure offers as a list.
     """
 
     __slots__ = ()
 
-    def __new__(cls, name, default, description, minimum=None, maximum=None):
-        return super(Parameter, cls).__new__(cls, name, default, description, minimum, maximum)
+    def __new__(cls, name, default, description, minimum=None, maximum=None, choices=()):
+        choices = tuple(choices)
+        if choices and default not in choices:
+            raise ValueError('%s: the default %r is not one of its choices %s'
+                             % (name, default, ', '.join(map(str, choices))))
+        return super(Parameter, cls).__new__(cls, name, default, description, minimum, maximum,
+                                             choices)
 
     @property
     def kind(self):
@@ -74,6 +84,9 @@ class Parameter(collections.namedtuple('Parameter', 'name default description mi
             raise ValueError('%s must be at least %r, not %r' % (self.name, self.minimum, value))
         if self.maximum is not None and value > self.maximum:
             raise ValueError('%s must be at most %r, not %r' % (self.name, self.maximum, value))
+        if self.choices and value not in self.choices:
+            raise ValueError('%s must be one of %s, not %r' % (
+                self.name, ', '.join(map(str, self.choices)), value))
         return value
 
 
@@ -157,9 +170,30 @@ def declare(generator, table):
     """Add every parameter of a table to a dynamic_reconfigure ParameterGenerator.
 
     Called by the cfg/*.cfg scripts; one group per section, all at level 0
-    (a node applies every change at its next scan).
+    (a node applies every change at its next scan). A parameter with
+    choices gets an enum of them as its edit_method: rqt_reconfigure offers
+    the list, and `dynparam set` takes a choice by its name in any case.
+    dynamic_reconfigure itself checks no enum value (its client passes any
+    string on), so the node's own check (Parameter.check) is what refuses
+    one that is not a choice.
     """
+    constants = [str(choice) for p in parameters(table) for choice in p.choices]
+    # Generated as <Config>_<choice> in the Python module and the C++ header.
+    unusable = sorted(set(name for name in constants
+                          if not name.isidentifier() or constants.count(name) > 1))
+    if unusable:
+        raise ValueError('choices that cannot name an enum constant (not a name, or twice '
+                         'in the table): %s' % ', '.join(unusable))
     for section in table:
         group = generator.add_group(section.name)
         for p in section.parameters:
-            group.add(p.name, p.kind, 0, p.description, p.default, p.minimum, p.maximum)
+            group.add(p.name, p.kind, 0, p.description, p.default, p.minimum, p.maximum,
+                      edit_method=_enum(generator, p) if p.choices else '')
+
+
+def _enum(generator, parameter):
+    """The edit_method of a parameter with choices: an enum with a constant for each."""
+    return generator.enum([generator.const(str(choice), parameter.kind, choice,
+                                           '%s %s' % (parameter.name, choice))
+                           for choice in parameter.choices],
+                          'the choices of %s' % parameter.name)

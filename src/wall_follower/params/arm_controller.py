@@ -16,4 +16,4 @@ TABLE = (
         P('speedup', 1.0, 'with publish_clock: simulated seconds per wall second', 0.01, 100.0),
     )),
 )
-"""Every parameter of arm_controller (wall_follower.nodes.arm_controller)."""
+"""Every parameter of arm_controller (wall_follower.nodes.arm.arm_controller)."""

@@ -10,4 +10,4 @@ TABLE = (
         P('live', True, 'show a live window where a display exists'),
     )),
 )
-"""Every parameter of arm_plot (wall_follower.nodes.arm_plot)."""
+"""Every parameter of arm_plot (wall_follower.nodes.arm.arm_plot)."""

@@ -2,9 +2,10 @@
 
 Each driving node's table (wall_following, wall_finder and the exercises)
 takes these two Sections rather than declaring the same names again;
-nodes/parameters.py builds and retunes the loop and the clamp from them.
+nodes/shared/drive_loop.py builds and retunes the loop and the clamp from them.
 """
 import math
+from collections import namedtuple
 
 from wall_follower.params import Parameter as P, Section
 
@@ -32,8 +33,17 @@ KEEPALIVE = P('keepalive', 0.15, 'no new scan or frame for this long: send the l
               0.01, 1.0)
 
 
+LoopInput = namedtuple('LoopInput', ['timeout', 'min_known'])
+"""The names of the parameters that set a DriveLoop for one kind of input: its timeout, and
+the share of beams ahead that must be valid to drive forward (None: the node's controller
+says what it knows ahead)."""
+
+LASER_INPUT = LoopInput('scan_timeout', 'ahead_min_known')
+CAMERA_INPUT = LoopInput('image_timeout', None)
+
+
 def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
-    """The Section of the DriveLoop's parameters (nodes/drive_loop.py) of a node that reads
+    """The Section of the DriveLoop's parameters (nodes/shared/drive_loop.py) of a node that reads
     the laser.
 
     scan_timeout: its default [s], which differs between nodes, and
@@ -41,11 +51,11 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
     """
     return Section('drive_loop', (
         RATE, KEEPALIVE,
-        P('scan_timeout', scan_timeout, scan_timeout_meaning, 0.05, 10.0),
+        P(LASER_INPUT.timeout, scan_timeout, scan_timeout_meaning, 0.05, 10.0),
         P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward while too few beams within '
           'this angle either side of straight ahead read a hit or a proven no-return [rad]',
           0.0, math.pi),
-        P('ahead_min_known', AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width '
+        P(LASER_INPUT.min_known, AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width '
           'that must read a hit or a proven no-return for the robot to drive forward (0: one '
           'beam will do); low enough for an LDS-01 that drops beams or sees nothing beyond its '
           'reach there', 0.0, 1.0),
@@ -58,7 +68,7 @@ def camera_loop(image_timeout):
     ahead is the node's own to say, not a share of laser beams."""
     return Section('drive_loop', (
         RATE, KEEPALIVE,
-        P('image_timeout', image_timeout, 'stop the robot while the newest image is older '
+        P(CAMERA_INPUT.timeout, image_timeout, 'stop the robot while the newest image is older '
           'than this [s]', 0.05, 10.0),
         P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward while nothing to follow is '
           'known within this angle either side of straight ahead [rad]', 0.0, math.pi),
@@ -71,5 +81,5 @@ LIMITS = Section('limits', (
     P('max_angular', MAX_ANGULAR, 'clamp on every turn rate sent, and the turn rate limit of '
       'the behaviour [rad/s] (the same)', 0.0, MAX_ANGULAR),
 ))
-"""The clamp on every command (nodes/common.VelocityCommander), which behaviours that plan
+"""The clamp on every command (nodes/shared/velocity.VelocityCommander), which behaviours that plan
 their own speeds (WallFinder, SquareDriver) also take as their limits."""

@@ -7,7 +7,7 @@ NODE = (
     driving.loop(scan_timeout=0.5),
     driving.LIMITS,
 )
-"""The node's own parameters (wall_follower.nodes.forward_stop)."""
+"""The node's own parameters (wall_follower.nodes.exercises.forward_stop)."""
 
 FORWARD_STOP = (
     Section('forward_stop', (

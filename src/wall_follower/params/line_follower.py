@@ -5,14 +5,21 @@ import math
 from wall_follower.params import Parameter as P, Section, driving
 from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
+CONTROLLERS = ('pursuit', 'pixel_p')
+CONVENTIONS = ('auto', 'optical', 'stageros')
+"""The choices of controller and frame_convention (vision.floor names them AUTO, OPTICAL,
+STAGEROS)."""
+
 NODE = (
     driving.camera_loop(image_timeout=0.3),
     driving.LIMITS,
     Section('camera', (
         P('controller', 'pursuit', "pursuit: follow the line's remembered path with the base; "
-          "pixel_p: the lab's follower_p.py (a baseline, it cuts bends)"),
+          "pixel_p: the lab's follower_p.py (a baseline, it cuts bends)",
+          choices=CONTROLLERS),
         P('frame_convention', 'auto', "the camera frame's tf: optical (REP 103), stageros (as "
-          'stageros publishes it), or auto (optical if its name says so)'),
+          'stageros publishes it), or auto (optical if its name says so)',
+          choices=CONVENTIONS),
         P('floor_frame', 'base_footprint', 'the frame whose z = 0 plane is the floor, on the '
           "robot's base"),
         P('odom_frame', 'odom', 'the frame in which the path is remembered'),
@@ -24,7 +31,18 @@ NODE = (
           '[px]', 0.0, 100.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.line_follower)."""
+"""The node's own parameters (wall_follower.nodes.camera.line_follower)."""
+
+CHECK = (
+    Section('line', (
+        P('line_width', 0.045, "width of the course's line on the floor [m] (the line worlds': "
+          '4.5 cm): line colour is acted on only where it is about this wide', 0.005, 0.5),
+        P('line_width_tolerance', 2.0, 'line colour from line_width / this to line_width x '
+          'this wide counts as the line; a wider patch stops the robot (not a line), a '
+          'narrower thread is left out', 1.2, 10.0),
+    )),
+)
+"""What counts as the line (vision.line_check.LineCheck)."""
 
 PATH = (
     Section('path', (
@@ -79,21 +97,6 @@ PIXEL_P = (
 )
 """The lab's baseline (vision.pixel_p.PixelP), on the lab's slice (params.line_mask.SLICE)."""
 
-CONTROLLERS = ('pursuit', 'pixel_p')
-CONVENTIONS = ('auto', 'optical', 'stageros')
-"""The choices of controller and frame_convention (vision.floor's AUTO, OPTICAL, STAGEROS)."""
+RULES = HSV_RULES
 
-
-def _known_choices(values):
-    if values['controller'] not in CONTROLLERS:
-        return 'controller must be one of %s, not %r' % (
-            ', '.join(CONTROLLERS), values['controller'])
-    if values['frame_convention'] not in CONVENTIONS:
-        return 'frame_convention must be one of %s, not %r' % (
-            ', '.join(CONVENTIONS), values['frame_convention'])
-    return None
-
-
-RULES = HSV_RULES + (_known_choices,)
-
-TABLE = NODE + IMAGE + HSV + SLICE + PATH + PURSUIT + PIXEL_P
+TABLE = NODE + IMAGE + HSV + SLICE + CHECK + PATH + PURSUIT + PIXEL_P

@@ -8,7 +8,7 @@ IMAGE = (
           "real Waffle Pi's raspicam) instead of sensor_msgs/Image on image"),
     )),
 )
-"""How the camera's frames come (nodes.image_input), for every node that reads them."""
+"""How the camera's frames come (nodes.shared.latest_image), for every node that reads them."""
 
 HSV = (
     Section('colour', (

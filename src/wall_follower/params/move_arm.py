@@ -25,4 +25,4 @@ TABLE = (
           'to subscribe to arm_controller/command before it is aborted [wall s]', 0.1, 300.0),
     )),
 )
-"""Every parameter of move_arm (wall_follower.nodes.move_arm)."""
+"""Every parameter of move_arm (wall_follower.nodes.arm.move_arm)."""

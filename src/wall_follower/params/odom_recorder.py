@@ -15,7 +15,7 @@ NODE = (
           'cancellation and the odometry time-out [Hz]', 1.0, 100.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.odom_recorder), in force from the next goal."""
+"""odom_recorder's own parameters (wall_follower.nodes.course), in force from the next goal."""
 
 RECORDING = (
     Section('lap', (

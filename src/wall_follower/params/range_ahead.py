@@ -13,4 +13,4 @@ TABLE = (
           0.05, 10.0),
     )),
 )
-"""Every parameter of range_ahead (wall_follower.nodes.range_ahead)."""
+"""Every parameter of range_ahead (wall_follower.nodes.exercises.range_ahead)."""

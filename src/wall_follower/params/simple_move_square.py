@@ -13,7 +13,7 @@ NODE = (
     )),
     odometry.JUMPS,
 )
-"""The node's own parameters (wall_follower.nodes.simple_move_square)."""
+"""The node's own parameters (wall_follower.nodes.exercises.simple_move_square)."""
 
 SQUARE = (
     driving.LIMITS,

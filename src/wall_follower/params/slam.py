@@ -26,7 +26,7 @@ NODE = (
           'before skipping the scan [wall s]', 0.01, 60.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.slam)."""
+"""The node's own parameters (wall_follower.nodes.mapping.slam)."""
 
 GRID = Section('grid', (
     P('delta', 0.05, "cell of the published map [m], as gmapping's delta; read at start",

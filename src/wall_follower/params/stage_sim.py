@@ -5,6 +5,7 @@ what stageros does not have or takes on its command line. No
 dynamic_reconfigure server: a world does not change its physics mid-run.
 """
 from wall_follower.params import Parameter as P, Section
+from wall_follower.sim.laser_profiles import PROFILES
 
 TABLE = (
     Section('pace', (
@@ -27,7 +28,7 @@ TABLE = (
     )),
     Section('robot', (
         P('laser_profile', 'stage', 'the scan convention to emulate: stage, lds01, lds02, gazebo '
-          'or course720'),
+          'or course720', choices=PROFILES),
         P('seed', 0, 'seed of the laser profile noise and of the odometry errors drawn for a robot '
           'with localization "odom" and no odom_error', 0, 2 ** 31 - 1),
         P('pose', '', 'x y yaw_deg: start pose of the first robot instead of the world file '

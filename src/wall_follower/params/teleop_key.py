@@ -8,7 +8,7 @@ NODE = (
           'loop sends at 10 Hz)', 0.01, 1.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.teleop_key)."""
+"""The node's own parameters (wall_follower.nodes.exercises.teleop_key)."""
 
 TELEOP = (
     driving.LIMITS,

@@ -12,7 +12,7 @@ NODE = (
                  'younger than this is available this long after it started, or at any point '
                  'later on [s]'),
 )
-"""The node's own parameters (wall_follower.nodes.wall_finder)."""
+"""The node's own parameters (wall_follower.nodes.course.wall_finder)."""
 
 FINDER = (
     Section('robot', (

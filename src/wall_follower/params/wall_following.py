@@ -22,7 +22,7 @@ NODE = (
           0.0, 600.0),
     )),
 )
-"""The node's own parameters (wall_follower.nodes.wall_following)."""
+"""The node's own parameters (wall_follower.nodes.course.wall_following)."""
 
 FOLLOWER = (
     Section('robot', (

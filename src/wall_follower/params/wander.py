@@ -7,7 +7,7 @@ NODE = (
     driving.loop(scan_timeout=0.5),
     driving.LIMITS,
 )
-"""The node's own parameters (wall_follower.nodes.wander)."""
+"""The node's own parameters (wall_follower.nodes.exercises.wander)."""
 
 WANDER = (
     Section('wander', (

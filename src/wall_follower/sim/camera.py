@@ -1,28 +1,37 @@
 """A Stage 4.3 camera, rendered without OpenGL: colour and depth images of a world.
 
-What real Stage draws (model_camera.cc, camera.cc, canvas.cc; measured under
-xvfb-run, see DESIGN.md "Stage's camera"):
+What real Stage draws (model_camera.cc, camera.cc, canvas.cc, blockgroup.cc;
+measured under xvfb-run, see DESIGN.md "Stage's camera"):
 
 - a pinhole camera with the world file's horizontal and vertical fields of
   view (a frustum, not a fixed aspect), clipped at `range [near far]` along
-  its optical axis; pixels are sampled at their centres;
+  its optical axis; each pixel is sampled at one point, SAMPLE_POINT from its
+  top-left corner (not its centre): where Mesa's software rasteriser under
+  xvfb-run samples Stage's window, which asks for a multisample visual (the
+  first of the four standard sample positions; a calibration world of
+  floating boxes pins every edge to within 0.05 px of it);
 - the eye sits on the robot's centre (the camera model's own x, y and yaw are
   not used) at height = body height + camera pose z, looking along the
   robot's heading turned by pan (pan > 0 turns right) and down by tilt;
-- the floor is white over the world's extent, the background beyond it
-  Stage's clear colour; every model is drawn as its blocks extruded from
-  zmin to zmax in the model's colour, sides and top, the robots' own bodies
-  and rangers included;
+- the floor is white over the world's extent (whole superregions of its
+  raster: 20.48 m squares at the default resolution), the background
+  beyond it Stage's clear colour; every model is drawn as its blocks extruded from
+  zmin to zmax in the model's colour, sides and top, however low it is (the
+  sides of a 1 mm line on the floor thicken its near edge by about a pixel),
+  with no face culled; the robots' own bodies, rangers and cameras included:
+  a camera placed ahead of the robot's centre sees its own box (from behind
+  and below, just above the horizon) when it looks up far enough.
 - depth is the distance along the optical axis (stageros: -inf nearer than
   `near`, +inf where nothing was drawn).
 
 The per-pixel loop is C (src/stage_camera.c, through compiled_camera):
 each ray meets the floor, each model's top (a raster lookup, or a crossing
-test for a few edges) and each model's side faces (one segment test per
-edge). Flat models (a line painted on the floor) have no sides worth
-drawing, so a world of a room and a line costs a few dozen edge tests per
-pixel. This module prepares what the loop needs: the pixel rays, the models
-as solids, the eye.
+test for a few edges) and each model's side faces: one segment test per
+edge, or, for a flat model with a raster (a line painted on the floor), a
+walk along the raster's cells over the few millimetres where the ray is
+within the model's height. So a world of a room and a line costs a few
+dozen edge tests and a few cell steps per pixel. This module prepares what
+the loop needs: the pixel rays, the models as solids, the eye.
 """
 import math
 from collections import namedtuple
@@ -34,11 +43,18 @@ from . import compiled_camera
 __all__ = ['Solid', 'CameraScene', 'CameraRenderer', 'CameraFrame', 'CameraMount', 'BACKGROUND',
            'FLOOR', 'body_solids', 'camera_intrinsics', 'optical_frame_rpy', 'camera_mount']
 
+# Where in a pixel (right, down from its top-left corner, in pixels) real Stage's frame
+# samples the scene.
+SAMPLE_POINT = (0.375, 0.125)
 # Stage's glClearColor (canvas.cc) where no floor or model is drawn, and its floor.
 BACKGROUND = (0.7, 0.7, 0.8)
 FLOOR = (1.0, 1.0, 1.0)
-# Below this height a model's sides are under a pixel from any camera worth having.
+# Up to this height a model with a raster finds its side faces by walking the raster's
+# cells (few steps: a ray is within so low a model for a few millimetres); taller ones
+# test their edges.
 FLAT_HEIGHT = 0.005
+# Stage's world extent grows by superregions of this many cells a side (region.hh: 2^10).
+SUPERREGION_CELLS = 1024
 # Models with more edges than this test their top against a filled raster of this cell.
 RASTER_EDGES = 32
 RASTER_CELL = 0.0025
@@ -58,6 +74,8 @@ class Solid(object):
 
     edges: (M, 2, 2) outline segments; their even-odd interior is the top face, looked
     up in `raster` ((mask, origin) of cells of RASTER_CELL) when there are many edges.
+    walk_sides: the side faces are found on that raster (a flat solid's) rather than
+    by testing every edge. convex: the edges are one convex polygon, in order (a box).
     """
 
     def __init__(self, edges, zmin, zmax, color):
@@ -68,9 +86,21 @@ class Solid(object):
         flat = self.edges.reshape(-1, 2)
         self.lower = flat.min(axis=0)
         self.upper = flat.max(axis=0)
-        self.flat = self.zmax - self.zmin < FLAT_HEIGHT
         self.raster = _fill_raster(self.edges, self.lower, self.upper) \
             if len(self.edges) > RASTER_EDGES else None
+        self.walk_sides = self.raster is not None and self.zmax - self.zmin < FLAT_HEIGHT
+        self.convex = _is_convex(self.edges)
+
+
+def _is_convex(edges):
+    """Whether `edges` are the sides of one convex polygon, each starting where the one
+    before ends, turning one way (or not at all) at every corner."""
+    if len(edges) < 3 or not np.array_equal(edges[:, 0], np.roll(edges[:, 1], 1, axis=0)):
+        return False
+    along = edges[:, 1] - edges[:, 0]
+    following = np.roll(along, -1, axis=0)
+    turns = along[:, 0] * following[:, 1] - along[:, 1] * following[:, 0]
+    return bool((turns >= 0).all() or (turns <= 0).all())
 
 
 def _fill_raster(edges, lower, upper):
@@ -102,10 +132,12 @@ def _box_edges(center_x, center_y, yaw, length, width):
 
 
 def body_solids(spec, pose):
-    """A robot's body box and its ranger's box at world pose (x, y, yaw), as Stage draws them
-    (each child model stacked on top of the body). The camera's own box is left out: the
-    eye sits on its base, so that only rays up into it could meet it, nearer than any
-    sensible near clip."""
+    """A robot's body box, its ranger's box and its camera's box at world pose (x, y, yaw),
+    as Stage draws them (each child model stacked on top of the body). The eye sits on
+    the robot's centre level with the camera box's base, so only rays that look up meet
+    that box: from inside it (a camera at the centre) all nearer than a sensible near
+    clip; from behind it (a camera ahead of the centre) as a dark band just above the
+    horizon."""
     x, y, yaw = pose
     cosa, sina = math.cos(yaw), math.sin(yaw)
 
@@ -120,6 +152,10 @@ def body_solids(spec, pose):
     if ranger is not None:
         solids.append(placed(ranger.pose[0], ranger.pose[1], ranger.pose[3], ranger.size,
                              spec.size[2] + ranger.pose[2], ranger.color))
+    camera = spec.camera
+    if camera is not None:
+        solids.append(placed(camera.pose[0], camera.pose[1], camera.pose[3], camera.size,
+                             camera.height, camera.color))
     return solids
 
 
@@ -149,10 +185,18 @@ class CameraScene(object):
             corners.append([robot.pose[0] - reach, robot.pose[1] - reach])
             corners.append([robot.pose[0] + reach, robot.pose[1] + reach])
         corners = np.array(corners, dtype=float).reshape(-1, 2) if corners else np.zeros((1, 2))
-        # Stage's world extent: the bounding box of everything drawn.
-        self.floor_lower = corners.min(axis=0)
-        self.floor_upper = corners.max(axis=0)
+        self.floor_lower, self.floor_upper = floor_extent(corners, world.resolution)
         self.tables = compiled_camera.SceneTables(self.solids, RASTER_CELL)
+
+
+def floor_extent(points, resolution):
+    """(lower, upper) corners of the floor Stage draws round `points` (x, y): its world's
+    extent, the box of every superregion (SUPERREGION_CELLS square cells of `resolution`,
+    aligned on the origin) that a model's outline touches."""
+    size = SUPERREGION_CELLS * resolution
+    cells = np.floor(np.asarray(points, dtype=float) / resolution)
+    regions = np.floor(cells / SUPERREGION_CELLS)
+    return regions.min(axis=0) * size, (regions.max(axis=0) + 1.0) * size
 
 
 def camera_intrinsics(camera):
@@ -185,8 +229,8 @@ def camera_mount(robot):
 class CameraRenderer(object):
     """Renders one CameraSpec's frames in a CameraScene.
 
-    The pixel rays pass through the pixel centres, with a forward component of 1 so
-    that the ray parameter is the depth along the optical axis.
+    The pixel rays pass through each pixel's SAMPLE_POINT, with a forward component of 1
+    so that the ray parameter is the depth along the optical axis.
     """
 
     def __init__(self, scene, camera):
@@ -194,8 +238,8 @@ class CameraRenderer(object):
         self.camera = camera
         width, height = camera.resolution
         fx, fy, cx, cy = camera_intrinsics(camera)
-        self._u = (np.arange(width) + 0.5 - cx) / fx
-        self._v = (np.arange(height) + 0.5 - cy) / fy
+        self._u = (np.arange(width) + SAMPLE_POINT[0] - cx) / fx
+        self._v = (np.arange(height) + SAMPLE_POINT[1] - cy) / fy
         self.shape = (height, width)
 
     def axes(self, yaw):

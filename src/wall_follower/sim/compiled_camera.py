@@ -16,6 +16,9 @@ from wall_follower.sim.compiled_library import (ADDRESS, DOUBLE, INT, address, l
 __all__ = ['LIBRARY', 'MISSING', 'available', 'SceneTables', 'render']
 
 LIBRARY = 'libwall_follower_camera.so'
+# A raster cell's bits (src/stage_camera.c): inside the outline; a neighbour is not.
+RASTER_FILLED = 1
+RASTER_BORDER = 2
 MISSING = missing_message(LIBRARY, "the simulator's camera", 'src/stage_camera.c')
 
 
@@ -24,8 +27,8 @@ class SceneTables(ctypes.Structure):
 
     _fields_ = [('solid_count', INT), ('edges', ADDRESS), ('edge_start', ADDRESS),
                 ('zspan', ADDRESS), ('bounds', ADDRESS), ('colors', ADDRESS),
-                ('sides', ADDRESS), ('raster', ADDRESS), ('raster_start', ADDRESS),
-                ('raster_shape', ADDRESS), ('raster_origin', ADDRESS),
+                ('walk_sides', ADDRESS), ('convex', ADDRESS), ('raster', ADDRESS),
+                ('raster_start', ADDRESS), ('raster_shape', ADDRESS), ('raster_origin', ADDRESS),
                 ('raster_cell', DOUBLE)]
 
     def __init__(self, solids, raster_cell):
@@ -44,7 +47,7 @@ class SceneTables(ctypes.Structure):
                 raster_start.append(offset)
                 raster_shape.append(mask.shape)
                 raster_origin.append(origin)
-                rasters.append(mask.ravel())
+                rasters.append(raster_codes(mask).ravel())
                 offset += mask.size
         arrays = [
             (np.concatenate(edges) if edges else np.zeros((0, 4)), np.float64),
@@ -52,7 +55,8 @@ class SceneTables(ctypes.Structure):
             ([(solid.zmin, solid.zmax) for solid in solids], np.float64),
             ([tuple(solid.lower) + tuple(solid.upper) for solid in solids], np.float64),
             ([np.round(np.array(solid.color) * 255.0) for solid in solids], np.uint8),
-            ([not solid.flat for solid in solids], np.uint8),
+            ([solid.walk_sides for solid in solids], np.uint8),
+            ([solid.convex for solid in solids], np.uint8),
             (np.concatenate(rasters) if rasters else np.zeros(1), np.uint8),
             (raster_start, np.int64), (raster_shape, np.int64), (raster_origin, np.float64)]
         kept, pointers = [], []
@@ -63,6 +67,18 @@ class SceneTables(ctypes.Structure):
             pointers.append(pointer)
         super(SceneTables, self).__init__(count, *(pointers + [float(raster_cell)]))
         self.arrays = kept
+
+
+def raster_codes(mask):
+    """A filled raster's cells as the C side reads them: RASTER_FILLED where filled,
+    RASTER_BORDER where one of the eight neighbours (outside the raster: empty) differs."""
+    padded = np.pad(mask, 1, mode='constant')
+    rows, cols = mask.shape
+    border = np.zeros(mask.shape, dtype=bool)
+    for drow in (0, 1, 2):
+        for dcol in (0, 1, 2):
+            border |= padded[drow:drow + rows, dcol:dcol + cols] != mask
+    return (mask * RASTER_FILLED + border * RASTER_BORDER).astype(np.uint8)
 
 
 class ViewTables(ctypes.Structure):

@@ -12,8 +12,8 @@ import numpy as np
 
 from .stage_walk import line_cells
 
-__all__ = ['OccupancyGrid', 'footprint_corners', 'footprint_cells', 'footprint_collides',
-           'footprints_overlap']
+__all__ = ['OccupancyGrid', 'obstacle_edges', 'footprint_corners', 'footprint_cells',
+           'footprint_collides', 'footprints_overlap']
 
 # Empty cells kept around the obstacles, so that every lookup near them stays inside.
 _MARGIN_CELLS = 2
@@ -101,6 +101,15 @@ class OccupancyGrid(object):
 
 def _obstacle_cells(obstacle, ppm):
     """Stage cells of an obstacle's outline edges (Model::LocalToPixels + World::MapPoly)."""
+    wx, wy = obstacle_edges(obstacle)
+    px = np.floor(wx * ppm).astype(np.int64)
+    py = np.floor(wy * ppm).astype(np.int64)
+    return line_cells(px[:, 0], py[:, 0], px[:, 1], py[:, 1])
+
+
+def obstacle_edges(obstacle):
+    """World x and y (each (M, 2): start, end) of an obstacle's outline edges, the true
+    lines its cells are drawn from."""
     gx, gy, _, ga = obstacle.pose
     ox, oy, _, oa = obstacle.origin
     # GetGlobalPose() + geom.pose, in Stage's order of floating-point operations.
@@ -112,9 +121,7 @@ def _obstacle_cells(obstacle, ppm):
     local = obstacle.edges
     wx = cx + local[..., 0] * cosa - local[..., 1] * sina
     wy = cy + local[..., 0] * sina + local[..., 1] * cosa
-    px = np.floor(wx * ppm).astype(np.int64)
-    py = np.floor(wy * ppm).astype(np.int64)
-    return line_cells(px[:, 0], py[:, 0], px[:, 1], py[:, 1])
+    return wx, wy
 
 
 def footprint_corners(spec, pose):

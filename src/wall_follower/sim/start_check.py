@@ -9,13 +9,19 @@ refused here with the world file and the robot named; so is a robot
 outside every wall of the map (beyond the box the obstacles span), which
 drives off into nothing, and two robots whose bodies overlap.
 
-A wall is what Stage draws: an obstacle's outline cells (sim.grid). A
-robot wholly inside the interior of a wide obstacle touches none of them,
-as in Stage, and is not told apart from one in free space.
+"Across a wall" is measured exactly: the body's polygon, taken whole,
+meets one of the true outline edges that an obstacle's cells are drawn
+from (touching is not meeting), so a small obstacle wholly under the body
+counts too. Stage's cells are coarser (a body a centimetre clear of a wall
+face can share a cell with it) and real Stage starts such a robot, so a
+start is not refused for a shared cell alone; once running, the
+simulator's steps are held by the cells, as Stage's are. A robot wholly
+inside the interior of a wide obstacle meets none of its edges, as in
+Stage, and is not told apart from one in free space.
 """
 import numpy as np
 
-from .grid import footprint_collides, footprint_corners, footprints_overlap
+from .grid import footprint_corners, footprints_overlap, obstacle_edges
 
 __all__ = ['start_problems']
 
@@ -35,7 +41,7 @@ def start_problems(world, grid, starts):
         if box is not None and not _inside(box, start):
             problems.append('%s is outside the map (its walls span x %.2f .. %.2f, '
                             'y %.2f .. %.2f)' % ((where,) + box))
-        elif footprint_collides(grid, spec, start):
+        elif _meets_an_obstacle(world, footprint_corners(spec, start)):
             problems.append('%s starts inside a wall (its body overlaps an obstacle)' % where)
     bodies = [footprint_corners(spec, start) for spec, start in zip(world.robots, starts)]
     for first in range(len(bodies)):
@@ -44,6 +50,34 @@ def start_problems(world, grid, starts):
                 problems.append('%s: robots "%s" and "%s" start on top of each other' % (
                     world.path, world.robots[first].name, world.robots[second].name))
     return problems
+
+
+def _meets_an_obstacle(world, corners):
+    """Whether the convex polygon corners (N, 2) meets an outline edge of an obstacle."""
+    for obstacle in world.obstacles:
+        if obstacle.obstacle_return and np.any(_segments_meet(corners, *obstacle_edges(obstacle))):
+            return True
+    return False
+
+
+def _segments_meet(corners, xs, ys):
+    """For each segment (xs[i], ys[i]: its ends), whether it meets the open interior of the
+    convex polygon corners: no separating axis among the polygon's edge normals and the
+    segment's own normal (a segment that only touches the polygon is separated)."""
+    starts = np.stack([xs[:, 0], ys[:, 0]], axis=1)
+    ends = np.stack([xs[:, 1], ys[:, 1]], axis=1)
+    meets = np.ones(len(starts), dtype=bool)
+    sides = np.roll(corners, -1, axis=0) - corners
+    for axis in np.stack([-sides[:, 1], sides[:, 0]], axis=1):
+        body = corners.dot(axis)
+        a, b = starts.dot(axis), ends.dot(axis)
+        meets &= (np.maximum(a, b) > body.min()) & (np.minimum(a, b) < body.max())
+    normals = np.stack([ys[:, 0] - ys[:, 1], xs[:, 1] - xs[:, 0]], axis=1)
+    along = np.einsum('ij,ij->i', normals, starts)
+    body = corners.dot(normals.T)   # (N corners, segments)
+    point = ~normals.any(axis=1)    # a segment of no length has no normal of its own
+    meets &= point | ((body.min(axis=0) < along) & (along < body.max(axis=0)))
+    return meets
 
 
 def _walls_box(grid):

@@ -18,10 +18,12 @@ from collections import namedtuple
 
 import numpy as np
 
-OPTICAL = 'optical'
-STAGEROS = 'stageros'
-AUTO = 'auto'
-CONVENTIONS = (AUTO, OPTICAL, STAGEROS)
+from wall_follower.params.line_follower import CONVENTIONS
+from wall_follower.rotation import matrix_of_quaternion, wrap_angle
+
+# The frame conventions a camera's tf may follow: the choices of line_follower's
+# ~frame_convention, named once in its parameter table.
+AUTO, OPTICAL, STAGEROS = CONVENTIONS
 
 
 class Intrinsics(namedtuple('Intrinsics', ['fx', 'fy', 'cx', 'cy', 'width', 'height'])):
@@ -50,15 +52,6 @@ def convention_of(frame_id, convention):
     return OPTICAL if 'optical' in frame_id else STAGEROS
 
 
-def rotation_of(quaternion):
-    """3x3 rotation matrix of a unit quaternion (x, y, z, w)."""
-    x, y, z, w = np.asarray(quaternion, float) / np.linalg.norm(quaternion)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
 def level_camera_axes(tilt):
     """Columns: the optical x (right), y (down), z (ahead) axes, in the floor frame, of a
     camera looking straight ahead, tilted down by tilt [rad]."""
@@ -70,14 +63,14 @@ def camera_pose(translation, quaternion, convention):
     """(optical axes as columns, optical centre) in the floor frame, from the tf of the
     camera's frame in the floor frame (translation x, y, z; quaternion x, y, z, w) read
     in the given convention (OPTICAL or STAGEROS)."""
-    rotation = rotation_of(quaternion)
+    rotation = matrix_of_quaternion(quaternion)
     if convention == OPTICAL:
         return rotation, np.asarray(translation, float)
     # STAGEROS: the frame's y axis is Stage's "down" in the image plane; its roll is
     # -90 deg - tilt whatever its yaw, i.e. the angle of y below the floor plane.
     roll = math.atan2(rotation[2, 1], rotation[2, 2])
     tilt = -roll - math.pi / 2.0
-    tilt = math.atan2(math.sin(tilt), math.cos(tilt))
+    tilt = wrap_angle(tilt)
     return level_camera_axes(tilt), np.array([0.0, 0.0, float(translation[2])])
 
 
@@ -98,9 +91,35 @@ class FloorProjection(object):
             raise ValueError('the camera is %.3f m above the floor: it cannot see it'
                              % self.centre[2])
 
+    def key(self):
+        """A value equal for two projections that map every pixel alike (for caches)."""
+        return (tuple(self.intrinsics), self.axes.tobytes(), self.centre.tobytes(),
+                self.max_distance)
+
     def to_floor(self, pixels):
         """(M, 2) floor points (x, y) of the (N, 2) pixels (column, row) whose rays meet the
         floor within max_distance; the others are left out."""
+        points, on_floor = self.floor_points(pixels)
+        return points[on_floor]
+
+    def floor_view(self):
+        """(height, width) bool image: which pixels see the floor within max_distance."""
+        k = self.intrinsics
+        columns, rows = np.meshgrid(np.arange(k.width), np.arange(k.height))
+        _, on_floor = self.floor_points(np.column_stack((columns.ravel(), rows.ravel())))
+        return on_floor.reshape(k.height, k.width)
+
+    def homography(self):
+        """3x3 matrix taking floor points (x, y, 1) to pixels (column, row, 1), up to scale
+        (valid for points in front of the camera)."""
+        k = self.intrinsics
+        camera = np.array([[k.fx, 0.0, k.cx], [0.0, k.fy, k.cy], [0.0, 0.0, 1.0]])
+        local = self.axes.T
+        return camera.dot(np.column_stack((local[:, 0], local[:, 1], -local.dot(self.centre))))
+
+    def floor_points(self, pixels):
+        """(N, 2) floor points of the (N, 2) pixels, and (N,) whether each ray meets the floor
+        within max_distance (the point is meaningless where not)."""
         k = self.intrinsics
         pixels = np.asarray(pixels, float).reshape(-1, 2)
         rays = np.column_stack(((pixels[:, 0] - k.cx) / k.fx, (pixels[:, 1] - k.cy) / k.fy,
@@ -111,7 +130,7 @@ class FloorProjection(object):
         scale = self.centre[2] / np.where(hits, down, 1.0)
         points = self.centre[:2] + directions[:, :2] * scale[:, None]
         near = np.hypot(*(points - self.centre[:2]).T) <= self.max_distance
-        return points[hits & near]
+        return points, hits & near
 
     def to_pixels(self, points):
         """(N, 2) pixels (column, row) of (N, 2) floor points, and (N,) whether each lies in

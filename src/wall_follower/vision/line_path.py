@@ -19,6 +19,9 @@ import math
 
 import numpy as np
 
+from wall_follower.params import checked
+from wall_follower.params.line_follower import PATH
+
 MIN_POINTS = 3        # line points within radius for a centre to count (specks do not)
 
 
@@ -97,18 +100,14 @@ class LinePath(object):
     keep_behind: how much of the path behind the base is kept [m].
     """
 
-    def __init__(self, step, radius, max_length, first_reach, cell, keep_behind):
-        self.reconfigure(step, radius, max_length, first_reach, cell, keep_behind)
+    def __init__(self, **params):
+        self.reconfigure(**params)
         self.path = np.zeros((0, 2))
         self.end_seen = False
 
-    def reconfigure(self, step, radius, max_length, first_reach, cell, keep_behind):
-        self.step = step
-        self.radius = radius
-        self.max_length = max_length
-        self.first_reach = first_reach
-        self.cell = cell
-        self.keep_behind = keep_behind
+    def reconfigure(self, **params):
+        """Go on under these parameters (PATH's defaults, overridden) from the next frame on."""
+        self.p = checked(PATH, params)
 
     def forget(self):
         self.path = np.zeros((0, 2))
@@ -135,8 +134,8 @@ class LinePath(object):
             heading = _heading(kept) if len(kept) > 1 else base[2]
         else:
             start, heading = np.asarray(base[:2], float), base[2]
-        traced = trace(thin(seen, self.cell), start, heading, self.step, self.radius,
-                       self.max_length, self.first_reach)[1:]
+        traced = trace(thin(seen, self.p['cell']), start, heading, self.p['step'], self.p['radius'],
+                       self.p['max_length'], self.p['first_reach'])[1:]
         if len(traced):
             path = np.vstack((kept, traced)) if len(kept) else np.vstack((start, traced))
         else:
@@ -146,11 +145,11 @@ class LinePath(object):
         # all: a covered lens is no end), what was found before stands.
         ended = self.end_seen and len(path) > 0
         if len(traced) and len(path) > 1:
-            beyond = path[-1] + self.step * _unit(path[-1] - path[-2])
+            beyond = path[-1] + self.p['step'] * _unit(path[-1] - path[-2])
             # The floor beyond an end already found may have left the view (near its edge)
             # while the line's last bit is still traced: the end stays where it was found.
             ended = bool(end_in_view(beyond)) or (
-                self.end_seen and np.hypot(*(path[-1] - self.path[-1])) <= self.radius)
+                self.end_seen and np.hypot(*(path[-1] - self.path[-1])) <= self.p['radius'])
         self.path, self.end_seen = path, ended
         return self.path
 
@@ -165,14 +164,14 @@ class LinePath(object):
             # Keep radius more, inside the view's edge: traced again, it would be traced
             # from the mean of points that the edge cuts off, always ahead of where it was.
             cut = shown[0] + 1
-            while cut < len(path) and path_length(path[shown[0]:cut + 1]) <= self.radius:
+            while cut < len(path) and path_length(path[shown[0]:cut + 1]) <= self.p['radius']:
                 cut += 1
             path = path[:cut]
         if len(path) == 0:
             return path
         nearest = int(np.argmin(np.hypot(path[:, 0] - base[0], path[:, 1] - base[1])))
         first = nearest
-        while first > 0 and path_length(path[first - 1:nearest + 1]) <= self.keep_behind:
+        while first > 0 and path_length(path[first - 1:nearest + 1]) <= self.p['keep_behind']:
             first -= 1
         return path[first:]
 

@@ -20,12 +20,19 @@ and the line's end was not seen: the line is lost, and the robot only
 turns in place (toward the side the line went), at most `search_angle`
 [rad], never driving on blind; LOST: that search found nothing; it stays
 stopped until the line is seen again.
+
+Each command comes with whether the line is known ahead of the base (a
+point of the path within the drive loop's half width of its heading):
+the loop drives forward on nothing less.
 """
 import math
 
 import numpy as np
 
-from wall_follower.control.motion import STOP, Command
+from wall_follower.control.motion import STOP, Answer, Command
+from wall_follower.params import checked
+from wall_follower.params.line_follower import PURSUIT
+from wall_follower.rotation import wrap_angle
 from wall_follower.vision.line_path import path_length
 
 FOLLOW = 'follow'
@@ -96,45 +103,35 @@ def sharpest_bend(path, reach):
 class LinePursuit(object):
     """Commands from the remembered path; see the module for the states and parameters."""
 
-    def __init__(self, speed, turn_rate, lookahead, lookahead_time, preview, bend_share, decel,
-                 stop_distance, min_ahead, max_bearing, search_rate, search_angle):
-        self.reconfigure(speed, turn_rate, lookahead, lookahead_time, preview, bend_share,
-                         decel, stop_distance, min_ahead, max_bearing, search_rate,
-                         search_angle)
+    def __init__(self, **params):
+        self.reconfigure(**params)
         self.state = FOLLOW
         self._turn_side = 1.0          # +1: the line went left, -1: right
         self._searched = 0.0           # rad turned in this search
         self._last_yaw = None
 
-    def reconfigure(self, speed, turn_rate, lookahead, lookahead_time, preview, bend_share,
-                    decel, stop_distance, min_ahead, max_bearing, search_rate, search_angle):
-        self.speed = speed
-        self.turn_rate = turn_rate
-        self.lookahead = lookahead
-        self.lookahead_time = lookahead_time
-        self.preview = preview
-        self.bend_share = bend_share
-        self.decel = decel
-        self.stop_distance = stop_distance
-        self.min_ahead = min_ahead
-        self.max_bearing = max_bearing
-        self.search_rate = search_rate
-        self.search_angle = search_angle
+    def reconfigure(self, **params):
+        """Go on under these parameters (PURSUIT's defaults, overridden) from the next frame on."""
+        self.p = checked(PURSUIT, params)
 
-    def update(self, path, end_seen, base):
-        """The Command for the path (odometry frame, LinePath's), whether it ends at the
-        line's end, and the base's pose (x, y, yaw) in the same frame."""
-        turned = 0.0 if self._last_yaw is None else abs(
-            math.atan2(math.sin(base[2] - self._last_yaw), math.cos(base[2] - self._last_yaw)))
+    def update(self, path, end_seen, base, half_width):
+        """The Answer for the path (odometry frame, LinePath's), whether it ends at the
+        line's end, and the base's pose (x, y, yaw) in the same frame: the command, and
+        whether the path is known ahead within half_width [rad] of the heading."""
+        known = bool(len(path)) and known_ahead(path, base, half_width)
+        return Answer(self._command(path, end_seen, base), known)
+
+    def _command(self, path, end_seen, base):
+        turned = 0.0 if self._last_yaw is None else abs(wrap_angle(base[2] - self._last_yaw))
         self._last_yaw = base[2]
         if self.state == FINISHED:
             return STOP
         ahead = path_ahead(in_base_frame(path, base))
         left = path_length(ahead) + (math.hypot(*ahead[0]) if len(ahead) else 0.0)
-        if end_seen and len(ahead) and left <= self.stop_distance:
+        if end_seen and len(ahead) and left <= self.p['stop_distance']:
             self.state = FINISHED
             return STOP
-        if left < self.min_ahead and not end_seen:
+        if left < self.p['min_ahead'] and not end_seen:
             return self._search(turned)
         self.state = FOLLOW
         return self._pursue(ahead, end_seen, left)
@@ -144,21 +141,21 @@ class LinePursuit(object):
             self.state, self._searched = SEARCH, 0.0
         elif self.state == SEARCH:
             self._searched += turned
-            if self._searched >= self.search_angle:
+            if self._searched >= self.p['search_angle']:
                 self.state = LOST
         if self.state == LOST:
             return STOP
-        return Command(0.0, self._turn_side * self.search_rate)
+        return Command(0.0, self._turn_side * self.p['search_rate'])
 
     def _pursue(self, ahead, end_seen, left):
-        speed = self.speed
-        bend = sharpest_bend(ahead, self.preview)
+        speed = self.p['speed']
+        bend = sharpest_bend(ahead, self.p['preview'])
         if bend > 1e-9:
-            speed = min(speed, self.bend_share * self.turn_rate / bend)
+            speed = min(speed, self.p['bend_share'] * self.p['turn_rate'] / bend)
         if end_seen:
-            speed = min(speed, max(CREEP, math.sqrt(2.0 * self.decel
-                                                    * max(0.0, left - self.stop_distance))))
-        lookahead = max(self.lookahead, self.lookahead_time * speed)
+            speed = min(speed, max(CREEP, math.sqrt(2.0 * self.p['decel']
+                                                    * max(0.0, left - self.p['stop_distance']))))
+        lookahead = max(self.p['lookahead'], self.p['lookahead_time'] * speed)
         distances = np.hypot(*ahead.T)
         beyond = np.nonzero(distances >= lookahead)[0]
         target = ahead[beyond[0]] if len(beyond) else ahead[-1]
@@ -168,9 +165,9 @@ class LinePursuit(object):
         bearing = math.atan2(target[1], target[0])
         if abs(target[1]) > 1e-6:
             self._turn_side = math.copysign(1.0, target[1])
-        if abs(bearing) > self.max_bearing:
-            return Command(0.0, math.copysign(self.turn_rate, bearing))
+        if abs(bearing) > self.p['max_bearing']:
+            return Command(0.0, math.copysign(self.p['turn_rate'], bearing))
         curvature = 2.0 * target[1] / (distance * distance)
         if abs(curvature) > 1e-9:
-            speed = min(speed, self.turn_rate / abs(curvature))
+            speed = min(speed, self.p['turn_rate'] / abs(curvature))
         return Command(speed, speed * curvature)

@@ -15,8 +15,6 @@ joint for which the limits bite hardest).
 """
 import argparse
 import os
-import signal
-import subprocess
 import tempfile
 import time
 
@@ -34,8 +32,9 @@ from wall_follower.arm.model import (read_acceleration_limits, read_srdf, read_u
                                      read_velocity_limits)
 from wall_follower.arm.planning import Planner, PlanningError
 from wall_follower.arm.timing import fastest_duration
-from wall_follower.evaluation.benchmarks.launching import (fmt, free_port, launch_command,
-                                                           print_table)
+from wall_follower.evaluation.launching import (LAUNCH_STOP_GRACE, ProcessGroup, free_port,
+                                                launch_command, master_environment)
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.msg import MoveArmAction, MoveArmGoal
 
 
@@ -86,18 +85,16 @@ def execution_trials(count, seed, speedup, timeout):
     checker = CollisionChecker(model, semantics.disabled)
     rng = np.random.RandomState(seed)
     port = free_port()
-    os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % port
+    os.environ.update(master_environment(port))
     log = tempfile.NamedTemporaryFile('w', prefix='benchmark-arm-', suffix='.log', delete=False)
-    process = subprocess.Popen(
-        launch_command('arm.launch', {'sim_time': 'true', 'speedup': speedup}, port),
-        stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-    try:
-        return _execute(model, checker, velocity, acceleration, rng, count, timeout)
-    finally:
-        os.killpg(process.pid, signal.SIGINT)
-        process.wait()
-        log.close()
-        os.unlink(log.name)
+    with ProcessGroup(grace=LAUNCH_STOP_GRACE) as group:
+        group.start(launch_command('arm.launch', {'sim_time': 'true', 'speedup': speedup}, port),
+                    log=log)
+        try:
+            return _execute(model, checker, velocity, acceleration, rng, count, timeout)
+        finally:
+            log.close()
+            os.unlink(log.name)
 
 
 def _execute(model, checker, velocity, acceleration, rng, count, timeout):

@@ -17,8 +17,8 @@ import time
 import numpy as np
 import rospkg
 
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table
-from wall_follower.evaluation.line_track import load_centreline
+from wall_follower.evaluation.tables import fmt, print_table
+from wall_follower.evaluation.scoring.line_track import load_centreline
 from wall_follower.sim import compiled_camera
 from wall_follower.sim.camera import CameraRenderer, CameraScene
 from wall_follower.sim.engine import Simulation

@@ -5,8 +5,8 @@ ground-truth figures of each trial.
 """
 import argparse
 
-from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, laser_profile, print_table,
-                                                           run_launch, shipped_world)
+from wall_follower.evaluation.launching import WORLDS, laser_profile, run_launch, shipped_world
+from wall_follower.evaluation.tables import fmt, print_table
 
 
 def main(argv=None):

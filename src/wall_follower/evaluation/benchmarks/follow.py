@@ -16,7 +16,7 @@ not in lockstep, with Stage's own laser: one lap per world.
 laser profile instead, as `grade` does (see follow_generated).
 
 Beside each lap: T*, the least time any robot under the speed limits takes
-to lap the world in the band (evaluation/lap_bound), and the lap's time over
+to lap the world in the band (evaluation/scoring/lap_bound), and the lap's time over
 it; then each T* lap as the built-in simulator drives it, its check.
 """
 import argparse
@@ -24,11 +24,11 @@ import os
 import sys
 import tempfile
 
-from wall_follower.evaluation import lap_bound
+from wall_follower.evaluation.scoring import lap_bound
 from wall_follower.evaluation.benchmarks import follow_generated
-from wall_follower.evaluation.benchmarks.launching import (WORLDS, display_wrapper, fmt,
-                                                           laser_profile, print_table, run_launch,
-                                                           shipped_world)
+from wall_follower.evaluation.launching import (WORLDS, display_wrapper, laser_profile, run_launch,
+                                                shipped_world)
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.sim.laser_profiles import PROFILES as LASER_PROFILES
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import load_world

@@ -6,7 +6,7 @@ verdicts and this benchmark's never differ. Per laser profile: how many
 laps were genuine, any contact, and the distribution (median, 5th
 percentile, worst) of the time in band, the RMS error, the lap's time over
 T* (the least lap time any robot under the speed limits can take round that
-loop of the band: evaluation/lap_bound), its ratio to the speed bound and
+loop of the band: evaluation/scoring/lap_bound), its ratio to the speed bound and
 find_wall's distance and heading errors; then every case under MIN_IN_BAND
 with its world file, to be opened and looked at; then how each T* lap went
 when the built-in simulator drove it, its check.
@@ -15,9 +15,10 @@ import os
 
 import numpy as np
 
-from wall_follower.evaluation import grader, lap_bound
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table
-from wall_follower.evaluation.grading import MIN_IN_BAND, grade_case
+from wall_follower.evaluation.grading import grader
+from wall_follower.evaluation.grading.criteria import MIN_IN_BAND, grade_case
+from wall_follower.evaluation.scoring import lap_bound
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.params import defaults
 from wall_follower.params.wall_finder import FINDER
 

@@ -8,8 +8,9 @@ distance of the base (RMS and worst); on an open line, the same up to the
 stop and the stop's distance from the line's end. `pursuit` is
 line_follower's own controller, `pixel_p` the lab's follower_p.py (turn
 rate proportional to the slice centroid's pixel offset), run on the same
-camera as a baseline. Then the vision pipeline's own frame rate (mask,
-floor projection, path, pursuit: no simulator) at two camera sizes; the
+camera as a baseline. Then the frame rate of line_follower's own step
+(vision.line_step: mask, line check, floor projection, path, pursuit; no
+simulator) at two camera sizes; the
 simulator's camera has its own benchmark where it is built (`benchmark
 camera`).
 """
@@ -19,20 +20,18 @@ import time
 
 import numpy as np
 
-from wall_follower.evaluation.benchmarks.launching import fmt, print_table, run_rostest
-from wall_follower.evaluation.line_scoring import speed_bound
-from wall_follower.evaluation.line_track import load_centreline
-from wall_follower.params import defaults, pick
+from wall_follower.evaluation.launching import run_rostest
+from wall_follower.evaluation.scoring.line import speed_bound
+from wall_follower.evaluation.scoring.line_track import load_centreline
+from wall_follower.evaluation.tables import fmt, print_table
+from wall_follower.params import defaults
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.params.line_follower import PATH, PURSUIT, TABLE
+from wall_follower.params.line_follower import CONTROLLERS, TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.vision.floor import FloorProjection, Intrinsics, level_camera_axes
-from wall_follower.vision.line_image import hsv_bounds, line_mask, line_pixels
-from wall_follower.vision.line_path import LinePath
-from wall_follower.vision.line_pursuit import LinePursuit, from_base_frame, in_base_frame
+from wall_follower.vision.line_step import LineStep
 
 LINE_WORLDS = ('line_lab', 'line_tight', 'line_open')
-CONTROLLERS = ('pursuit', 'pixel_p')
 
 
 def run_line(world, controller, timeout=600.0):
@@ -41,7 +40,7 @@ def run_line(world, controller, timeout=600.0):
 
 
 def pipeline_rate(width, height, frames=50):
-    """Frames per second of line_follower's vision on synthetic frames of a camera of this
+    """Frames per second of line_follower's step on synthetic frames of a camera of this
     size (the Waffle Pi's field of view, 0.3 m up, 40 deg down) seeing a curved yellow line."""
     values = defaults(TABLE)
     fx = width / (2.0 * math.tan(math.radians(62.2) / 2.0))
@@ -56,20 +55,11 @@ def pipeline_rate(width, height, frames=50):
         centre = int(width / 2 + 0.3 * width * ((height - row) / float(height)) ** 2)
         half = max(1, int(0.05 * width * row / float(height)))
         image[row, max(0, centre - half):centre + half] = (0, 255, 255)
-    bounds = hsv_bounds(values)
-    memory = LinePath(**pick(values, PATH))
-    pursuit = LinePursuit(**pick(values, PURSUIT))
+    step = LineStep(values)
+    step.update(image, projection, (0.0, 0.0, 0.0), values['ahead_half_width'])
     started = time.perf_counter()
     for frame in range(frames):
-        base = (0.01 * frame, 0.0, 0.0)
-        mask = line_mask(image, bounds)
-        seen = from_base_frame(projection.to_floor(
-            line_pixels(mask, values['pixel_stride'])), base)
-
-        def in_view(points, base=base):
-            return projection.sees(in_base_frame(points, base), values['view_margin'])
-        memory.update(seen, in_view, base, lambda point: in_view(point)[0])
-        pursuit.update(memory.path, memory.end_seen, base)
+        step.update(image, projection, (0.01 * frame, 0.0, 0.0), values['ahead_half_width'])
     return frames / (time.perf_counter() - started)
 
 

@@ -5,7 +5,7 @@ time: the simulator steps, the finder and then the follower answer each
 scan from the world's start pose, and the mapper takes every scan with the
 odometry of its stamp, until the true path has closed its lap; then the
 robot stands for a second and the map is saved in map_server's format,
-read back and scored against the world (evaluation/map_scoring.py). Each
+read back and scored against the world (evaluation/scoring/map_quality.py). Each
 world is mapped twice: with scan matching, and from raw odometry alone, the
 map a mapper without matching would make. CPU time is the mapper's alone,
 per scan: a 10 Hz laser leaves it 100 ms.
@@ -23,9 +23,10 @@ from wall_follower.control.finder import WallFinder
 from wall_follower.control.follower import WallFollower
 from wall_follower.control.motion import clamp
 from wall_follower.control.scan import ScanView
-from wall_follower.evaluation.benchmarks.launching import WORLDS, fmt, print_table, shipped_world
-from wall_follower.evaluation.map_scoring import map_quality
-from wall_follower.evaluation.scoring import CourseMap, RunScore
+from wall_follower.evaluation.launching import WORLDS, shipped_world
+from wall_follower.evaluation.tables import fmt, print_table
+from wall_follower.evaluation.scoring.map_quality import map_quality
+from wall_follower.evaluation.scoring.course import CourseMap, RunScore
 from wall_follower.mapping.mapfile import load_map, save_map
 from wall_follower.mapping.poses import between, wrap
 from wall_follower.mapping.slam import Mapper

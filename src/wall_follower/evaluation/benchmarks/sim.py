@@ -10,7 +10,6 @@ one ran without a fresh command: that is a missed control step.
 """
 import argparse
 import os
-import signal
 import subprocess
 import sys
 import time
@@ -22,14 +21,14 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
-import wall_follower
-from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, free_port, print_table,
-                                                           shipped_world)
-from wall_follower.sim.stage_interface import world_path
+from wall_follower.evaluation.launching import WORLDS, ProcessGroup, free_port, shipped_world
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.sim import compiled_raytrace
 from wall_follower.sim.engine import Simulation
-from wall_follower.sim.worldfile import load_world
+from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.stage_interface import rate_in_quit_report
+from wall_follower.sim.worldfile import load_world
+import wall_follower
 
 HELD_SPEEDUP = 20.0
 GOAL_FREE_RUN = 500.0
@@ -47,11 +46,11 @@ class PrivateMaster(object):
     def __init__(self):
         self.port = free_port()
         self.uri = 'http://localhost:%d' % self.port
-        self._processes = []
+        self._group = ProcessGroup(grace=START_LIMIT)
 
     def __enter__(self):
         os.environ['ROS_MASTER_URI'] = self.uri
-        self._start(['roscore', '-p', str(self.port)])
+        self._group.start(['roscore', '-p', str(self.port)], errors=subprocess.DEVNULL)
         deadline = time.time() + START_LIMIT
         while not rosgraph.is_master_online(self.uri):
             if time.time() > deadline:
@@ -69,33 +68,22 @@ class PrivateMaster(object):
         package_parent = os.path.dirname(os.path.dirname(wall_follower.__file__))
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(
             [package_parent] + os.environ.get('PYTHONPATH', '').split(os.pathsep)))
-        command = [sys.executable, '-m', 'wall_follower.nodes.stage_sim', world,
+        command = [sys.executable, '-m', 'wall_follower.nodes.sim.stage_sim', world,
                    '__name:=simulator'] + ['_%s:=%s' % item for item in sorted(params.items())]
-        return self._start(command, env, output)
+        return self._group.start(command, env, output, errors=subprocess.DEVNULL)
 
     def stop(self, process):
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(timeout=START_LIMIT)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait()
-        self._processes.remove(process)
+        self._group.end(process)
 
     def forget(self, process):
         """Stops looking after a process that has ended by itself."""
-        self._processes.remove(process)
-
-    def _start(self, command, env=None, output=subprocess.DEVNULL):
-        process = subprocess.Popen(command, env=env, stdout=output,
-                                   stderr=subprocess.DEVNULL, start_new_session=True)
-        self._processes.append(process)
-        return process
+        self._group.forget(process)
 
     def __exit__(self, *_):
         rospy.signal_shutdown('benchmark done')
-        for process in reversed(list(self._processes)):
-            self.stop(process)
+        for process in reversed(list(self._group.processes)):
+            self._group.end(process)
+        self._group.stop()
 
 
 class ClockWatch(object):

@@ -3,13 +3,13 @@
 Runs the wander rostest (test/rostest/wander.test: the simulator in
 lockstep, scored from ground truth) once per world and laser profile and
 prints the figures it writes: the share of the free floor's 0.2 m cells
-that the robot's axle passed through (evaluation/coverage.py), the path
+that the robot's axle passed through (evaluation/scoring/coverage.py), the path
 driven, the smallest clearance and whether anything was touched.
 """
 import argparse
 
-from wall_follower.evaluation.benchmarks.launching import (WORLDS, fmt, laser_profile,
-                                                           print_table, run_rostest, shipped_world)
+from wall_follower.evaluation.launching import WORLDS, laser_profile, run_rostest, shipped_world
+from wall_follower.evaluation.tables import fmt, print_table
 
 EXERCISE_WORLDS = WORLDS + ('pillars',)
 

@@ -1,0 +1,88 @@
+"""When a service was called and when it replied, seen from its TCP connections.
+
+A ROS service call is a TCP connection of its own from the client to the
+port of the node that serves it (its rosrpc:// URI), held open by the
+server while its handler runs and closed once the reply has been read.
+The same port also takes the node's topic connections (every subscriber
+of what it publishes, rosout's included), which stay open as long as the
+subscriber does. So, polled from the kernel's table of the namespace's
+TCP sockets (/proc/net/tcp, tcp6), each established connection to the
+port is followed by its peer's address: one that came and went while
+the run went on was a call (or the probe of rospy.wait_for_service,
+which lasts no simulated time); one still open at the end is a topic's,
+or a call that never replied, which cannot be told apart.
+"""
+
+ESTABLISHED = '01'
+TABLES = ('/proc/net/tcp', '/proc/net/tcp6')
+# Simulated seconds a call lasts at least to be taken for the real one (a probe does not).
+LASTING = 0.1
+
+
+def peers_by_port(text):
+    """{local port: the peers (remote address:port, as the table writes them)} of the
+    established connections in a /proc/net/tcp text."""
+    found = {}
+    for line in text.splitlines()[1:]:
+        fields = line.split()
+        if len(fields) < 4 or ':' not in fields[1] or fields[3] != ESTABLISHED:
+            continue
+        found.setdefault(int(fields[1].rsplit(':', 1)[1], 16), set()).add(fields[2])
+    return found
+
+
+def connected_peers(tables=TABLES):
+    """peers_by_port in this network namespace, now."""
+    found = {}
+    for table in tables:
+        try:
+            with open(table) as stream:
+                for port, peers in peers_by_port(stream.read()).items():
+                    found.setdefault(port, set()).update(peers)
+        except (IOError, OSError):
+            pass
+    return found
+
+
+class PortWatch(object):
+    """A CallWatch for every port connections were seen to, from before anyone knows
+    which port is the service's: a call may begin, and end, before the service has been
+    seen in the graph."""
+
+    def __init__(self):
+        self.ports = {}
+
+    def look(self, time, peers, pose):
+        """A poll at time: peers as connected_peers gives them, the robot at pose."""
+        for port in set(self.ports) | set(peers):
+            self.ports.setdefault(port, CallWatch()).look(time, peers.get(port, ()), pose)
+
+    def of(self, port):
+        return self.ports.get(port) or CallWatch()
+
+
+class CallWatch(object):
+    """The calls of one service seen so far: each a dict of its start and end (simulated
+    s) and the robot's pose at each."""
+
+    def __init__(self):
+        self.calls = []
+        self._open = {}
+
+    def look(self, time, peers, pose):
+        """What a poll saw at time: the peers connected to the service's port, the robot
+        at pose."""
+        for peer in set(peers) - set(self._open):
+            self._open[peer] = (time, pose)
+        for peer in set(self._open) - set(peers):
+            start, start_pose = self._open.pop(peer)
+            self.calls.append({'start': start, 'end': time, 'start_pose': start_pose,
+                               'end_pose': pose})
+
+    def judged(self):
+        """The call to judge find_wall by: the first that lasted (see LASTING), else the
+        longest; None when no call ended."""
+        lasting = [c for c in self.calls if c['end'] - c['start'] >= LASTING]
+        if lasting:
+            return lasting[0]
+        return max(self.calls, key=lambda c: c['end'] - c['start']) if self.calls else None

@@ -1,0 +1,1 @@
+"""Scoring from ground truth: a lap against the band, a map against its world, a line follower."""

@@ -1,0 +1,1 @@
+"""Generated worlds: floorplans drawn exactly, the generator, the checks every world passes."""

@@ -1,0 +1,1 @@
+"""Mapping's nodes: the mapper, the map saver and a world's map."""

@@ -1,0 +1,1 @@
+"""What several nodes share: start-up, signals, the readers, the drive loop, parameters, tf."""
