@@ -79,14 +79,15 @@ LAUNCHED = {
     'rviz': ('rviz', 'rviz', OPTIONAL),              # rviz:=true; rviz.test
 }
 
-# The rest of package.xml's keys -> (Debian package, kind): the build's, and what a node
-# finds at run time.
+# The rest of package.xml's keys -> (Debian package, kind): the build's, what a node
+# finds at run time, and the programs the tests run.
 OTHER = {
     'catkin': ('catkin', BUILD),
     'message_generation': ('ros-message-generation', BUILD),
     'message_runtime': ('ros-message-runtime', RUN),
     'bubblewrap': ('bubblewrap', RUN),               # grade's sandbox per case (bwrap)
     'stage_ros': (None, OPTIONAL),                   # stage_sim runs real stageros where found
+    'chromium-browser': ('chromium', TEST),          # the grader's pages in a real browser
 }
 
 # package.xml's tags that satisfy each kind.

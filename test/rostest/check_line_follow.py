@@ -23,11 +23,10 @@ import rostest
 
 from paused_world import GroundTruthRun
 from waiting import wait_until
+from wall_follower.evaluation.grading.line_record import still_from
 from wall_follower.evaluation.scoring.line import cross_track, progress
 from wall_follower.evaluation.scoring.line_track import load_centreline
 from wall_follower.sim.stage_interface import world_path
-
-STILL = 1e-4      # m, rad: a pose within this of the last one has not moved (nor turned)
 
 
 class LineFollow(GroundTruthRun):
@@ -86,17 +85,8 @@ class LineFollow(GroundTruthRun):
 
     def _stopped_at(self):
         """Index of the pose from which the robot has neither moved nor turned for ~still
-        simulated seconds up to the newest, or None."""
-        poses = self._poses()
-        if len(poses) < 2:
-            return None
-        steps = np.diff(poses[:, 1:4], axis=0)
-        steps[:, 2] = np.angle(np.exp(1j * steps[:, 2]))
-        moved = np.nonzero(np.abs(steps).max(axis=1) > STILL)[0]
-        if len(moved) == 0:
-            return None
-        stop = moved[-1] + 1
-        return stop if poses[-1, 0] - poses[stop, 0] >= self.still else None
+        simulated seconds up to the newest, or None (as the grader judges a stop)."""
+        return still_from(self._poses(), self.still)
 
     def _to_the_end(self):
         wait_until(lambda: self._stopped_at() is not None, self.wall_limit)

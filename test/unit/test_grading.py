@@ -20,12 +20,14 @@ from nav_msgs.msg import Odometry
 
 from wall_follower.evaluation.grading.commands import CommandLog
 from wall_follower.evaluation.grading.criteria import grade_case, grades, shown
-from wall_follower.evaluation.grading.service_calls import CallWatch, PortWatch, peers_by_port
+from wall_follower.evaluation.grading.service_calls import (CallWatch, PortWatch, peers_by_port,
+                                                            reply_moment)
 from wall_follower.evaluation.pictures.course_plot import plot_course, plt, points_label
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
-from wall_follower.nodes.evaluation.grade_case import SolutionSeen, _json_safe, case_record
+from wall_follower.nodes.evaluation.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.shared.case_graph import _json_safe
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
@@ -392,3 +394,24 @@ def test_a_call_is_a_connection_that_came_and_went_and_the_first_that_lasted_is_
     calls = [(c['start'], c['end']) for c in watch.calls]
     assert calls == [(1.0, 1.0), (2.0, 9.0)]
     assert watch.judged()['end_pose'] == 'e'
+    assert (watch.judged()['last_open'], watch.judged()['last_open_pose']) == (2.0, 'd')
+
+
+def test_a_reply_seen_late_is_judged_where_the_robot_stood_before_it_drove_away():
+    # Polled at 20.0 with the call open, the robot parallel to its wall; the next poll came
+    # late, at 21.7, after the solution had turned 35 deg away from it.
+    watch = CallWatch()
+    for time, peers, pose in ((9.0, {'call'}, (0.0, 0.0, 1.0)), (20.0, {'call'}, (1.0, 0.0, 0.0)),
+                              (21.7, set(), (1.2, 0.1, 0.6))):
+        watch.look(time, peers, pose)
+    headings = {0.0: math.radians(2.0), 0.6: math.radians(35.0), 1.0: math.radians(60.0)}
+    time, pose, aligned = reply_moment(watch.judged(),
+                                       lambda pose: (0.28, headings[pose[2]]))
+    assert (time, pose) == (20.0, (1.0, 0.0, 0.0))
+    assert aligned == (0.28, math.radians(2.0))
+
+
+def test_a_reply_with_no_wall_at_either_bound_is_judged_at_the_first():
+    call = {'last_open': 3.0, 'last_open_pose': 'a', 'end': 4.0, 'end_pose': 'b'}
+    assert reply_moment(call, lambda pose: None) == (3.0, 'a', None)
+    assert reply_moment(dict(call, last_open_pose=None), lambda pose: None) == (4.0, 'b', None)

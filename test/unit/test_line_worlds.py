@@ -15,6 +15,7 @@ from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.evaluation.scoring.line import speed_bound
 from wall_follower.evaluation.scoring.line_track import (CourseError, course_path, load_centreline,
                                                          read_course, trace_path)
+from wall_follower.evaluation.worlds import line_world
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
@@ -54,7 +55,7 @@ def test_line_is_drawn_where_its_centreline_is(path):
     assert line.color == (1.0, 1.0, 0.0)
     assert 0.04 <= centreline.width <= 0.05
     from PIL import Image
-    pixel = _tool().LINE_PIXEL
+    pixel = line_world.LINE_PIXEL
     black = np.asarray(Image.open(path.replace('.world', '_line.png')).convert('L')) < 128
     rows, cols = black.shape
     # Stage puts the bitmap's black bounding box (here the whole image) on `size` at `pose`.

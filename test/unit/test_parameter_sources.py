@@ -25,7 +25,7 @@ from wall_follower.params import (course_report, driving, find_trials, forward_s
                                   odom_recorder, range_ahead, simple_move_square, slam,
                                   stage_sim, teleop_key, wall_finder, wall_following, wander)
 from wall_follower.params import arm_controller, arm_plot, move_arm
-from wall_follower.params import grade_case
+from wall_follower.params import grade_case, line_case
 from wall_follower.params import camera_view, line_follower, line_mask
 from wall_follower.params import world_map
 
@@ -50,6 +50,7 @@ NODES = {
     'move_arm': (move_arm.TABLE, 'MoveArm'),
     'arm_plot': (arm_plot.TABLE, None),
     'grade_case': (grade_case.TABLE, None),
+    'line_case': (line_case.TABLE, None),
     'line_follower': (line_follower.TABLE, 'LineFollower'),
     'line_mask': (line_mask.TABLE, 'LineMask'),
     'camera_view': (camera_view.TABLE, None),
@@ -64,7 +65,7 @@ DRIVING = ('wall_following', 'wall_finder', 'teleop_key', 'simple_move_square', 
            'wander')
 DRIVING += ('line_follower',)
 #: nodes set only by their launch files' arguments, which document them: no README table
-WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case', 'world_map'}
+WITHOUT_README_TABLE = {'course_report', 'find_trials', 'grade_case', 'line_case', 'world_map'}
 TUNED_LIVE = sorted(node for node, (_, config) in NODES.items() if config is not None)
 
 
@@ -134,7 +135,8 @@ def _nest(values, path, value):
 LAUNCH_FILES = sorted(glob.glob(os.path.join(ROOT, 'launch', '*.launch')))
 #: The args a launch file cannot do without (declared with no default), and a value for
 #: each: a parameter set to that value from it is the caller's, not a default to check.
-REQUIRED_ARGS = {'grade_case.launch': {'world': '/tmp/generated.world'}}
+REQUIRED_ARGS = {'grade_case.launch': {'world': '/tmp/generated.world'},
+                 'line_case.launch': {'world': '/tmp/line_s0_000.world'}}
 #: (launch file, its args): each file at its defaults, and with the args that add a node
 LAUNCH_RUNS = [(path, tuple('%s:=%s' % item for item in sorted(
     REQUIRED_ARGS.get(os.path.basename(path), {}).items()))) for path in LAUNCH_FILES] + [

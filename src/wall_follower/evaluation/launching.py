@@ -92,9 +92,9 @@ def display_wrapper():
     return None
 
 
-def marked_processes(token):
-    """Ids of this user's running processes whose environment holds token."""
-    needle = ('%s=%s\0' % (TOKEN_VARIABLE, token)).encode()
+def marked_processes(token, variable=TOKEN_VARIABLE):
+    """Ids of this user's running processes whose environment holds token (as variable)."""
+    needle = ('%s=%s\0' % (variable, token)).encode()
     found = []
     for entry in os.listdir('/proc'):
         if not entry.isdigit() or int(entry) == os.getpid():

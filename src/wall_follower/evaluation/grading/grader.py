@@ -15,7 +15,12 @@ own workspace's clean environment (grading/workspace.py), never in
 grade's. Each case is one independent command (--list
 prints them, --case K runs one), so a batch system can spread a class over
 many machines; --collect DIR then builds the report from the finished
-cases.
+cases (--collect DIR1 DIR2 ..., the class page too: class_report.py).
+
+What a case is depends on the task (--task): the course's (CourseTask
+below: a generated room, grade_case.launch) or a line follower's
+(line_task.LineTask: a generated line course and camera, line_case.launch);
+CaseRunner runs either.
 
 A launch file given by its path, in a directory that is no package's
 root, is run with that directory as a package named like the directory
@@ -43,10 +48,12 @@ from concurrent.futures import ThreadPoolExecutor
 import rospkg
 
 from wall_follower.control.motion import MAX_LINEAR
+from wall_follower.evaluation.grading import class_report
 from wall_follower.evaluation.grading import options as grade_options
 from wall_follower.evaluation.grading import report as grade_report
 from wall_follower.evaluation.grading import sandbox
-from wall_follower.evaluation.grading.options import parser
+from wall_follower.evaluation.grading.line_task import LineTask
+from wall_follower.evaluation.grading.options import parser, room_of
 from wall_follower.evaluation.grading.workspace import StudentWorkspace, WorkspaceError
 from wall_follower.evaluation.launching import ProcessGroup, display_wrapper, free_port
 from wall_follower.evaluation.worlds.generator import (GenerationError, Settings, free_space_of,
@@ -217,6 +224,50 @@ def lap_limit(world):
     return LAP_ALLOWANCE[0] + LAP_ALLOWANCE[1] * walls / MAX_LINEAR
 
 
+class CourseTask(object):
+    """The course task's cases (find_wall, record_odom, the follower, in generated rooms), for
+    CaseRunner; the line task's are line_task.LineTask's."""
+
+    name = 'course'
+    launch_file = 'grade_case.launch'
+    default_room = Settings().room
+
+    def __init__(self, seed, room, out, laser, action_ns):
+        self.seed = seed
+        self.room = tuple(room)
+        self.out = out
+        self.laser = laser
+        self.action_ns = action_ns
+
+    def generate(self, index):
+        return generate(self.seed, index, Settings(room=self.room))
+
+    def case_name(self, index):
+        return world_name(self.seed, index)
+
+    def write(self, world, index):
+        """Write the case's world into OUT/worlds/; its path."""
+        include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds', 'burger.inc')
+        return write_world(world, os.path.join(self.out, 'worlds'), include, self.seed, index)
+
+    def case_args(self, world):
+        """grade_case.launch's arguments of the task's own (beside the harness's common ones)."""
+        return {'laser_profile': self.laser, 'action_ns': self.action_ns,
+                'time_limit': '%.0f' % lap_limit(world)}
+
+    def notes(self):
+        """What a case record of the task notes of how it ran."""
+        return {'laser': self.laser}
+
+
+def task_of(options):
+    """The task options name, on options' seed, room and --out."""
+    if options.task == 'line':
+        return LineTask(options.seed, room_of(options), options.out)
+    return CourseTask(options.seed, room_of(options), options.out, options.laser,
+                      options.action_ns)
+
+
 class CaseRunner(object):
     """Runs cases of one grading; stop_all() ends every case still running."""
 
@@ -224,6 +275,7 @@ class CaseRunner(object):
         self.solution = solution
         self.options = options
         self.preparation = preparation
+        self.task = task_of(options)
         # Real stageros runs paced only in its window (see sim/simulator_choice.py).
         self.wrapper = (display_wrapper() or []) if options.simulator == 'stage' else []
         self._running = set()
@@ -249,7 +301,7 @@ class CaseRunner(object):
             port = free_port()
             base = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
             ended, harness_failed = self._run_processes(group, base, port, world_file, paths,
-                                                        lap_limit(world), scratch)
+                                                        self.task.case_args(world), scratch)
         except OSError as err:
             world_file = None
             ended, harness_failed = 'grade could not start it: %s' % err, True
@@ -262,8 +314,9 @@ class CaseRunner(object):
         if record is None:
             record = {'grader_error' if harness_failed else 'error':
                       'the case wrote no record (%s; see %s)' % (ended, paths['log'])}
-        record.update(name=world.name, world=world_file, index=index, seed=options.seed,
-                      laser=options.laser, solution_command=' '.join(self.solution.words),
+        record.update(self.task.notes(), name=world.name, task=self.task.name, world=world_file,
+                      index=index, seed=options.seed,
+                      solution_command=' '.join(self.solution.words),
                       plot=paths['plot'] if os.path.exists(paths['plot']) else None)
         try:
             with open(paths['json'], 'w') as stream:
@@ -275,34 +328,30 @@ class CaseRunner(object):
 
     def _prepare(self, world, index, paths):
         """Write the case's world file, and clear what an earlier run of it left; its path."""
-        options = self.options
-        include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds', 'burger.inc')
-        world_file = write_world(world, os.path.join(options.out, 'worlds'), include,
-                                 options.seed, index)
+        world_file = self.task.write(world, index)
         os.makedirs(os.path.dirname(paths['json']), exist_ok=True)
         for stale in (paths['json'], paths['plot']):
             if os.path.exists(stale):
                 os.unlink(stale)
         return world_file
 
-    def _run_processes(self, group, base, port, world_file, paths, limit, scratch):
+    def _run_processes(self, group, base, port, world_file, paths, task_args, scratch):
         """Start the case's processes and wait for its end (sandbox.hold), in the case's
         sandbox unless there is none.
 
         Returns how it ended, in words, and whether the case's own harness
-        (its master, simulator or grade_case node: grade_case.launch) is what
-        ended it: that launch ends by itself only once grade_case has ended,
-        which writes the record first unless the harness failed.
+        (its master, simulator and case node: the task's launch file,
+        grade_case.launch or line_case.launch) is what ended it: that launch
+        ends by itself only once its case node has ended, which writes the
+        record first unless the harness failed.
         """
         options = self.options
-        case_args = {'world': world_file, 'json': paths['json'], 'plot': paths['plot'],
-                     'simulator': options.simulator, 'laser_profile': options.laser,
-                     'seed': str(options.seed), 'speedup': str(options.speedup),
-                     'lockstep': 'true', 'paused': 'true',
-                     'action_ns': options.action_ns, 'time_limit': '%.0f' % limit,
-                     'start_limit': str(options.start_limit)}
+        case_args = dict(task_args, world=world_file, json=paths['json'], plot=paths['plot'],
+                         simulator=options.simulator, seed=str(options.seed),
+                         speedup=str(options.speedup), lockstep='true', paused='true',
+                         start_limit=str(options.start_limit))
         grading = self.wrapper + ['roslaunch', '-p', str(port), 'wall_follower',
-                                  'grade_case.launch'] + [
+                                  self.task.launch_file] + [
             '%s:=%s' % item for item in sorted(case_args.items())]
         wrap, solution_env = self.preparation.solution_launch(self.solution, base, scratch)
         spec = {'harness': grading, 'harness_env': self.preparation.harness_environment(base),
@@ -346,13 +395,15 @@ class CaseRunner(object):
 
 def case_command(solution_words, options, index, workspace=None):
     """The command line of one case, for --list (workspace: the one the cases use)."""
-    words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + [
+    task = ['--laser', options.laser, '--action-ns', options.action_ns] \
+        if options.task == 'course' else ['--task', options.task]
+    room = room_of(options)
+    words = ['rosrun', 'wall_follower', 'grade'] + list(solution_words) + task + [
         '--worlds', str(options.worlds), '--seed', str(options.seed), '--case', str(index),
-        '--laser', options.laser,
-        '--speedup', str(options.speedup), '--action-ns', options.action_ns,
+        '--speedup', str(options.speedup),
         '--timeout', str(options.timeout), '--start-limit', str(options.start_limit),
         '--simulator', options.simulator,
-        '--room', str(options.room[0]), str(options.room[1]), '--out', options.out]
+        '--room', str(room[0]), str(room[1]), '--out', options.out]
     if workspace:
         words += ['--workspace', workspace]
     if options.no_sandbox:
@@ -370,7 +421,8 @@ def main(argv=None):
     options = parser().parse_args(argv)
     problems = grade_options.option_problems(options)
     if options.collect:
-        return _refused(problems) if problems else grade_report.collect(options.collect)
+        return _refused(problems) if problems else class_report.collect_all(options.collect,
+                                                                            options.out)
     options.out = os.path.abspath(options.out)
     try:
         solution = Solution(options.solution)
@@ -397,14 +449,15 @@ def main(argv=None):
     try:
         records = run_cases(solution, options, indices, preparation)
     except GenerationError as err:
-        return _refused(['--room %g %g: %s' % (options.room[0], options.room[1], err)])
+        return _refused(['--room %g %g: %s' % (tuple(room_of(options)) + (err,))])
     if records is None:
         sys.stderr.write('grade: interrupted; every case it started has ended\n')
         return 130
     if options.case is not None:
         graded = grade_report.print_table(records)
         return grade_report.NOT_GRADED if graded['summary']['not_graded'] else 0
-    return grade_report.collect(options.out, [world_name(options.seed, i) for i in indices])
+    task = task_of(options)
+    return grade_report.collect(options.out, [task.case_name(i) for i in indices])
 
 
 def _refused(problems):
@@ -428,8 +481,7 @@ def run_cases(solution, options, indices, preparation=None):
     previous = signal.signal(signal.SIGTERM, _interrupt)
     pool = ThreadPoolExecutor(max_workers=max(1, options.jobs))
     try:
-        settings = Settings(room=tuple(options.room))
-        worlds = [generate(options.seed, index, settings) for index in indices]
+        worlds = [runner.task.generate(index) for index in indices]
         futures = [pool.submit(runner.run, index, world) for index, world in zip(indices, worlds)]
         return [future.result() for future in futures]
     except KeyboardInterrupt:

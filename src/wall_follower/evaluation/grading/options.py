@@ -10,8 +10,10 @@ and is then graded as if the solution had failed. So before the first case:
   (params/grade_case.py); --worlds, --jobs at least 1; --timeout a positive
   number of seconds; --case one of the --worlds cases; --room two positive
   sides, the shortest first;
-- --out is a directory grade can create and write in (--collect DIR one
-  that exists and can be written in);
+- --out is a directory grade can create and write in (each --collect DIR
+  one that exists and can be written in);
+- --laser and --action-ns are the course task's: with --task line they are
+  refused, not ignored;
 - --simulator stage has stage_ros installed and a display to run in;
 - the solution resolves as roslaunch would resolve it: its package on
   ROS_PACKAGE_PATH, its launch file in that package, and the launch file
@@ -37,12 +39,17 @@ import rospkg
 from wall_follower.evaluation.grading import launch_check
 from wall_follower.evaluation.launching import ProcessGroup, display_wrapper
 from wall_follower.evaluation.worlds.generator import Settings
+from wall_follower.evaluation.worlds.line_courses import DEFAULT_ROOM as LINE_ROOM
 from wall_follower.params import parameters
 from wall_follower.params.grade_case import TABLE as CASE_TABLE
 from wall_follower.params.stage_sim import TABLE as SIMULATOR_TABLE
 from wall_follower.sim.laser_profiles import PROFILES
 
 DEFAULT_LASER = 'course720'
+DEFAULT_ACTION_NS = 'record_odom'
+# What grade grades: the course (find_wall, record_odom, the follower), or a line follower.
+TASKS = ('course', 'line')
+ROOMS = {'course': Settings().room, 'line': LINE_ROOM}
 # Wall seconds the solution's launch file may take to load (a param's command runs then).
 LOAD_LIMIT = 60.0
 # How the child process marks a problem in its output (roslaunch may print there too).
@@ -61,13 +68,17 @@ START_LIMIT = _parameter(CASE_TABLE, 'start_limit')
 
 def parser():
     p = argparse.ArgumentParser(
-        prog='grade', description='A course solution graded on generated worlds, from ground '
-        'truth.',
+        prog='grade', description='A course solution (or, with --task line, a line follower) '
+        'graded on generated worlds, from ground truth.',
         epilog='examples: grade my_course main.launch; grade ~/sub/alice.launch --worlds 20 '
                '--jobs 2; grade my_course main.launch --list > cases.txt; '
                'grade --collect DIR')
     p.add_argument('solution', nargs='*',
                    help='PACKAGE LAUNCH_FILE, or the path of a launch file, then ARG:=VALUE')
+    p.add_argument('--task', choices=TASKS, default='course',
+                   help='course (default): find_wall, record_odom and the wall follower in '
+                   'generated rooms; line: a line follower (experiment 5) on generated line '
+                   'courses')
     p.add_argument('--worlds', type=int, default=10, help='generated worlds (default 10)')
     p.add_argument('--seed', type=int, default=0,
                    help='seed of the generated worlds, %s .. %s (default 0)'
@@ -79,8 +90,8 @@ def parser():
     p.add_argument('--speedup', type=float, default=0.0,
                    help='simulated seconds per wall second at most; 0 (default): as fast as '
                    'the solution answers (lockstep); 1 for solutions that time with time.sleep')
-    p.add_argument('--action-ns', default='record_odom',
-                   help='namespace of the record_odom action (default record_odom)')
+    p.add_argument('--action-ns', default=DEFAULT_ACTION_NS,
+                   help='namespace of the record_odom action (default %s)' % DEFAULT_ACTION_NS)
     p.add_argument('--timeout', type=float, default=900.0,
                    help='wall seconds a case may take (default 900)')
     p.add_argument('--start-limit', type=float, default=30.0,
@@ -88,16 +99,18 @@ def parser():
                    '(default 30)' % (_plain(START_LIMIT.minimum), _plain(START_LIMIT.maximum)))
     p.add_argument('--simulator', choices=('builtin', 'stage'), default='builtin',
                    help='builtin (default) or stage: real stageros in its window')
-    p.add_argument('--room', type=float, nargs=2, default=list(Settings().room),
-                   metavar=('SHORTEST', 'LONGEST'),
-                   help='sides of the generated main rooms [m] (default %.1f %.1f)'
-                   % Settings().room)
+    p.add_argument('--room', type=float, nargs=2, metavar=('SHORTEST', 'LONGEST'),
+                   help='sides of the generated main rooms [m] (default %.1f %.1f); with --task '
+                   'line, of the line courses\' loops (default %.1f %.1f)'
+                   % (ROOMS['course'] + ROOMS['line']))
     p.add_argument('--out', default='grades', help='output directory (default ./grades)')
     p.add_argument('--list', action='store_true',
                    help='print one command per case, to run anywhere, then --collect')
     p.add_argument('--case', type=int, help='run only this case (0 .. worlds-1)')
-    p.add_argument('--collect', metavar='DIR',
-                   help='build DIR/grades.json and DIR/report.html from its finished cases')
+    p.add_argument('--collect', metavar='DIR', nargs='+',
+                   help='build DIR/grades.json and DIR/report.html from its finished cases; '
+                   'several DIRs (students), or a DIR of students\' directories: each one\'s, '
+                   'and the class page (--out, or that DIR)')
     _add_solution_options(p)
     return p
 
@@ -114,14 +127,23 @@ def _add_solution_options(p):
                    '(where no sandbox can be had)')
 
 
+def room_of(options):
+    """The --room given, or the task's default."""
+    return tuple(options.room) if options.room is not None else ROOMS[options.task]
+
+
 def option_problems(options):
     """Sentences naming each option (all but the solution) grade cannot run with; [] if none."""
     if options.collect:
-        found = _directory_problems('--collect', options.collect, may_create=False)
+        found = []
+        for directory in options.collect:
+            found += _directory_problems('--collect', directory, may_create=False)
+        if len(options.collect) > 1:
+            found += _directory_problems('--out', options.out, may_create=True)
         if options.solution:
             found.append('--collect takes no solution (got %s)' % ' '.join(options.solution))
         return found
-    found = []
+    found = _task_problems(options)
     found += _at_least('--worlds', options.worlds, 1)
     found += _at_least('--jobs', options.jobs, 1)
     found += _within('--seed', options.seed, SEED)
@@ -136,7 +158,7 @@ def option_problems(options):
         elif not 0 <= options.case < max(options.worlds, 1):
             found.append('--case %d is not one of the cases of --worlds %d (0 .. %d)'
                          % (options.case, options.worlds, options.worlds - 1))
-    shortest, longest = options.room
+    shortest, longest = room_of(options)
     if not (math.isfinite(shortest) and math.isfinite(longest) and 0.0 < shortest <= longest):
         found.append('--room needs two positive sides [m], the shortest first, not %s %s'
                      % (shortest, longest))
@@ -148,6 +170,16 @@ def option_problems(options):
         # A listed case runs elsewhere, and checks its own --out there.
         found += _directory_problems('--out', options.out, may_create=True)
     return found
+
+
+def _task_problems(options):
+    """The course task's options given to another task."""
+    if options.task == 'course':
+        return []
+    return ['%s is an option of --task course, not of --task %s' % (flag, options.task)
+            for flag, given, default in (('--laser', options.laser, DEFAULT_LASER),
+                                         ('--action-ns', options.action_ns, DEFAULT_ACTION_NS))
+            if given != default]
 
 
 def _at_least(flag, value, low):

@@ -63,7 +63,15 @@ class PortWatch(object):
 
 class CallWatch(object):
     """The calls of one service seen so far: each a dict of its start and end (simulated
-    s) and the robot's pose at each."""
+    s) and the robot's pose at each.
+
+    A poll sees a reply only after it came: the call ended between the last
+    poll that saw it open ('last_open', 'last_open_pose') and the first that
+    did not ('end', 'end_pose'). Polls come every few wall milliseconds, but
+    on a busy machine one may come late, while simulated time runs on and
+    the solution drives away from where its reply left the robot; the pair
+    says how far apart the two bounds are.
+    """
 
     def __init__(self):
         self.calls = []
@@ -73,11 +81,15 @@ class CallWatch(object):
         """What a poll saw at time: the peers connected to the service's port, the robot
         at pose."""
         for peer in set(peers) - set(self._open):
-            self._open[peer] = (time, pose)
+            self._open[peer] = {'start': time, 'start_pose': pose}
         for peer in set(self._open) - set(peers):
-            start, start_pose = self._open.pop(peer)
-            self.calls.append({'start': start, 'end': time, 'start_pose': start_pose,
-                               'end_pose': pose})
+            call = self._open.pop(peer)
+            call.update(end=time, end_pose=pose)
+            call.setdefault('last_open', call['start'])
+            call.setdefault('last_open_pose', call['start_pose'])
+            self.calls.append(call)
+        for peer in self._open:
+            self._open[peer].update(last_open=time, last_open_pose=pose)
 
     def judged(self):
         """The call to judge find_wall by: the first that lasted (see LASTING), else the
@@ -86,3 +98,19 @@ class CallWatch(object):
         if lasting:
             return lasting[0]
         return max(self.calls, key=lambda c: c['end'] - c['start']) if self.calls else None
+
+
+def reply_moment(call, alignment):
+    """(time, pose, alignment) at which to judge a call's reply: of the two bounds of its
+    reply (CallWatch), the one where the robot stood more nearly parallel to the wall
+    alignment(pose) finds ((distance, heading error) or None), the first when neither has
+    a wall. The grader cannot tell where between its two polls the reply came, and its
+    own late poll must not fail the solution."""
+    bounds = [(call['last_open'], call['last_open_pose']), (call['end'], call['end_pose'])]
+    moments = [(time, pose, alignment(pose)) for time, pose in bounds if pose is not None]
+    if not moments:
+        return None
+    aligned = [moment for moment in moments if moment[2] is not None]
+    if not aligned:
+        return moments[0]
+    return min(aligned, key=lambda moment: abs(moment[2][1]))

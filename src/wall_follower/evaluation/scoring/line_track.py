@@ -64,6 +64,11 @@ class Centreline(object):
         return float(self._along[-1])
 
     @property
+    def along(self):
+        """(N,) arc length [m] of each point from the start."""
+        return self._along
+
+    @property
     def start(self):
         return tuple(self.points[0])
 

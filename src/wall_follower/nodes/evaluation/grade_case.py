@@ -29,7 +29,6 @@ file unreadable, no ground truth from the simulator), the record says so
 in 'grader_error', and grading counts the case as not graded rather than
 as the solution's failure.
 """
-import json
 import math
 import threading
 import time
@@ -42,21 +41,23 @@ from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus
 
-from wall_follower.evaluation.grading.commands import CommandLog, non_finite_text
-from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers
+from wall_follower.evaluation.grading.commands import CommandLog
+from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers, reply_moment
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
-from wall_follower.nodes.shared.course_monitor import CourseMonitor, node_alive
+from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, Graph, SolutionGone,
+                                                   solution_running, write_record)
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.worldfile import WorldFileError
 
-# Wall seconds between looks at the run, at the graph, and at find_wall's connections.
+# Wall seconds between looks at the run and at find_wall's connections (the graph:
+# case_graph.GRAPH_POLL).
 POLL = 0.1
-GRAPH_POLL = 1.0
 CALL_POLL = 0.01
 # The find_wall calls a record keeps.
 CALLS_KEPT = 10
@@ -66,45 +67,9 @@ SIMULATOR_LIMIT = 60.0
 MOVED = (0.05, math.radians(10.0))
 # The longest stretches out of band a record keeps.
 OUT_OF_BAND_KEPT = 3
-# Nodes of the grading itself (grade_case.launch and the simulation.launch it includes:
-# the simulator, the world's map and the robot's model for rviz), not of the solution.
-OWN_NODES = ('/simulator', '/world_map', '/robot_state_publisher', '/rosout')
 STATUS_NAMES = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
                 GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
                 GoalStatus.RECALLED: 'recalled', GoalStatus.LOST: 'lost'}
-
-
-class Graph(object):
-    """What the running graph offers: the solution's service, action and nodes."""
-
-    def __init__(self, action_ns):
-        self._master = rosgraph.Master(rospy.get_name())
-        self._status = rospy.resolve_name(action_ns + '/status')
-
-    def state(self):
-        try:
-            return self._master.getSystemState()
-        except (rosgraph.MasterError, OSError):
-            return [], [], []
-
-    def find_wall_service(self, state):
-        """The name of the advertised find_wall service (any namespace), or None."""
-        _, _, services = state
-        names = sorted(name for name, _ in services
-                       if name == '/find_wall' or name.endswith('/find_wall'))
-        return names[0] if names else None
-
-    def action_server(self, state):
-        publishers, _, _ = state
-        return bool(dict(publishers).get(self._status))
-
-    def solution_nodes(self, state):
-        own = set(OWN_NODES) | {rospy.get_name()}
-        nodes = set()
-        for section in state:
-            for _, members in section:
-                nodes.update(members)
-        return sorted(nodes - own)
 
 
 def wait_for_simulator(monitor, limit):
@@ -183,18 +148,21 @@ class FindWallWatch(object):
     def record(self, course_map, start):
         """The judged call (CallWatch.judged) as the record keeps it, None without one: its
         times (s since the start), how far the robot went in it, and the wall beside the
-        robot when it replied."""
+        robot when it replied (service_calls.reply_moment)."""
         with self._lock:
             watch = self.watch.of(self._port)
             call = watch.judged()
             count = len(watch.calls)
             calls = [(c['start'] - start, c['end'] - start) for c in watch.calls[:CALLS_KEPT]]
-        if call is None or call['start_pose'] is None or call['end_pose'] is None:
+        moment = None if call is None or call['start_pose'] is None else reply_moment(
+            call, course_map.right_wall_alignment)
+        if moment is None:
             return None
-        pose, first = call['end_pose'], call['start_pose']
-        aligned = course_map.right_wall_alignment(pose)
-        return {'called': call['start'] - start, 'replied': call['end'] - start,
-                'seconds': call['end'] - call['start'],
+        replied, pose, aligned = moment
+        first = call['start_pose']
+        return {'called': call['start'] - start, 'replied': replied - start,
+                'seconds': replied - call['start'],
+                'reply_within': call['end'] - call['last_open'],
                 'moved': math.hypot(pose[0] - first[0], pose[1] - first[1]),
                 'turned_deg': abs(math.degrees(wrap_angle(pose[2] - first[2]))),
                 'distance': aligned[0] if aligned else float('nan'),
@@ -214,15 +182,6 @@ class SolutionSeen(object):
         self.action_server = self.action_server or graph.action_server(state)
 
 
-GONE = 'none of the solution\'s nodes is running (it crashed or ended)'
-
-
-def solution_running(graph, state=None):
-    """Whether any of the solution's nodes is alive (state: the graph's, if at hand)."""
-    state = graph.state() if state is None else state
-    return any(node_alive(name) for name in graph.solution_nodes(state))
-
-
 def watch(monitor, graph, seen, clock, params, start, calls):
     """Why the run ended: 'result', or the reason no lap can come any more.
 
@@ -232,9 +191,8 @@ def watch(monitor, graph, seen, clock, params, start, calls):
     of them running ended because they are gone, not because they hang
     (in lockstep, simulated time may pass the idle limit first).
     """
-    started = time.monotonic()
-    gone_since = None
-    next_graph = started
+    gone = SolutionGone(graph, params['start_limit'], params['gone_limit'])
+    next_graph = time.monotonic()
     while not rospy.is_shutdown():
         if monitor.done.is_set():
             return 'result'
@@ -252,12 +210,7 @@ def watch(monitor, graph, seen, clock, params, start, calls):
             state = graph.state()
             seen.look(graph, state)
             calls.found(seen.find_wall_service)
-            if solution_running(graph, state) or \
-                    time.monotonic() - started < params['start_limit']:
-                gone_since = None
-            elif gone_since is None:
-                gone_since = time.monotonic()
-            elif time.monotonic() - gone_since > params['gone_limit']:
+            if gone.look(state):
                 return GONE
         time.sleep(POLL)
     return 'shut down'
@@ -345,30 +298,6 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
         'out_of_band': out_of_band,
         'plot': params['plot'] or None,
     }
-
-
-def _json_safe(value):
-    """NaN and infinity as the strings 'nan', 'inf' and '-inf' (JSON has none of them, and
-    grades.json is read by other tools than Python's; null would read as nothing
-    commanded)."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return non_finite_text(value)
-    if isinstance(value, dict):
-        return {key: _json_safe(item) for key, item in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_json_safe(item) for item in value]
-    return value
-
-
-def write_record(path, record):
-    """Write the record; False (with an error logged) when it cannot be written."""
-    try:
-        with open(path, 'w') as stream:
-            json.dump(_json_safe(record), stream, indent=1)
-    except (IOError, OSError) as err:
-        rospy.logerr('grade_case: cannot write the record %s: %s', path, err)
-        return False
-    return True
 
 
 def grader_failed(params, reason):

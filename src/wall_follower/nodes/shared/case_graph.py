@@ -1,0 +1,110 @@
+"""What a graded case's node (grade_case, line_case) reads of the solution, and how it
+writes the case's record.
+
+Both case nodes run beside the solution on the case's own master and judge it from
+ground truth; of the solution they look only at the graph (its nodes, its find_wall
+service, its action) and at what it commands. One rule says when a solution is gone.
+"""
+import json
+import math
+import time
+
+import rosgraph
+import rospy
+
+from wall_follower.evaluation.grading.commands import non_finite_text
+from wall_follower.nodes.shared.course_monitor import node_alive
+
+# Nodes of the grading itself (the case's launch file and the simulation.launch it
+# includes: the simulator, the world's map and the robot's model for rviz), not of the
+# solution.
+OWN_NODES = ('/simulator', '/world_map', '/robot_state_publisher', '/rosout')
+# Wall seconds between looks at the graph.
+GRAPH_POLL = 1.0
+GONE = 'none of the solution\'s nodes is running (it crashed or ended)'
+
+
+class Graph(object):
+    """What the running graph offers: the solution's service, action and nodes."""
+
+    def __init__(self, action_ns):
+        self._master = rosgraph.Master(rospy.get_name())
+        self._status = rospy.resolve_name(action_ns + '/status')
+
+    def state(self):
+        try:
+            return self._master.getSystemState()
+        except (rosgraph.MasterError, OSError):
+            return [], [], []
+
+    def find_wall_service(self, state):
+        """The name of the advertised find_wall service (any namespace), or None."""
+        _, _, services = state
+        names = sorted(name for name, _ in services
+                       if name == '/find_wall' or name.endswith('/find_wall'))
+        return names[0] if names else None
+
+    def action_server(self, state):
+        publishers, _, _ = state
+        return bool(dict(publishers).get(self._status))
+
+    def solution_nodes(self, state):
+        own = set(OWN_NODES) | {rospy.get_name()}
+        nodes = set()
+        for section in state:
+            for _, members in section:
+                nodes.update(members)
+        return sorted(nodes - own)
+
+
+def solution_running(graph, state=None):
+    """Whether any of the solution's nodes is alive (state: the graph's, if at hand)."""
+    state = graph.state() if state is None else state
+    return any(node_alive(name) for name in graph.solution_nodes(state))
+
+
+class SolutionGone(object):
+    """Whether the solution is gone: none of its nodes alive for gone_limit wall seconds,
+    counted only after start_limit wall seconds from now, the time its launch file has
+    to start them."""
+
+    def __init__(self, graph, start_limit, gone_limit):
+        self._graph = graph
+        self._start_limit = start_limit
+        self._gone_limit = gone_limit
+        self._started = time.monotonic()
+        self._gone_since = None
+
+    def look(self, state=None):
+        """True once gone, from a fresh look at the graph (state: the graph's, if at
+        hand)."""
+        now = time.monotonic()
+        if solution_running(self._graph, state) or now - self._started < self._start_limit:
+            self._gone_since = None
+        elif self._gone_since is None:
+            self._gone_since = now
+        return self._gone_since is not None and now - self._gone_since > self._gone_limit
+
+
+def _json_safe(value):
+    """NaN and infinity as the strings 'nan', 'inf' and '-inf' (JSON has none of them, and
+    grades.json is read by other tools than Python's; null would read as nothing
+    commanded)."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return non_finite_text(value)
+    if isinstance(value, dict):
+        return {key: _json_safe(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(item) for item in value]
+    return value
+
+
+def write_record(path, record):
+    """Write the record; False (with an error logged) when it cannot be written."""
+    try:
+        with open(path, 'w') as stream:
+            json.dump(_json_safe(record), stream, indent=1)
+    except (IOError, OSError) as err:
+        rospy.logerr('%s: cannot write the record %s: %s', rospy.get_name(), path, err)
+        return False
+    return True
