@@ -26,7 +26,7 @@ from rosout_log import RosoutLog
 from waiting import wait_until
 from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.params import defaults
-from wall_follower.params.arm_controller import TABLE
+from wall_follower.params.arm.arm_controller import TABLE
 
 STEP = 1.0 / defaults(TABLE)['rate']    # s: the controller's step, as arm.launch runs it
 

@@ -22,7 +22,7 @@ from sensor_msgs.msg import LaserScan
 from synthetic_scans import wall_on_the_right
 
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.srv import FindWall
 from waiting import assert_soon, wait_until
 

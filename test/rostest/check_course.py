@@ -21,7 +21,7 @@ from drive_guard import DriveGuard
 from wall_follower.evaluation.scoring.course import CourseMap, taken_every, true_lap_length
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.sim.stage_interface import world_path
 
 # Ground truth is kept this long after the result, to see the true return.

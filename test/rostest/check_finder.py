@@ -14,7 +14,7 @@ from drive_guard import DriveGuard
 
 from wall_follower.nodes.evaluation.find_trials import FindTrials
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 
 WALL_DISTANCE = defaults(FINDER)['wall_distance']
 

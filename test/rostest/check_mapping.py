@@ -37,7 +37,7 @@ from wall_follower.mapping.mapfile import load_map
 from wall_follower.mapping.poses import between, wrap
 from wall_follower.nodes.shared.messages import pose_of, yaw_of
 from wall_follower.params import defaults
-from wall_follower.params.slam import TABLE
+from wall_follower.params.mapping.slam import TABLE
 from wall_follower.sim.stage_interface import world_path
 
 # Wall seconds for the lap, the saved map and the robot to settle.

@@ -23,7 +23,7 @@ from installed import real_stage_suite
 from wall_follower.evaluation.launching import (display_wrapper, free_port, launch_and_wait,
                                                 launch_command)
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 
 WORLD = 'room'
 # Wall seconds for the launch: real Stage runs at the world's pace (speedup

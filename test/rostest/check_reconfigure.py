@@ -23,7 +23,7 @@ from waiting import wait_until
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.params import defaults
-from wall_follower.params.wall_following import TABLE
+from wall_follower.params.course.wall_following import TABLE
 from wall_follower.sim.stage_interface import world_path
 
 NEW_DISTANCE = 0.22

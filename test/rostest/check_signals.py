@@ -107,6 +107,8 @@ NODES = {
         tempfile.mkdtemp(prefix='check_signals'), 'joints.png')], False),
     'grade_case': (['_world:=' + os.path.join(PACKAGE, 'worlds', 'room.world'), '_json:=' +
                     os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'case.json')], False),
+    'line_case': (['_world:=' + os.path.join(PACKAGE, 'worlds', 'line_lab.world'), '_json:=' +
+                   os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'case.json')], False),
 }
 # Scripts that end by themselves once their job is done.
 TOOLS = ('benchmark', 'course_report', 'map_png', 'require_package', 'find_trials', 'grade')

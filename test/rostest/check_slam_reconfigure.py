@@ -19,7 +19,7 @@ from rosout_log import RosoutLog
 
 from waiting import wait_until
 from wall_follower.params import defaults
-from wall_follower.params.slam import TABLE
+from wall_follower.params.mapping.slam import TABLE
 
 DEFAULT = defaults(TABLE)
 NEW_INTERVAL = 0.5   # s, a multiple of the laser's 0.1 s period

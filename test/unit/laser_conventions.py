@@ -10,7 +10,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 
 Convention = namedtuple('Convention', ['name', 'angle_min', 'count', 'increment',
                                        'range_min', 'range_max', 'no_return'])

@@ -15,7 +15,7 @@ import numpy as np
 
 from wall_follower.control.motion import Command, clamp
 from wall_follower.params import defaults
-from wall_follower.params.line_follower import TABLE
+from wall_follower.params.camera.line_follower import TABLE
 from wall_follower.vision.floor import FloorProjection, Intrinsics, level_camera_axes
 from wall_follower.vision.line_step import LineStep
 

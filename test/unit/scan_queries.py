@@ -10,7 +10,7 @@ import warnings
 
 import numpy as np
 
-from wall_follower.control.lines import fit_line
+from wall_follower.control.sensing.lines import fit_line
 
 
 def sector_ranges(view, center, half_width):

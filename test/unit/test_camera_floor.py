@@ -15,7 +15,7 @@ from sensor_msgs.msg import CameraInfo
 
 from wall_follower.nodes.shared import camera_floor
 from wall_follower.params import defaults
-from wall_follower.params.line_follower import TABLE
+from wall_follower.params.camera.line_follower import TABLE
 
 
 class Stamped(object):

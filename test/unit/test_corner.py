@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.control.corner import CornerArc, OuterTurn
+from wall_follower.control.following.corner import CornerArc, OuterTurn
 from wall_follower.control.motion import seen_after_move
 
 RADIUS, ROUNDING = 0.30, 0.05

@@ -9,7 +9,7 @@ import pytest
 import rospy
 
 from wall_follower.control.motion import STOP, Answer, Command
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.nodes.shared.drive_loop import FINISHED_NO_INPUT, DriveLoop, tune_drive_loop
 from wall_follower.nodes.shared.latest_scan import Reading
 from wall_follower.params.driving import CAMERA_INPUT, LASER_INPUT

@@ -5,12 +5,12 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
-from wall_follower.control import finder
-from wall_follower.control.finder import WallFinder
+from wall_follower.control.course import finder
+from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 
 LASER_X = -0.032  # TurtleBot3 Burger: the laser 32 mm behind the axle
 ROOM = box(-2.0, -1.5, 2.0, 1.5)

@@ -9,12 +9,12 @@ import os
 
 import pytest
 
-from wall_follower.control.finder import WallFinder
+from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 

@@ -10,14 +10,14 @@ import pytest
 
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from scan_queries import min_range
-from wall_follower.control.corner import CornerArc
-from wall_follower.control.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
-                                            FollowerParams, WallFollower)
-from wall_follower.control.lines import Line
+from wall_follower.control.following.corner import CornerArc
+from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
+                                                      FollowerParams, WallFollower)
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
-from wall_follower.control.observation import Observation, unbiased
-from wall_follower.control.scan import ScanView
-from wall_follower.control.wall_fit import as_planned
+from wall_follower.control.sensing.lines import Line
+from wall_follower.control.sensing.observation import Observation, unbiased
+from wall_follower.control.sensing.scan import ScanView
+from wall_follower.control.sensing.wall_fit import as_planned
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]

@@ -8,11 +8,11 @@ import os
 
 import yaml
 
-from wall_follower.control.follower import FollowerParams, WallFollower
+from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
-from wall_follower.control.scan import ScanView
-from wall_follower.evaluation.worlds import generator as world_generator
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.scoring.course import BAND, CourseMap, RunScore
+from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 

@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from wall_follower.control.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
-from wall_follower.control.odom_check import JumpDetector, odometry_problem
+from wall_follower.control.course.lap import LapDetector, LapRecorder, PathLength, PeriodicSampler
+from wall_follower.control.course.odom_check import JumpDetector, odometry_problem
 
 RATE = 10.0  # odometry messages per second
 SPEED = 0.19

@@ -3,8 +3,8 @@ import math
 
 from hypothesis import given, settings, strategies as st
 
-from wall_follower.control.lap import LapRecorder
-from wall_follower.control.odom_check import odometry_problem
+from wall_follower.control.course.lap import LapRecorder
+from wall_follower.control.course.odom_check import odometry_problem
 
 ANY_FLOAT = st.floats(allow_nan=True, allow_infinity=True)
 # Stamps as a header holds them: seconds since the epoch, with nanoseconds.

@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from wall_follower.control.left_turn import LeftTurn
+from wall_follower.control.following.left_turn import LeftTurn
 
 TIGHT, WIDE, WIDE_ANGLE, WIDE_END = 0.23, 0.19 / 0.49, math.radians(15.0), math.radians(25.0)
 

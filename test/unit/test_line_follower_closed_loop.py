@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from line_course import STEP, arc, camera, distance_to, run, segment
+from wall_follower.params.camera.line_follower import CONVENTIONS as DECLARED_CONVENTIONS
 from wall_follower.vision.floor import CONVENTIONS
 from wall_follower.vision.line_pursuit import FINISHED, FOLLOW, LOST, SEARCH
-from wall_follower.params.line_follower import CONVENTIONS as DECLARED_CONVENTIONS
 
 
 def cross_track(centreline, poses):
@@ -99,7 +99,7 @@ def test_frames_of_the_base_and_the_odometry_invert_each_other():
 
 def test_an_end_found_stays_while_the_floor_beyond_it_leaves_the_view():
     from wall_follower.params import defaults, pick
-    from wall_follower.params.line_follower import PATH
+    from wall_follower.params.camera.line_follower import PATH
     from wall_follower.vision.line_path import LinePath
     memory = LinePath(**pick(defaults(PATH), PATH))
     x = np.arange(0.2, 0.5, 0.005)
@@ -126,7 +126,7 @@ def test_an_end_found_stays_when_only_the_end_is_left_of_the_path():
     end is left of the path: still the line's end, not a lost line (line_camera.test's
     robot turned round there and drove the line back)."""
     from wall_follower.params import defaults, pick
-    from wall_follower.params.line_follower import PATH
+    from wall_follower.params.camera.line_follower import PATH
     from wall_follower.vision.line_path import LinePath
     memory = LinePath(**pick(defaults(PATH), PATH))
 

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.control.lines import Line, consensus_line, fit_line
+from wall_follower.control.sensing.lines import Line, consensus_line, fit_line
 
 
 def test_fit_line_through_chosen_points():

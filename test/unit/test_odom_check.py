@@ -3,7 +3,7 @@ import math
 
 import pytest
 
-from wall_follower.control.odom_check import OdomCheck
+from wall_follower.control.course.odom_check import OdomCheck
 
 UNIT = (0.0, 0.0, 0.0, 1.0)
 

@@ -10,7 +10,8 @@ from dynamic_reconfigure.parameter_generator_catkin import ParameterGenerator
 
 from wall_follower.params import (Parameter as P, ParameterError, Section, checked, declare,
                                   parameters)
-from wall_follower.params import line_follower, stage_sim
+from wall_follower.params.camera import line_follower
+from wall_follower.params.sim import stage_sim
 
 MODES = (Section('mode', (P('mode', 'fast', 'how to go', choices=('fast', 'slow')),
                           P('speed', 0.1, 'how fast [m/s]', 0.0, 1.0))),)

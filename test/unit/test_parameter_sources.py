@@ -21,13 +21,29 @@ import yaml
 from dynamic_reconfigure.encoding import extract_params
 
 from wall_follower.params import ParameterError, checked, defaults, parameters
-from wall_follower.params import (course_report, driving, find_trials, forward_stop, map_saver,
-                                  odom_recorder, range_ahead, simple_move_square, slam,
-                                  stage_sim, teleop_key, wall_finder, wall_following, wander)
-from wall_follower.params import arm_controller, arm_plot, move_arm
-from wall_follower.params import grade_case, line_case
-from wall_follower.params import camera_view, line_follower, line_mask
-from wall_follower.params import world_map
+from wall_follower.params import driving
+from wall_follower.params.arm import arm_controller
+from wall_follower.params.arm import arm_plot
+from wall_follower.params.arm import move_arm
+from wall_follower.params.camera import camera_view
+from wall_follower.params.camera import line_follower
+from wall_follower.params.camera import line_mask
+from wall_follower.params.course import odom_recorder
+from wall_follower.params.course import wall_finder
+from wall_follower.params.course import wall_following
+from wall_follower.params.evaluation import course_report
+from wall_follower.params.evaluation import find_trials
+from wall_follower.params.evaluation import grade_case
+from wall_follower.params.evaluation import line_case
+from wall_follower.params.exercises import forward_stop
+from wall_follower.params.exercises import range_ahead
+from wall_follower.params.exercises import simple_move_square
+from wall_follower.params.exercises import teleop_key
+from wall_follower.params.exercises import wander
+from wall_follower.params.mapping import map_saver
+from wall_follower.params.mapping import slam
+from wall_follower.params.mapping import world_map
+from wall_follower.params.sim import stage_sim
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 

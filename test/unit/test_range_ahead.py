@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, GAZEBO, LDS01, STAGE, box, cast, scan_view
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.exercises.range_ahead import describe, range_ahead
 from wall_follower.params import defaults
-from wall_follower.params.range_ahead import TABLE
+from wall_follower.params.exercises.range_ahead import TABLE
 
 ROOM = box(-2.0, -1.0, 1.0, 1.0)
 HALF_WIDTH = defaults(TABLE)['half_width']

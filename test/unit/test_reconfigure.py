@@ -1,6 +1,6 @@
 """Controllers take new parameters between two scans, as dynamic_reconfigure hands them over."""
 from laser_conventions import STAGE, scan_view
-from wall_follower.control.follower import FOLLOW, FollowerParams, WallFollower
+from wall_follower.control.following.follower import FOLLOW, FollowerParams, WallFollower
 
 PARALLEL_AT_DEFAULT = scan_view([((-5.0, -0.25), (5.0, -0.25))], (0.0, 0.0, 0.0), STAGE)
 

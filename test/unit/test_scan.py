@@ -6,7 +6,7 @@ import pytest
 
 from laser_conventions import CONVENTIONS, REVERSED, box, cast, scan_view
 from scan_queries import fit_wall, min_range, nearest, range_at
-from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView
+from wall_follower.control.sensing.scan import FRONT, LEFT, RIGHT, ScanView
 from wall_follower.rotation import wrap_angle
 
 ALL = CONVENTIONS + [REVERSED]

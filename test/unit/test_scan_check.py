@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from laser_conventions import CONVENTIONS, LDS01, STAGE, box, cast
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.sensing.scan_check import check_scan
 
 
 class Scan(object):

@@ -10,8 +10,8 @@ import textwrap
 import numpy as np
 import pytest
 
-from wall_follower.control.scan import FRONT, LEFT, RIGHT, ScanView
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.sensing.scan import FRONT, LEFT, RIGHT, ScanView
+from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.laser_profiles import LDS02_BEAMS, PROFILES, beam_layout
 from wall_follower.sim.worldfile import load_world

@@ -5,7 +5,7 @@ import pytest
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.slam import Mapper
 from wall_follower.params import ParameterError, checked
-from wall_follower.params.slam import MAX_CELLS, RULES, TABLE, grid_cells
+from wall_follower.params.mapping.slam import MAX_CELLS, RULES, TABLE, grid_cells
 
 WIDE = dict(xmin=-100.0, xmax=100.0, ymin=-100.0, ymax=100.0)
 

@@ -9,7 +9,7 @@ import pytest
 from line_course import WHITE, YELLOW, PaintedFloor, camera, run, segment
 from wall_follower.control.motion import STOP, Answer
 from wall_follower.params import defaults
-from wall_follower.params.line_follower import TABLE
+from wall_follower.params.camera.line_follower import TABLE
 from wall_follower.vision.line_pursuit import FOLLOW, SEARCH
 from wall_follower.vision.line_step import LineStep
 

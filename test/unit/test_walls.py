@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
-from wall_follower.control.scan import ScanView
-from wall_follower.control.walls import closest_match, extract_walls, path_is_clear, refine
+from wall_follower.control.sensing.scan import ScanView
+from wall_follower.control.sensing.walls import closest_match, extract_walls, path_is_clear, refine
 
 ROOM = box(-2.0, -1.5, 2.0, 1.5)
 

@@ -5,7 +5,7 @@ import pytest
 
 from laser_conventions import CONVENTIONS, LDS01, box, scan_view
 from wall_follower.control.motion import Command
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.exercises.wander import FORWARD, TURN, Wanderer
 
 ROOM = box(-2.0, -1.0, 1.0, 1.0)

@@ -12,7 +12,7 @@ import math
 
 from wall_follower.control.motion import STOP, Command
 from wall_follower.params import checked
-from wall_follower.params.forward_stop import FORWARD_STOP
+from wall_follower.params.exercises.forward_stop import FORWARD_STOP
 
 FORWARD = 'FORWARD'
 STOPPED = 'STOPPED'

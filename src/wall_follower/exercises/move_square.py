@@ -22,7 +22,7 @@ import math
 
 from wall_follower.control.motion import STOP, Command
 from wall_follower.params import checked
-from wall_follower.params.simple_move_square import SQUARE
+from wall_follower.params.exercises.simple_move_square import SQUARE
 from wall_follower.rotation import wrap_angle
 
 SIDE = 'SIDE'

@@ -10,7 +10,7 @@ the course's real robot does not allow.
 """
 from wall_follower.control.motion import Command
 from wall_follower.params import checked
-from wall_follower.params.teleop_key import TELEOP
+from wall_follower.params.exercises.teleop_key import TELEOP
 
 BURGER_MAX_LINEAR = 0.22    # the Burger's hardware limits [m/s, rad/s], for reference
 BURGER_MAX_ANGULAR = 2.84

@@ -21,7 +21,7 @@ import numpy as np
 
 from wall_follower.control.motion import Command
 from wall_follower.params import checked
-from wall_follower.params.wander import RULES, WANDER
+from wall_follower.params.exercises.wander import RULES, WANDER
 
 FORWARD = 'FORWARD'
 TURN = 'TURN'

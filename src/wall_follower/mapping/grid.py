@@ -12,7 +12,7 @@ just before it ends, and would otherwise wear the wall away.
 import numpy as np
 
 from wall_follower.params import defaults
-from wall_follower.params.slam import MAPPER, grid_shape
+from wall_follower.params.mapping.slam import MAPPER, grid_shape
 
 __all__ = ['LogOddsGrid', 'probability']
 

@@ -24,7 +24,7 @@ import numpy as np
 import yaml
 
 from wall_follower.params import defaults
-from wall_follower.params.map_saver import TABLE
+from wall_follower.params.mapping.map_saver import TABLE
 
 __all__ = ['save_map', 'load_map', 'SavedMap', 'FREE', 'OCCUPIED', 'UNKNOWN']
 

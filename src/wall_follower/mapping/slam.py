@@ -31,7 +31,7 @@ import math
 import numpy as np
 
 from wall_follower.params import checked
-from wall_follower.params.slam import GRID, MAPPER, RULES
+from wall_follower.params.mapping.slam import GRID, MAPPER, RULES
 
 from .grid import LogOddsGrid
 from .matcher import DistanceField, ScanMatcher

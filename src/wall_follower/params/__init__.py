@@ -1,7 +1,8 @@
 """Every node's parameters, declared once: name, default, meaning and range.
 
-Each node has one table here (wall_following.py, wall_finder.py, ...), a
-tuple of Sections of Parameters. That table is the single source of the
+Each node has one table, in the subpackage of its job as nodes/ has them
+(course/wall_following.py, camera/line_follower.py, ...), a tuple of
+Sections of Parameters. That table is the single source of the
 node's defaults, their units and their meanings (the sections every
 driving node shares, its loop's and its clamp's, come from driving.py);
 everything else derives from it:

@@ -18,7 +18,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.params.line_follower import CONVENTIONS
+from wall_follower.params.camera.line_follower import CONVENTIONS
 from wall_follower.rotation import matrix_of_quaternion, wrap_angle
 
 # The frame conventions a camera's tf may follow: the choices of line_follower's

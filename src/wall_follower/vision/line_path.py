@@ -20,7 +20,7 @@ import math
 import numpy as np
 
 from wall_follower.params import checked
-from wall_follower.params.line_follower import PATH
+from wall_follower.params.camera.line_follower import PATH
 
 MIN_POINTS = 3        # line points within radius for a centre to count (specks do not)
 

@@ -31,7 +31,7 @@ import numpy as np
 
 from wall_follower.control.motion import STOP, Answer, Command
 from wall_follower.params import checked
-from wall_follower.params.line_follower import PURSUIT
+from wall_follower.params.camera.line_follower import PURSUIT
 from wall_follower.rotation import wrap_angle
 from wall_follower.vision.line_path import path_length
 

@@ -23,7 +23,7 @@ from collections import namedtuple
 
 from wall_follower.control.motion import STOP, Answer
 from wall_follower.params import pick
-from wall_follower.params.line_follower import PATH, PURSUIT
+from wall_follower.params.camera.line_follower import PATH, PURSUIT
 from wall_follower.vision.image_check import size_problem
 from wall_follower.vision.line_check import NOT_A_LINE, LineCheck
 from wall_follower.vision.line_image import hsv_bounds, line_mask, line_pixels

@@ -20,7 +20,7 @@ from wall_follower.evaluation.grading.criteria import MIN_IN_BAND, grade_case
 from wall_follower.evaluation.scoring import lap_bound
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.params import defaults
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 
 # What find_wall aims for (inside the 0.25-0.35 m the grade asks of it).
 FIND_WALL_TARGET = defaults(FINDER)['wall_distance']

@@ -25,8 +25,8 @@ from wall_follower.evaluation.scoring.line import speed_bound
 from wall_follower.evaluation.scoring.line_track import load_centreline
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.params import defaults
+from wall_follower.params.camera.line_follower import CONTROLLERS, TABLE
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.params.line_follower import CONTROLLERS, TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.vision.floor import FloorProjection, Intrinsics, level_camera_axes
 from wall_follower.vision.line_step import LineStep

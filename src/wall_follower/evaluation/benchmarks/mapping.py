@@ -19,14 +19,14 @@ import time
 
 import numpy as np
 
-from wall_follower.control.finder import WallFinder
-from wall_follower.control.follower import WallFollower
+from wall_follower.control.course.finder import WallFinder
+from wall_follower.control.following.follower import WallFollower
 from wall_follower.control.motion import clamp
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.launching import WORLDS, shipped_world
-from wall_follower.evaluation.tables import fmt, print_table
-from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.evaluation.scoring.course import CourseMap, RunScore
+from wall_follower.evaluation.scoring.map_quality import map_quality
+from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.mapping.mapfile import load_map, save_map
 from wall_follower.mapping.poses import between, wrap
 from wall_follower.mapping.slam import Mapper

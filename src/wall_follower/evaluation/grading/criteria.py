@@ -295,10 +295,15 @@ def _figure(value):
 
 def grades(cases):
     """grades.json: the summary and every case's grade, cases in the order given."""
-    graded = [grade_case(case) for case in cases]
+    return graded_cases([grade_case(case) for case in cases], 'lap_genuine')
+
+
+def graded_cases(graded, lap_key):
+    """grades.json of graded cases (any task's): the summary, then the cases. `laps`
+    counts the cases whose grade holds a true lap_key."""
     return OrderedDict([
         ('summary', OrderedDict([('cases', len(graded)),
-                                 ('laps', sum(1 for g in graded if g['lap_genuine'])),
+                                 ('laps', sum(1 for g in graded if g[lap_key])),
                                  ('passed', sum(1 for g in graded if not g['reason'])),
                                  ('not_graded', sum(1 for g in graded if g['grader_error']))])),
         ('cases', graded),

@@ -8,7 +8,7 @@ free port, the simulator (launch/grade_case.launch, paused, in lockstep,
 with the course robot's interface: scan in --laser, odom, cmd_vel) and the
 grade_case node that scores the run from ground truth, then the solution's
 launch file. When the case has ended, every process it started is ended
-(processes.ProcessGroup), in the case's own sandbox (grading/sandbox.py: its
+(evaluation.launching.ProcessGroup), in the case's own sandbox (grading/sandbox.py: its
 namespaces end every process of it; the solution runs read-only and
 unprivileged within). With --workspace the solution runs in the student's
 own workspace's clean environment (grading/workspace.py), never in

@@ -28,6 +28,7 @@ import math
 from collections import OrderedDict
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.evaluation.grading.criteria import graded_cases
 
 MAX_RMS = 0.015
 MAX_ERROR = 0.05
@@ -227,11 +228,4 @@ def grade_case(case):
 def grades(cases):
     """grades.json: the summary and every case's grade, cases in the order given. `laps`
     counts the courses completed (a closed line lapped, an open line's end reached)."""
-    graded = [grade_case(case) for case in cases]
-    return OrderedDict([
-        ('summary', OrderedDict([('cases', len(graded)),
-                                 ('laps', sum(1 for g in graded if g['completed'])),
-                                 ('passed', sum(1 for g in graded if not g['reason'])),
-                                 ('not_graded', sum(1 for g in graded if g['grader_error']))])),
-        ('cases', graded),
-    ])
+    return graded_cases([grade_case(case) for case in cases], 'completed')

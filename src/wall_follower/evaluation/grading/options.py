@@ -5,9 +5,9 @@ option or the word, with a non-zero exit: never a case that starts, fails
 and is then graded as if the solution had failed. So before the first case:
 
 - every number is within what the case's parts take: --seed and --speedup
-  within the simulator's own parameter ranges (params/stage_sim.py), since
+  within the simulator's own parameter ranges (params/sim/stage_sim.py), since
   the case's simulator is given them; --start-limit within grade_case's
-  (params/grade_case.py); --worlds, --jobs at least 1; --timeout a positive
+  (params/evaluation/grade_case.py); --worlds, --jobs at least 1; --timeout a positive
   number of seconds; --case one of the --worlds cases; --room two positive
   sides, the shortest first;
 - --out is a directory grade can create and write in (each --collect DIR
@@ -41,8 +41,8 @@ from wall_follower.evaluation.launching import ProcessGroup, display_wrapper
 from wall_follower.evaluation.worlds.generator import Settings
 from wall_follower.evaluation.worlds.line_courses import DEFAULT_ROOM as LINE_ROOM
 from wall_follower.params import parameters
-from wall_follower.params.grade_case import TABLE as CASE_TABLE
-from wall_follower.params.stage_sim import TABLE as SIMULATOR_TABLE
+from wall_follower.params.evaluation.grade_case import TABLE as CASE_TABLE
+from wall_follower.params.sim.stage_sim import TABLE as SIMULATOR_TABLE
 from wall_follower.sim.laser_profiles import PROFILES
 
 DEFAULT_LASER = 'course720'

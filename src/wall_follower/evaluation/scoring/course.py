@@ -11,10 +11,10 @@ import math
 
 import numpy as np
 
-from wall_follower.control.lap import LapRecorder
-from wall_follower.control.lines import fit_line
+from wall_follower.control.course.lap import LapRecorder
 from wall_follower.control.motion import MAX_LINEAR
-from wall_follower.control.scan import RIGHT
+from wall_follower.control.sensing.lines import fit_line
+from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.evaluation.scoring.geometry import cast_rays, polygon_clearance, solid_edges
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.grid import footprint_corners

@@ -28,12 +28,12 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 from trajectory_msgs.msg import JointTrajectory
 
-from wall_follower.arm.trajectory import (Command, Rejected, Trajectory, TrajectoryPoint,
-                                          accept, stop)
+from wall_follower.arm.trajectory import (Command, Rejected, Trajectory, TrajectoryPoint, accept,
+                                          stop)
 from wall_follower.nodes.shared.arm_description import arm_model, stop_acceleration
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.arm_controller import TABLE
+from wall_follower.params.arm.arm_controller import TABLE
 from wall_follower.sim.arm_joints import ArmJoints
 
 try:

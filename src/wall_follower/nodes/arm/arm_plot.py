@@ -22,7 +22,7 @@ from wall_follower.evaluation.pictures.joint_plot import (JointRecord, Recording
                                                           output_path, save_somewhere)
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.arm_plot import TABLE
+from wall_follower.params.arm.arm_plot import TABLE
 
 # Wall seconds between two redraws of the live window, or two looks at the clock.
 REFRESH = 0.5

@@ -16,7 +16,7 @@ actual position; the built-in controller brakes it to rest within the accelerati
 limits), and the result says where the arm came to rest, from joint_states once it has
 settled. The result's position_error is measured from tf (robot_state_publisher's `hand`).
 
-Parameters: the table in wall_follower.params.move_arm, tunable live
+Parameters: the table in wall_follower.params.arm.move_arm, tunable live
 (`rosrun dynamic_reconfigure dynparam set /move_arm floor_margin 0.02`), in force from
 the next goal.
 """
@@ -39,7 +39,7 @@ from wall_follower.nodes.shared.arm_description import arm_model, arm_semantics
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.nodes.shared.tf_lookup import lookup
-from wall_follower.params.move_arm import TABLE
+from wall_follower.params.arm.move_arm import TABLE
 from wall_follower.rotation import matrix_of_quaternion
 
 COMMAND = 'arm_controller/command'

@@ -15,7 +15,7 @@ import rospy
 from wall_follower.nodes.shared.latest_image import image_topics
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.camera_view import TABLE
+from wall_follower.params.camera.camera_view import TABLE
 
 NAME = 'camera_view'
 WINDOW = 'camera_view'
@@ -107,11 +107,29 @@ class CameraView(object):
             return
         self._snapshot_at = now
         path = os.path.join(self.snapshot_dir, 'camera_%04d.png' % self._snapshots)
-        if cv2.imwrite(path, image):
+        if write_whole(path, image):
             self._snapshots += 1
             rospy.loginfo_throttle(30.0, '%s: snapshot %s', NAME, path)
         else:
             rospy.logwarn_throttle(30.0, '%s: cannot write %s', NAME, path)
+
+
+def write_whole(path, image):
+    """Write image to path (its format by its extension) so that path never holds part of
+    it: written under a hidden name beside it first, then renamed, which is atomic. A reader
+    polling the directory (a test, a viewer) never reads a snapshot half written. False when
+    it cannot be written."""
+    directory, name = os.path.split(path)
+    writing = os.path.join(directory, '.writing-' + name)
+    try:
+        written = cv2.imwrite(writing, image)
+        if written:
+            os.replace(writing, path)
+    except (cv2.error, OSError):
+        written = False
+    if not written and os.path.exists(writing):
+        os.unlink(writing)
+    return written
 
 
 def main():

@@ -14,7 +14,7 @@ stamped in the future, of another size than camera_info says, or not a
 line (a throttled warning says why), never forward without the line
 known ahead of the base, a zero Twist on shutdown. A lost line is
 searched for by turning in place only, on frames of clear floor; at the
-line's end the robot stops for good. Its parameters (params/line_follower.py)
+line's end the robot stops for good. Its parameters (params/camera/line_follower.py)
 are tuned live (dynparam), the change applied at the next frame.
 """
 import rospy
@@ -29,7 +29,7 @@ from wall_follower.nodes.shared.latest_image import LatestImage
 from wall_follower.nodes.shared.messages import pose_message
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.line_follower import RULES, TABLE
+from wall_follower.params.camera.line_follower import RULES, TABLE
 from wall_follower.vision.line_pursuit import FINISHED, FOLLOW, LOST, SEARCH
 from wall_follower.vision.line_step import LineStep
 

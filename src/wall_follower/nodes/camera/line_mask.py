@@ -1,7 +1,7 @@
 """line_mask: the lab's follower_color_filter.py and follower_line_finder.py, as one node.
 
 For each camera frame it publishes `line_mask` (mono8: 255 where the
-frame has the line's colour, the HSV bounds of params/line_mask.py) and
+frame has the line's colour, the HSV bounds of params/camera/line_mask.py) and
 `line_debug` (the frame, bgr8, with the centroid of the mask's thin slice
 marked by a red dot), both stamped as the frame. The bounds and the slice
 are dynamic_reconfigure parameters: `rosrun rqt_reconfigure
@@ -17,7 +17,7 @@ from wall_follower.cfg import LineMaskConfig
 from wall_follower.nodes.shared.latest_image import image_topics
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.line_mask import RULES, TABLE
+from wall_follower.params.camera.line_mask import RULES, TABLE
 from wall_follower.vision.line_image import hsv_bounds, line_mask, mark_centroid, slice_centroid
 
 NAME = 'line_mask'

@@ -13,7 +13,7 @@ ends the goal when the lap closes (succeeded), when the client cancels
 
 What the node survives, with one warning each: odometry that jumps (a
 simulator's reset_positions, a robot's odometry reset) is not counted as
-travel (see wall_follower.control.lap); a pose that is not finite or whose
+travel (see wall_follower.control.course.lap); a pose that is not finite or whose
 orientation is no unit quaternion is skipped, and so is one stamped far
 ahead of this node's clock (control.stamps: heard before a goal, it would
 move the recording's start decades ahead, and recorded, it would be the
@@ -36,15 +36,15 @@ from geometry_msgs.msg import Point, PoseStamped
 from nav_msgs.msg import Odometry, Path
 
 from wall_follower.cfg import OdomRecorderConfig
-from wall_follower.control.lap import LapRecorder
-from wall_follower.control.odom_check import odometry_problem
+from wall_follower.control.course.lap import LapRecorder
+from wall_follower.control.course.odom_check import odometry_problem
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
 from wall_follower.nodes.shared.messages import pose_message, pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import pick
-from wall_follower.params.odom_recorder import RECORDING, TABLE
+from wall_follower.params.course.odom_recorder import RECORDING, TABLE
 
 # Odometry messages held while the node is busy: a minute and a half at 10 Hz.
 ODOM_QUEUE = 1000

@@ -12,14 +12,14 @@ import threading
 import rospy
 
 from wall_follower.cfg import WallFinderConfig
-from wall_follower.control.finder import WallFinder
+from wall_follower.control.course.finder import WallFinder
 from wall_follower.nodes.shared.drive_loop import drive_loop, take_retuned, tune_drive_loop
 from wall_follower.nodes.shared.laser_mount import laser_x
 from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import pick
-from wall_follower.params.wall_finder import FINDER, TABLE
+from wall_follower.params.course.wall_finder import FINDER, TABLE
 from wall_follower.srv import FindWall, FindWallResponse
 
 

@@ -18,7 +18,7 @@ import rospy
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.cfg import WallFollowingConfig
-from wall_follower.control.follower import FollowerParams, WallFollower
+from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
 from wall_follower.nodes.shared.course_markers import CourseMarkers
 from wall_follower.nodes.shared.drive_loop import drive_loop, take_retuned
@@ -28,7 +28,7 @@ from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.nodes.shared.waiting import wait_in_wall_time
 from wall_follower.params import pick
-from wall_follower.params.wall_following import FOLLOWER, NODE, TABLE
+from wall_follower.params.course.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
 
 

@@ -11,7 +11,7 @@ so and exits with status 1 instead of waiting for ever, and writes no plot
 or figures: those exist only for a recorded lap. (roslaunch itself exits 0
 whatever its required node's status; tools/run-main checks for the plot.)
 
-Parameters: the table in wall_follower.params.course_report, read once at
+Parameters: the table in wall_follower.params.evaluation.course_report, read once at
 start.
 """
 import json
@@ -25,7 +25,7 @@ from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.shared.parameters import NodeParameters
-from wall_follower.params.course_report import TABLE
+from wall_follower.params.evaluation.course_report import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
 

@@ -5,7 +5,7 @@ benchmark's source of figures) and by the finder rostest. The robot is
 teleported through the simulator's cmd_pose topic, so this needs the
 builtin simulator (or a stageros built with cmd_pose).
 
-Parameters: the table in wall_follower.params.find_trials, read once at
+Parameters: the table in wall_follower.params.evaluation.find_trials, read once at
 start.
 """
 import json
@@ -20,7 +20,7 @@ from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.messages import pose_message
 from wall_follower.nodes.shared.parameters import NodeParameters
-from wall_follower.params.find_trials import TABLE
+from wall_follower.params.evaluation.find_trials import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
 from wall_follower.srv import FindWall

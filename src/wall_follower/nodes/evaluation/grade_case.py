@@ -51,7 +51,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, Graph, Solu
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.grade_case import TABLE
+from wall_follower.params.evaluation.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.worldfile import WorldFileError
 

@@ -31,9 +31,9 @@ from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty
 
+from wall_follower.evaluation.grading.line_criteria import END_DISTANCE
 from wall_follower.evaluation.grading.line_record import (Commands, first_motion, lap_index,
                                                           run_record, still_from)
-from wall_follower.evaluation.grading.line_criteria import END_DISTANCE
 from wall_follower.evaluation.pictures.line_plot import plot_line_run
 from wall_follower.evaluation.scoring.line_track import (CourseError, centreline_of, course_path,
                                                          read_course)
@@ -43,7 +43,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, Graph, Solu
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.line_case import TABLE
+from wall_follower.params.evaluation.line_case import TABLE
 
 # Wall seconds between looks at the run.
 POLL = 0.2

@@ -7,7 +7,7 @@ the scans' stamps, the command is re-sent all through a phase (Stage's
 phase stands while something is nearer straight ahead than ~stop_distance.
 Scan stamps that go back (a laser's clock reset, a bag looped) are warned
 of and start the cycle afresh.
-Its parameters (params/forward_stop.py) are tuned live: a change is
+Its parameters (params/exercises/forward_stop.py) are tuned live: a change is
 applied at the next scan, and new periods start a new cycle there.
 """
 import rospy
@@ -19,7 +19,7 @@ from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import pick
-from wall_follower.params.forward_stop import FORWARD_STOP, TABLE
+from wall_follower.params.exercises.forward_stop import FORWARD_STOP, TABLE
 
 
 class ForwardStopNode(object):

@@ -6,7 +6,7 @@ unusable scan is reported as such rather than read. Lines are logged (to the
 screen and /rosout) at most once per ~period of ROS time: a warning when it
 is new, then again at that period while it lasts (with no scan coming, once
 per ~scan_timeout). Its parameters
-(params/range_ahead.py) are tuned live, from the next pass on.
+(params/exercises/range_ahead.py) are tuned live, from the next pass on.
 """
 import math
 
@@ -17,7 +17,7 @@ from wall_follower.exercises.range_ahead import describe, range_ahead
 from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.range_ahead import TABLE
+from wall_follower.params.exercises.range_ahead import TABLE
 
 WAIT = 0.1   # wall s between looks at the clock while no scan comes
 

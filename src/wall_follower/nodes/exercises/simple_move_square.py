@@ -12,7 +12,7 @@ first), and the robot stands while odometry lags the scan by more than
 no unit quaternion; control.stamps: stamped far ahead), and for good once
 it has jumped further than ~max_speed allows or its time went back: the
 square was laid out in a frame that no longer holds. Its parameters
-(params/simple_move_square.py) are tuned live: a change is applied at the
+(params/exercises/simple_move_square.py) are tuned live: a change is applied at the
 next scan, to the square already laid out.
 """
 import math
@@ -23,8 +23,8 @@ import rospy
 from nav_msgs.msg import Odometry
 
 from wall_follower.cfg import SimpleMoveSquareConfig
+from wall_follower.control.course.odom_check import OdomCheck
 from wall_follower.control.motion import STOP
-from wall_follower.control.odom_check import OdomCheck
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.exercises.move_square import SquareDriver
 from wall_follower.nodes.shared.drive_loop import drive_loop, take_retuned
@@ -33,7 +33,7 @@ from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import names, odometry, pick
-from wall_follower.params.simple_move_square import SQUARE, TABLE
+from wall_follower.params.exercises.simple_move_square import SQUARE, TABLE
 
 
 # Stamps of one simulated step are identical; elsewhere odometry this much

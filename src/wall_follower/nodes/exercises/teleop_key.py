@@ -11,7 +11,7 @@ forward into a sector ahead that it cannot see. Ctrl-C (a signal from a
 terminal, or the byte 0x03 from a pipe) or the end of the input quits with
 a zero Twist, and so does an input that cannot be read (standard input
 closed, or not readable), with an error and exit status 1. Its
-parameters (params/teleop_key.py: the steps, the limits, the tick) are
+parameters (params/exercises/teleop_key.py: the steps, the limits, the tick) are
 tuned live, from the next tick on.
 """
 import os
@@ -28,7 +28,7 @@ from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import pick
-from wall_follower.params.teleop_key import TABLE, TELEOP
+from wall_follower.params.exercises.teleop_key import TABLE, TELEOP
 
 
 # Bytes taken from standard input at once: more than anyone types between two ticks.

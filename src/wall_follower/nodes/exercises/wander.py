@@ -4,7 +4,7 @@ Answered once per scan through the DriveLoop every driving node shares:
 clamped to ~max_linear and ~max_angular, stopped while the laser is stale
 or unusable, never forward into a sector ahead that it cannot see. It
 warns while it turns because nothing ahead reads valid. Its
-parameters (params/wander.py) are tuned live: a change is applied at the
+parameters (params/exercises/wander.py) are tuned live: a change is applied at the
 next scan.
 """
 import math
@@ -18,7 +18,7 @@ from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params import pick
-from wall_follower.params.wander import RULES, TABLE, WANDER
+from wall_follower.params.exercises.wander import RULES, TABLE, WANDER
 
 
 class WanderNode(object):

@@ -5,7 +5,7 @@ map_server's map_saver does. With --after-lap it first waits for the
 record_odom action's result (the course's lap is over), then saves the
 first map stamped at or after it, so the saved map holds the whole lap.
 
-Parameters: the table in wall_follower.params.map_saver, read once at
+Parameters: the table in wall_follower.params.mapping.map_saver, read once at
 start; the command line's flags, map_server's map_saver's, win over them.
 
 A map that cannot be one (mapfile.map_problem: no cells, data that do not
@@ -25,7 +25,7 @@ from wall_follower.mapping.mapfile import map_problem, save_map
 from wall_follower.msg import OdomRecordActionResult
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
-from wall_follower.params.map_saver import TABLE
+from wall_follower.params.mapping.map_saver import TABLE
 
 
 class MapSaver(object):

@@ -41,8 +41,8 @@ from sensor_msgs.msg import LaserScan
 import numpy as np
 
 from wall_follower.cfg import SlamConfig
-from wall_follower.control.odom_check import OdomCheck, odometry_problem
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.course.odom_check import OdomCheck, odometry_problem
+from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.mapping.poses import wrap
 from wall_follower.mapping.slam import Mapper
@@ -51,7 +51,7 @@ from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import pick
-from wall_follower.params.slam import MAPPER, READ_AT_START, RULES, TABLE
+from wall_follower.params.mapping.slam import MAPPER, READ_AT_START, RULES, TABLE
 from wall_follower.rotation import quaternion_of_yaw
 
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may

@@ -5,7 +5,7 @@ reader, for the built-in simulator and real stageros alike) and publishes
 it once, latched: `map` (nav_msgs/OccupancyGrid) and `map_metadata`, in the
 first robot's odometry frame (wall_follower.sim.world_map says why that
 frame), so that rviz draws the walls under the robot. Parameters: the
-table in wall_follower.params.world_map, read once at start.
+table in wall_follower.params.mapping.world_map, read once at start.
 """
 import rospy
 from nav_msgs.msg import MapMetaData, OccupancyGrid
@@ -13,7 +13,7 @@ from nav_msgs.msg import MapMetaData, OccupancyGrid
 from wall_follower.nodes.shared.messages import pose_message
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.params.world_map import TABLE
+from wall_follower.params.mapping.world_map import TABLE
 from wall_follower.sim.stage_interface import parse_pose, robot_prefix, world_path
 from wall_follower.sim.world_map import world_map
 from wall_follower.sim.worldfile import WorldFileError, load_world

@@ -22,7 +22,7 @@ from sensor_msgs.msg import LaserScan
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import defaults
-from wall_follower.params.wall_following import FOLLOWER
+from wall_follower.params.course.wall_following import FOLLOWER
 
 __all__ = ['laser_x', 'mount_of', 'choose_laser_x']
 

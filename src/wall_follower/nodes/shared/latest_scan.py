@@ -5,7 +5,7 @@ from collections import namedtuple
 import rospy
 from sensor_msgs.msg import LaserScan
 
-from wall_follower.control.scan_check import check_scan
+from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.params.driving import LASER_INPUT
 

@@ -20,7 +20,7 @@ wall_follower.sim.simulator_choice: real stageros only with its window (no
 -g), since headless it cannot be paced; auto falls back to this simulator,
 stage refuses with a clear error.
 
-Private parameters: the table in wall_follower.params.stage_sim, read once
+Private parameters: the table in wall_follower.params.sim.stage_sim, read once
 at start. The world file's `speedup` is ignored, as stageros -g ignores it.
 Services beyond stageros, named as Gazebo's: pause_physics and unpause_physics
 (std_srvs/Empty) stop and resume the world steps; nothing is published while paused.
@@ -60,7 +60,7 @@ from std_srvs.srv import Empty, EmptyResponse
 
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
-from wall_follower.params.stage_sim import TABLE
+from wall_follower.params.sim.stage_sim import TABLE
 from wall_follower.rotation import quaternion_of_yaw
 from wall_follower.sim import compiled_camera, compiled_raytrace
 from wall_follower.sim.camera import camera_intrinsics, camera_mount

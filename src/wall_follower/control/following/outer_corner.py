@@ -11,12 +11,12 @@ mid-turn) is circled instead.
 """
 import math
 
-from wall_follower.control.corner import CornerArc, OuterTurn
-from wall_follower.control.follow_wall import steer
-from wall_follower.control.manoeuvre import FOLLOW, Manoeuvre
+from wall_follower.control.following.corner import CornerArc, OuterTurn
+from wall_follower.control.following.follow_wall import steer
+from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
-from wall_follower.control.scan import RIGHT
-from wall_follower.control.wall_fit import along_the_way, from_centre
+from wall_follower.control.sensing.scan import RIGHT
+from wall_follower.control.sensing.wall_fit import along_the_way, from_centre
 from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the

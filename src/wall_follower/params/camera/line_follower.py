@@ -3,7 +3,7 @@ path memory, and the two controllers (the pursuit and the lab's pixel-P baseline
 import math
 
 from wall_follower.params import Parameter as P, Section, driving
-from wall_follower.params.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
+from wall_follower.params.camera.line_mask import HSV, IMAGE, RULES as HSV_RULES, SLICE
 
 CONTROLLERS = ('pursuit', 'pixel_p')
 CONVENTIONS = ('auto', 'optical', 'stageros')

@@ -5,7 +5,7 @@ and ends. Its limits are grade_case's own (the grader checks --start-limit
 against one range for both tasks); `still` is the line task's.
 """
 from wall_follower.params import Parameter as P, Section, parameters
-from wall_follower.params.grade_case import TABLE as COURSE_CASE
+from wall_follower.params.evaluation.grade_case import TABLE as COURSE_CASE
 
 
 def _course_case(name):

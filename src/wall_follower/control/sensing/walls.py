@@ -12,7 +12,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.control.lines import Line, line_through
+from wall_follower.control.sensing.lines import Line, line_through
 from wall_follower.rotation import wrap_angle
 
 # A hit this much (m) nearer than the end of a run hides what lies beyond it.

@@ -4,8 +4,8 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import seen_after_move
-from wall_follower.control.scan import RIGHT
-from wall_follower.control.wall_fit import along_the_way, right_wall, wall_through
+from wall_follower.control.sensing.scan import RIGHT
+from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
 from wall_follower.rotation import wrap_angle
 
 

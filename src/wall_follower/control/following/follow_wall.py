@@ -6,9 +6,9 @@ wall, the robot slows to the arc that still turns parallel in time.
 """
 import math
 
-from wall_follower.control.manoeuvre import Manoeuvre
+from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
-from wall_follower.control.wall_fit import from_centre
+from wall_follower.control.sensing.wall_fit import from_centre
 
 
 class FollowWall(Manoeuvre):

@@ -1,6 +1,6 @@
 """Parameters of the camera_view node (the lab's first steps: the camera's frames, looked at)."""
 from wall_follower.params import Parameter as P, Section
-from wall_follower.params.line_mask import IMAGE
+from wall_follower.params.camera.line_mask import IMAGE
 
 NODE = (
     Section('view', (

@@ -1,5 +1,5 @@
 """SEARCH: no wall near, so straight ahead until one comes up."""
-from wall_follower.control.manoeuvre import Manoeuvre
+from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
 
 

@@ -13,11 +13,11 @@ a pivot.
 """
 import math
 
-from wall_follower.control.body import Body
-from wall_follower.control.left_turn import LeftTurn
-from wall_follower.control.manoeuvre import Manoeuvre
+from wall_follower.control.following.body import Body
+from wall_follower.control.following.left_turn import LeftTurn
+from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
-from wall_follower.control.wall_fit import along_the_way, as_planned, from_centre, same_line
+from wall_follower.control.sensing.wall_fit import along_the_way, as_planned, from_centre, same_line
 
 
 class InnerCorner(Manoeuvre):

@@ -16,7 +16,7 @@ MIN_KNOWN_SHARE of its readings are hits or proven no-returns.
 import math
 from collections import namedtuple
 
-from wall_follower.control.scan import ScanView
+from wall_follower.control.sensing.scan import ScanView
 
 ScanCheck = namedtuple('ScanCheck', ['view', 'problem'])
 """view: a ScanView of a usable scan, else None; problem: why not, else None."""

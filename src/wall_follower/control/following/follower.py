@@ -31,16 +31,16 @@ laser_x ahead of it (on a TurtleBot3, behind it).
 """
 import copy
 
-from wall_follower.control.follow_wall import FollowWall
-from wall_follower.control.inner_corner import InnerCorner
-from wall_follower.control.manoeuvre import FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD
+from wall_follower.control.following.follow_wall import FollowWall
+from wall_follower.control.following.inner_corner import InnerCorner
+from wall_follower.control.following.manoeuvre import FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD
+from wall_follower.control.following.outer_corner import OuterCorner
+from wall_follower.control.following.search import Search
 from wall_follower.control.motion import Command
-from wall_follower.control.observation import Observation
-from wall_follower.control.outer_corner import OuterCorner
-from wall_follower.control.scan import RIGHT
-from wall_follower.control.search import Search
+from wall_follower.control.sensing.observation import Observation
+from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.params import checked
-from wall_follower.params.wall_following import FOLLOWER
+from wall_follower.params.course.wall_following import FOLLOWER
 from wall_follower.rotation import wrap_angle
 
 #: The controller's parameters: defaults, ranges, units and meanings.

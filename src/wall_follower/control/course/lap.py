@@ -25,9 +25,9 @@ start line keeps its coordinates, which now mark another place.
 """
 import math
 
-from wall_follower.control.odom_check import JumpDetector
+from wall_follower.control.course.odom_check import JumpDetector
 from wall_follower.params import defaults
-from wall_follower.params.odom_recorder import TABLE
+from wall_follower.params.course.odom_recorder import TABLE
 from wall_follower.rotation import wrap_angle
 
 # The defaults of the keyword arguments below: the odom_recorder node's.

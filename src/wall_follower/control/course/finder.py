@@ -18,10 +18,10 @@ makes both distance and heading far steadier than the shortest ray would.
 import math
 
 from wall_follower.control.motion import STOP, Command
-from wall_follower.control.scan import RIGHT
-from wall_follower.control.walls import closest_match, extract_walls, path_is_clear, refine
+from wall_follower.control.sensing.scan import RIGHT
+from wall_follower.control.sensing.walls import closest_match, extract_walls, path_is_clear, refine
 from wall_follower.params import checked
-from wall_follower.params.wall_finder import FINDER
+from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.rotation import wrap_angle
 
 CHOOSE_WALL = 'CHOOSE_WALL'

@@ -15,8 +15,8 @@ import math
 
 import numpy as np
 
-from wall_follower.control.lines import Line, consensus_line, fit_line
-from wall_follower.control.scan import RIGHT
+from wall_follower.control.sensing.lines import Line, consensus_line, fit_line
+from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.rotation import wrap_angle
 
 

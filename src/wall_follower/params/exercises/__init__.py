@@ -1,0 +1,1 @@
+"""The lab exercises' parameter tables."""

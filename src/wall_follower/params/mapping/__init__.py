@@ -1,0 +1,1 @@
+"""The mapping nodes' parameter tables: slam, map_saver, world_map."""
