@@ -14,16 +14,24 @@ not in lockstep, with Stage's own laser: one lap per world.
 
 --generated N grades main.launch on N generated worlds of --seed in every
 laser profile instead, as `grade` does (see follow_generated).
+
+Beside each lap: T*, the least time any robot under the speed limits takes
+to lap the world in the band (evaluation/scoring/lap_bound), and the lap's time over
+it; then each T* lap as the built-in simulator drives it, its check.
 """
 import argparse
+import os
 import sys
 import tempfile
 
+from wall_follower.evaluation.scoring import lap_bound
 from wall_follower.evaluation.benchmarks import follow_generated
 from wall_follower.evaluation.launching import (WORLDS, display_wrapper, laser_profile, run_launch,
                                                 shipped_world)
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.sim.laser_profiles import PROFILES as LASER_PROFILES
+from wall_follower.sim.stage_interface import world_path
+from wall_follower.sim.worldfile import load_world
 
 PROFILES = ('stage', 'lds01', 'lds02', 'course720')
 NOISE_FREE = ('stage',)
@@ -94,28 +102,52 @@ def main(argv=None):
         args.profiles, args.seeds = ['stage'], 1
     args.profiles = args.profiles or list(PROFILES)
     rows = []
+    bounds = lap_bound.Bounds()
     for world in args.worlds:
+        # Every lap begins at the world's start pose.
+        path = world_path(world)
+        bound, _ = bounds.of(path, load_world(path).robots[0].pose)
         for profile in args.profiles:
             seeds = range(1 if profile in NOISE_FREE else max(1, args.seeds))
             f = combined([run_launch('main.launch', lap_args(args.simulator, world, profile, seed),
                                      wrapper=wrapper)
                           for seed in seeds]) or {}
+            t_star = bound.time if bound else float('nan')
             rows.append([world, f.get('simulator', '-'), profile, str(f.get('laps', 0)),
                          fmt(100.0 * f.get('time_in_band', float('nan')), '.1f'),
                          fmt(100.0 * f.get('rms_error', float('nan')), '.2f'),
                          fmt(f.get('min_clearance'), '.3f'),
                          {True: 'yes', False: 'no'}.get(f.get('contact'), '-'),
                          fmt(f.get('lap_time'), '.1f'),
+                         fmt(t_star, '.1f'),
+                         fmt(f.get('lap_time', float('nan')) / t_star, '.3f'),
                          fmt(f.get('path_length'), '.2f'),
                          fmt(f.get('lap_time_ratio'), '.3f'),
                          fmt(f.get('worst_ratio'), '.3f'),
                          fmt(f.get('max_linear'), '.3f'),
                          fmt(f.get('max_angular'), '.3f')])
     print_table(['world', 'simulator', 'laser', 'laps', 'in band %', 'RMS cm', 'min clearance m',
-                 'contact', 'lap s', 'path m', 'lap / (path/0.19)', 'worst lap', 'max v',
-                 'max w'], rows)
+                 'contact', 'lap s', 'T* s', 'lap / T*', 'path m', 'lap / (path/0.19)',
+                 'worst lap', 'max v', 'max w'], rows)
     print('\nmeans over the laps, but min clearance, contact, worst lap and max v, w '
           'over all of them')
-    print('goals: in band >= 97 %, RMS <= 2 cm, lap ratio <= 1.2, no contact, '
-          'max v <= 0.19, max w <= 0.49')
+    print('goals: in band >= 97 %, RMS <= 2 cm, lap / T* <= 1.08, no contact, '
+          'max v <= 0.19, max w <= 0.49\n')
+    print_bounds(bounds)
     return 0
+
+
+def print_bounds(bounds):
+    """The table of every T* lap as the built-in simulator drives it: its check."""
+    rows = []
+    for path, bound, driven in bounds.all():
+        world = os.path.splitext(os.path.basename(path))[0]
+        if bound is None:
+            rows.append([world, '-', '-', '-', '-', '-', driven])
+            continue
+        rows.append([world, fmt(bound.time, '.1f'), fmt(bound.length, '.2f'),
+                     fmt(driven.time, '.1f'), fmt(driven.time / bound.time, '.3f'),
+                     fmt(100.0 * driven.in_band, '.1f'),
+                     'contact' if driven.contact else ('' if driven.closed else 'no lap')])
+    print('T*, the least lap time (lap_bound), each lap driven in the built-in simulator:')
+    print_table(['world', 'T* s', 'path m', 'driven s', 'driven / T*', 'in band %', ''], rows)

@@ -214,6 +214,8 @@ class RunScore(object):
             'contact': self.stalled or min_clearance <= 0.0,
             'max_linear': self.max_linear,
             'max_angular': self.max_angular,
+            # Where the lap began: which loop a lap bound (lap_bound) is of.
+            'lap_start': list(self.poses[0]) if count else None,
         }
 
     def stretches_out_of_band(self):

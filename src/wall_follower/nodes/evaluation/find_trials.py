@@ -11,7 +11,9 @@ start.
 import json
 import math
 import numbers
+import time
 
+import numpy as np
 import rospy
 from geometry_msgs.msg import Pose
 
@@ -25,8 +27,36 @@ from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
 from wall_follower.srv import FindWall
 
-# Simulated time for the scan and ground truth to show a new pose.
+# Simulated time for the scan and ground truth to show a new pose, and that the robot
+# stands still for to count as at rest.
 SETTLE = 0.5
+# Wall seconds to wait for ground truth to show the robot at rest after find_wall replied.
+REST_LIMIT = 30.0
+
+
+class RestWatch(object):
+    """Tells, from ground truth polled now and then, when the robot has stood still (the same
+    pose) for settle simulated seconds.
+
+    A busy machine may hand this process find_wall's reply before the ground
+    truth of the steps that came before it: the newest pose heard then is one
+    of the finder's last turn, not where it left the robot. Waiting for
+    ground truth that shows the robot at rest judges where it stopped.
+    """
+
+    def __init__(self, settle=SETTLE):
+        self.settle = settle
+        self._pose = None
+        self._since = None
+
+    def look(self, stamp, pose):
+        """The pose once at rest, else None: (stamp, pose) is the newest ground truth."""
+        if pose is None:
+            return None
+        if self._pose is None or not np.allclose(pose, self._pose, rtol=0.0, atol=1e-9):
+            self._pose, self._since = pose, stamp
+            return None
+        return pose if stamp - self._since >= self.settle else None
 
 
 class FindTrials(object):
@@ -48,10 +78,10 @@ class FindTrials(object):
         started = rospy.get_time()
         found = self.find_wall().wallfound
         took = rospy.get_time() - started
-        rospy.sleep(SETTLE)
+        pose = at_rest(monitor)
         monitor.close()
         score = monitor.summary()
-        aligned = self.map.right_wall_alignment(monitor.pose) if monitor.pose else None
+        aligned = self.map.right_wall_alignment(pose) if pose else None
         return {
             'start': list(start),
             'found': found,
@@ -62,6 +92,21 @@ class FindTrials(object):
             'max_linear': score['max_linear'],
             'max_angular': score['max_angular'],
         }
+
+
+def at_rest(monitor, limit=REST_LIMIT):
+    """The robot's true pose once monitor's ground truth shows it at rest (RestWatch); the
+    newest heard, with a warning, after limit wall seconds without."""
+    watch = RestWatch()
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline and not rospy.is_shutdown():
+        pose = watch.look(*monitor.latest())
+        if pose is not None:
+            return pose
+        time.sleep(0.01)
+    rospy.logwarn('find_trials: the robot was not at rest %.0f s after find_wall replied; '
+                  'judged where it was last heard', limit)
+    return monitor.latest()[1]
 
 
 def is_pose(start):

@@ -134,6 +134,7 @@ class CourseMonitor(object):
         self.lock = threading.Lock()
         self.done = threading.Event()
         self.pose = None
+        self.pose_stamp = None
         self.goal_pose = None
         self.goal_time = None
         self.feedback = []
@@ -214,7 +215,7 @@ class CourseMonitor(object):
         pose = pose_of(msg)
         stamp = msg.header.stamp.to_sec()
         with self.lock:
-            self.pose = pose
+            self.pose, self.pose_stamp = pose, stamp
             if self.scoring:
                 self._score(stamp, pose)
             else:
@@ -319,6 +320,11 @@ class CourseMonitor(object):
                 break
             time.sleep(0.01)
         return True
+
+    def latest(self):
+        """(stamp, pose) of the newest ground truth heard, (None, None) before any."""
+        with self.lock:
+            return self.pose_stamp, self.pose
 
     def caught_up(self):
         """Whether ground truth has been heard up to the end of the run.
