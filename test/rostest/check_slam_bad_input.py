@@ -4,7 +4,7 @@
 Fed a room's scan and a standing robot's odometry (with the laser's mount
 on tf), then in turn: odometry with a NaN position (it must say the
 odometry cannot be trusted, not wait for ever for the robot to stand
-still), scans of nothing but NaN (unusable, not "scan match not trusted"),
+still), scans of nothing but NaN (unusable, not "match not trusted"),
 odometry whose time goes back (told as such, not as "no odometry") and
 odometry that jumps 5 m (warned of). And scans and odometry (with the
 robot's tf, as a robot sends it) stamped 2100-01-01, then with the largest
@@ -110,7 +110,7 @@ class SlamBadInput(unittest.TestCase):
         self.x = 0.0
         self.scan = room_scan(math.nan)
         self.said('the scan on /scan is unusable: none of its 360 readings is usable (360 NaN)')
-        self.assertFalse(self.log.said(NODE, 'scan match not trusted'))
+        self.assertFalse(self.log.said(NODE, 'match not trusted'))
         self.scan = room_scan()
         self.delay = 30.0
         self.said('its time went back')

@@ -8,7 +8,7 @@ import pytest
 from wall_follower.evaluation.scoring.map_quality import map_quality
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.mapfile import SavedMap, load_map, save_map
-from wall_follower.mapping.matcher import DistanceField, ScanMatcher
+from wall_follower.mapping.matcher import DistanceField
 from wall_follower.mapping.poses import between, compose, inverse
 from wall_follower.mapping.slam import Mapper, scan_points
 
@@ -88,17 +88,19 @@ def test_the_matcher_recovers_a_known_offset_of_a_synthetic_scan(offset):
     assert match.misfit < 0.005
 
 
-def test_the_matcher_keeps_the_prediction_when_a_match_leaves_the_window():
-    grid = LogOddsGrid(0.02, -2.0, -2.0, 2.0, 2.0)
+def test_the_mapper_keeps_the_prediction_when_a_match_leaves_the_window():
+    mapper = Mapper(start_patience=0, search_window_linear=0.01)
     ranges, angles = _room_scan((0.0, 0.0, 0.0))
-    ends, hit = scan_points(ranges, angles, 0.12, 3.5, 3.5)
-    grid.integrate((0.0, 0.0), ends, hit)
-    field = DistanceField(grid, 0.1)
-    field.update()
-    matcher = ScanMatcher(field, window=(0.02, math.radians(1.0)))
-    match = matcher.match(ends[hit], (0.05, 0.0, 0.0))
-    assert not match.ok and match.pose == (0.05, 0.0, 0.0)
-    assert 'window' in match.reason
+    mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.0))
+    # The robot stands, its odometry says it moved 1.5 cm: beyond the window, and the
+    # prediction still explains the scan (within match_reach, 1.5 cm RMS off).
+    pose = mapper.add_scan(ranges, angles, 0.12, 3.5, (0.015, 0.0, 0.0))
+    assert pose == (0.015, 0.0, 0.0) and mapper.drawn == 1
+    assert 'from the prediction' in mapper.decision and mapper.counts['not trusted'] == 1
+    mapper.reconfigure(start_patience=0, search_window_linear=0.15)
+    pose = mapper.add_scan(ranges, angles, 0.12, 3.5, (0.015, 0.0, 0.0))
+    assert math.hypot(pose[0], pose[1]) < mapper.config['match_resolution']
+    assert mapper.decision == 'matched'
 
 
 def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():
@@ -126,13 +128,24 @@ def test_the_map_starts_at_rest_or_once_patience_runs_out():
     ranges, angles = _room_scan((0.0, 0.0, 0.0))
     mapper = Mapper(start_patience=5)
     for k in range(3):    # turning: odometry a step ahead of the laser would tilt the map
-        assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * k)) is None
-    assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.1)) == (0.0, 0.0, 0.1)
+        assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * (k + 1))) is None
+    assert mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.15)) == (0.0, 0.0, 0.15)
     assert mapper.started and mapper.drawn == 1
     impatient = Mapper(start_patience=5)
-    poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * k, 0.0, 0.0))
+    poses = [impatient.add_scan(ranges, angles, 0.12, 3.5, (0.01 * (k + 1), 0.0, 0.0))
              for k in range(7)]
     assert poses[:5] == [None] * 5 and poses[5] is not None
+    # Patience run out while the robot turns (find_wall): the map waits for a step that
+    # does not turn, where the odometry's lead cannot tilt it.
+    turning = Mapper(start_patience=5)
+    poses = [turning.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.05 * (k + 1)))
+             for k in range(9)]
+    poses.append(turning.add_scan(ranges, angles, 0.12, 3.5, (0.01, 0.0, 0.45)))
+    assert poses[:9] == [None] * 9 and poses[9] == (0.01, 0.0, 0.45)
+    # The odometry still at its origin: nothing has moved yet, the map starts there, before
+    # the turn and the odometry's error since.
+    fresh = Mapper(start_patience=5)
+    assert fresh.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.0)) == (0.0, 0.0, 0.0)
 
 
 def test_new_parameters_apply_from_the_next_scan():
@@ -153,9 +166,10 @@ def test_a_new_match_window_and_reach_apply_to_the_map_already_built():
     mapper = Mapper(scan_matching=False, start_patience=0)
     ranges, angles = _room_scan((0.0, 0.0, 0.0))
     mapper.add_scan(ranges, angles, 0.12, 3.5, (0.0, 0.0, 0.0))
-    mapper.reconfigure(search_window_linear=0.02, match_capture=0.5)
-    assert mapper.matcher.window == (0.02, mapper.config['search_window_angular'])
+    mapper.reconfigure(search_window_linear=0.02, match_capture=0.5, odom_drift=0.1,
+                       match_max_misfit=0.03)
     assert mapper.matcher.reaches == (0.5, mapper.config['match_reach'])
+    assert mapper.prediction.drift == 0.1 and mapper.matcher.max_misfit == 0.03
     fresh = DistanceField(mapper.fine, 0.5)
     fresh.update()
     assert mapper.field.reach == 0.5

@@ -31,11 +31,15 @@ class LogOddsGrid(object):
     logodds[row, col] is the cell whose lower-left corner is
     (xmin + col * resolution, ymin + row * resolution), row 0 at the bottom,
     as nav_msgs/OccupancyGrid orders its data. `observed` marks the cells a
-    beam has updated.
+    beam has updated. step: how far apart a beam is sampled for the cells it
+    crosses, in cells: half a cell finds every one; a whole cell misses some
+    that it only clips at a corner, and costs half as much (the fine grid
+    scans are matched against: every scan crosses its cells hundreds of
+    thousands of times, and its neighbours' beams clear what one misses).
     """
 
     def __init__(self, resolution, xmin, ymin, xmax, ymax, hit=_DEFAULT['hit_logodds'],
-                 miss=_DEFAULT['miss_logodds'], bounds=(-4.0, 4.0)):
+                 miss=_DEFAULT['miss_logodds'], bounds=(-4.0, 4.0), step=0.5):
         if resolution <= 0.0 or xmax <= xmin or ymax <= ymin:
             raise ValueError('a grid needs resolution > 0 and xmax > xmin, ymax > ymin '
                              '(got %r, x %r..%r, y %r..%r)' % (resolution, xmin, xmax, ymin, ymax))
@@ -47,6 +51,8 @@ class LogOddsGrid(object):
         self.hit = float(hit)
         self.miss = float(miss)
         self.bounds = (float(bounds[0]), float(bounds[1]))
+        self.step = float(step)
+        self._mark = np.zeros(rows * cols, dtype=bool)   # all False between uses
 
     @property
     def shape(self):
@@ -69,6 +75,25 @@ class LogOddsGrid(object):
         rows, cols, inside = self.cells(points)
         return rows[inside] * self.shape[1] + cols[inside]
 
+    def _distinct(self, flat, less=()):
+        """The distinct flat indices of flat that are not in less, ascending: np.unique
+        and np.setdiff1d, by marking cells instead of sorting (a scan's beams cross a
+        fine grid's cells a few hundred thousand times)."""
+        if not len(flat):
+            return np.zeros(0, dtype=np.int64)
+        mark = self._mark
+        mark[flat] = True
+        mark[np.asarray(less, dtype=np.int64)] = False
+        low = int(flat.min())
+        cells = low + np.flatnonzero(mark[low:int(flat.max()) + 1])
+        mark[flat] = False
+        return cells
+
+    def _add(self, cells, amount):
+        flat = self.logodds.reshape(-1)
+        flat[cells] = np.clip(flat[cells] + amount, self.bounds[0], self.bounds[1])
+        self.observed.reshape(-1)[cells] = True
+
     def integrate(self, origin, ends, hit):
         """One scan: beams from the map-frame point `origin` to `ends` (N, 2).
 
@@ -83,34 +108,30 @@ class LogOddsGrid(object):
         length = np.hypot(delta[:, 0], delta[:, 1])
         # Free stretch: to the end for a free beam, one cell short of it for a hit.
         free_length = np.where(hit, np.maximum(length - self.resolution, 0.0), length)
-        step = 0.5 * self.resolution
+        step = self.step * self.resolution
         samples = int(np.ceil(free_length.max() / step)) + 1 if len(length) else 0
-        hit_cells = np.unique(self._flat(ends[hit]))
+        hit_cells = self._distinct(self._flat(ends[hit]))
         if samples > 0:
             t = np.arange(samples) * step
             keep = t[None, :] <= free_length[:, None]
             direction = delta / np.maximum(length, 1e-12)[:, None]
             points = origin + direction[:, None, :] * t[None, :, None]
-            free_cells = np.unique(self._flat(points[keep]))
-            free_cells = np.setdiff1d(free_cells, hit_cells, assume_unique=True)
+            free_cells = self._distinct(self._flat(points[keep]), less=hit_cells)
         else:
             free_cells = np.zeros(0, dtype=np.int64)
-        flat = self.logodds.reshape(-1)
-        seen = self.observed.reshape(-1)
-        flat[free_cells] += self.miss
-        flat[hit_cells] += self.hit
-        np.clip(flat, self.bounds[0], self.bounds[1], out=flat)
-        seen[free_cells] = True
-        seen[hit_cells] = True
+        self._add(free_cells, self.miss)
+        self._add(hit_cells, self.hit)
         return hit_cells
 
     def mark_hits(self, points, skip=()):
         """A hit for each cell holding one of the map-frame points (N, 2), once per cell,
         except the flat indices in skip (the cells this scan has already hit)."""
-        cells = np.setdiff1d(np.unique(self._flat(points)), skip)
-        flat = self.logodds.reshape(-1)
-        flat[cells] = np.clip(flat[cells] + self.hit, self.bounds[0], self.bounds[1])
-        self.observed.reshape(-1)[cells] = True
+        self._add(self._distinct(self._flat(points), less=skip), self.hit)
+
+    def clear(self):
+        """Back to nothing observed (to be drawn anew)."""
+        self.logodds.fill(0.0)
+        self.observed.fill(False)
 
     def occupancy(self):
         """nav_msgs/OccupancyGrid values: -1 never observed, else round(100 p)."""

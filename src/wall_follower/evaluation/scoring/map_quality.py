@@ -4,7 +4,10 @@ precision: the share of the map's occupied cells that lie within one map
 cell (the 8 around it, or itself) of a cell a true wall surface passes
 through. recall: the share of the true wall cells the laser could see from
 the robot's true path (noise-free beams up to the mapper's range limit)
-that have an occupied map cell within one cell. The map frame is placed in
+that have an occupied map cell within one cell. worst_distance: how far the
+centre of the occupied cell farthest from any true wall lies from it [m]
+(a cell a wall passes through is at most half its diagonal away; a wall
+drawn beside the true one, or a ghost, is farther). The map frame is placed in
 the world by the robot's true start pose: the mapper's map frame starts on
 the odometry's, and odometry starts at zero there.
 """
@@ -13,18 +16,22 @@ from collections import namedtuple
 
 import numpy as np
 
-from wall_follower.evaluation.scoring.geometry import cast_rays
 from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.geometry import _point_segment_distance, cast_rays
+from wall_follower.rotation import wrap_angle
 
 __all__ = ['MapQuality', 'map_quality']
 
-MapQuality = namedtuple('MapQuality', ['precision', 'recall', 'occupied', 'seen_walls'])
+MapQuality = namedtuple('MapQuality', ['precision', 'recall', 'occupied', 'seen_walls',
+                                       'worst_distance'])
 
 _BEAMS = 360
 # The path is sampled every path_step metres, or this much turning [rad].
 _PATH_TURN = 0.2
 # Cells: how near a cell boundary a point counts as on it.
 _ON_BOUNDARY = 1e-6
+# Occupied cells measured against the walls at once (bounds the distance matrix's memory).
+_CHUNK = 2000
 
 
 def _to_map(points, map_in_world):
@@ -72,6 +79,19 @@ def _wall_points(edges, spacing):
     return np.concatenate(points) if points else np.zeros((0, 2))
 
 
+def _worst_distance(saved_map, occupied, edges, start_pose):
+    """The largest distance [m] from an occupied cell's centre to the nearest true wall."""
+    rows, cols = np.nonzero(occupied)
+    if not len(rows) or not len(edges):
+        return 0.0 if not len(rows) else float('inf')
+    res = saved_map.resolution
+    centres = np.column_stack((saved_map.origin[0] + (cols + 0.5) * res,
+                               saved_map.origin[1] + (rows + 0.5) * res))
+    a, b = _to_map(edges[:, 0], start_pose), _to_map(edges[:, 1], start_pose)
+    return max(float(_point_segment_distance(centres[i:i + _CHUNK], a, b).min(axis=1).max())
+               for i in range(0, len(centres), _CHUNK))
+
+
 def map_quality(saved_map, world_path, start_pose, path, max_range, path_step=0.1):
     """MapQuality of a SavedMap made in world_path by a robot that started at the true
     start_pose (x, y, yaw) and went along the true path [(x, y, yaw), ...]."""
@@ -85,8 +105,7 @@ def map_quality(saved_map, world_path, start_pose, path, max_range, path_step=0.
     reach = min(max_range, course.range_max)
     for pose in path:
         if last is not None and math.hypot(pose[0] - last[0], pose[1] - last[1]) < path_step \
-                and abs(math.atan2(math.sin(pose[2] - last[2]),
-                                   math.cos(pose[2] - last[2]))) < _PATH_TURN:
+                and abs(wrap_angle(pose[2] - last[2])) < _PATH_TURN:
             continue
         last = pose
         lx, ly, lyaw = course.laser_pose(pose)
@@ -99,4 +118,5 @@ def map_quality(saved_map, world_path, start_pose, path, max_range, path_step=0.
     seen_count = int(seen.sum())
     precision = float((occupied & _dilate(true_walls)).sum()) / max(int(occupied.sum()), 1)
     recall = float((seen & _dilate(occupied)).sum()) / max(seen_count, 1)
-    return MapQuality(precision, recall, int(occupied.sum()), seen_count)
+    return MapQuality(precision, recall, int(occupied.sum()), seen_count,
+                      _worst_distance(saved_map, occupied, course.edges, start_pose))

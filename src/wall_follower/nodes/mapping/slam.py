@@ -11,8 +11,8 @@ processed, in order (a deep queue rather than the newest only), so that a
 run in simulated time gives the same map however busy the machine is.
 
 What it cannot trust it says, with a warning, and does not draw: a scan
-that control.scan_check finds malformed or unusable, odometry that
-control.odom_check finds not finite or with no unit quaternion (a scan
+that control.sensing.scan_check finds malformed or unusable, odometry that
+control.course.odom_check finds not finite or with no unit quaternion (a scan
 that only such odometry could place is skipped), a scan or odometry
 stamped far ahead of the node's clock (control.stamps: a map -> odom
 transform broadcast at such a stamp would abort every tf listener, this
@@ -21,7 +21,7 @@ restarted, a bag looped) starts its history afresh, and one that jumped
 further than the robot can drive is warned of: the map is drawn on at the
 jumped pose only after the warning.
 
-Parameters: the table in wall_follower.params.slam. A mapping run is long
+Parameters: the table in wall_follower.params.mapping.slam. A mapping run is long
 and tuned while it runs (`rosrun dynamic_reconfigure dynparam set /slam
 map_update_interval 1.0`, or rqt_reconfigure): a change applies at the next
 scan, in the scan callback, which alone touches the mapper. The frames and
@@ -44,7 +44,6 @@ from wall_follower.cfg import SlamConfig
 from wall_follower.control.course.odom_check import OdomCheck, odometry_problem
 from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
-from wall_follower.mapping.poses import wrap
 from wall_follower.mapping.slam import Mapper
 from wall_follower.nodes.shared.messages import pose_message, pose_of, yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
@@ -52,7 +51,7 @@ from wall_follower.nodes.shared.startup import init_node
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import pick
 from wall_follower.params.mapping.slam import MAPPER, READ_AT_START, RULES, TABLE
-from wall_follower.rotation import quaternion_of_yaw
+from wall_follower.rotation import quaternion_of_yaw, wrap_angle
 
 # Scans waiting to be processed (100 s of a 10 Hz laser): a simulation run flat out may
 # outpace the mapper for a while, but not lose it scans; one this far behind drops the oldest.
@@ -66,7 +65,7 @@ def interpolate(before, after, stamp):
     (t0, p0), (t1, p1) = before, after
     f = 0.0 if t1 == t0 else (stamp - t0) / (t1 - t0)
     return (p0[0] + f * (p1[0] - p0[0]), p0[1] + f * (p1[1] - p0[1]),
-            wrap(p0[2] + f * wrap(p1[2] - p0[2])))
+            wrap_angle(p0[2] + f * wrap_angle(p1[2] - p0[2])))
 
 
 def _pose_of(transform):
@@ -92,7 +91,6 @@ class SlamNode(object):
         self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
         self.last_published = None
         self.cpu = 0.0
-        self.rejected = 0
         rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE)
         rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
 
@@ -190,16 +188,10 @@ class SlamNode(object):
         pose = self.mapper.add_scan(msg.ranges, angles, msg.range_min, msg.range_max, odom)
         self.cpu += time.process_time() - started
         if pose is None:
-            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still to start '
-                                   'the map')
+            rospy.loginfo_throttle(5.0, 'slam: waiting for the robot to stand still (or to '
+                                   'stop turning, after ~start_patience scans) to start the map')
             return
-        match = self.mapper.last_match
-        if match is not None and not match.ok:
-            self.rejected += 1
-            rospy.logdebug('slam: scan of %.3f s not drawn: its match is not trusted (%s)',
-                           msg.header.stamp.to_sec(), match.reason)
-            rospy.logwarn_throttle(5.0, 'slam: scan match not trusted (%s); odometry used, '
-                                   'scan not drawn', match.reason)
+        self._tell(msg.header.stamp.to_sec())
         try:
             self._send_transform(msg.header.stamp)
             if self.last_published is None or (msg.header.stamp - self.last_published).to_sec() \
@@ -209,6 +201,18 @@ class SlamNode(object):
             if not rospy.is_shutdown():
                 raise
             # A scan that came as the node shut down: rospy has closed the topics.
+
+    def _tell(self, stamp):
+        """What became of the scan of stamp: at debug level always; a match not trusted
+        and a relocation as a (throttled) warning, a loop closed at info level."""
+        decision = self.mapper.decision
+        rospy.logdebug('slam: scan of %.3f s: %s', stamp, decision)
+        if decision.startswith('match not trusted'):
+            rospy.logwarn_throttle(5.0, 'slam: %s; odometry used, scan not drawn' % decision)
+        elif decision.startswith('relocated'):
+            rospy.logwarn('slam: %s', decision)
+        elif decision.startswith('loop closed'):
+            rospy.loginfo('slam: %s', decision)
 
     def _send_transform(self, stamp):
         x, y, yaw = self.mapper.map_to_odom()
@@ -251,7 +255,9 @@ def main():
         return 1
     rospy.spin()
     if node.mapper.scans:
-        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, '
-                      '%.1f ms CPU per scan', node.mapper.scans, node.mapper.drawn,
-                      node.rejected, 1000.0 * node.cpu / node.mapper.scans)
+        counts = node.mapper.counts
+        rospy.loginfo('slam: %d scans, %d drawn into the map, %d matches not trusted, %d '
+                      'relocations, %d loops closed, %.1f ms CPU per scan', node.mapper.scans,
+                      node.mapper.drawn, counts['not trusted'], counts['relocated'],
+                      counts['loops closed'], 1000.0 * node.cpu / node.mapper.scans)
     return 0

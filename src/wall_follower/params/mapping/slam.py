@@ -52,7 +52,7 @@ MAPPER = (
         P('hit_logodds', 0.85, 'log-odds added to the cell a beam ends in', 0.0, 10.0),
         P('miss_logodds', -0.4, 'log-odds added to each cell a beam crosses', -10.0, 0.0),
         P('start_patience', 100, 'the map starts at the first scan taken at rest, or after this '
-          'many scans', 0, 100000),
+          'many scans at the first that did not turn', 0, 100000),
     )),
     Section('matching', (
         P('scan_matching', True, 'false: odometry alone places every scan (to compare)'),
@@ -60,15 +60,33 @@ MAPPER = (
           'mapped wall [m] ...', 0.01, 2.0),
         P('match_reach', 0.1, '... its last pass those this near; farther ones are not matched '
           '[m]', 0.01, 2.0),
-        P('search_window_linear', 0.15, "a match may move the robot this far from odometry's "
-          'prediction [m] ...', 0.0, 5.0),
-        P('search_window_angular', math.radians(10.0), '... and turn it this much [rad]; beyond '
-          'either, the prediction is kept (unless only the match explains the scan)', 0.0, math.pi),
+        P('search_window_linear', 0.15, "a match may move the robot at most this far from "
+          "odometry's prediction [m] ...", 0.0, 5.0),
+        P('search_window_angular', math.radians(10.0), '... and turn it at most this much '
+          '[rad]; beyond either, the prediction is kept (unless it no longer fits the scan and '
+          'the match is certain)', 0.0, math.pi),
+        P('odom_drift', 0.05, "the share of its travel and turn the odometry may get wrong (one "
+          "standard deviation): the prediction's uncertainty grows by it", 0.001, 1.0),
+        P('match_gate', 3.0, "a match may correct the odometry's prediction by at most this "
+          'many standard deviations of the two together; beyond, the prediction is kept and '
+          'the scan not drawn', 0.5, 100.0),
         P('match_join_gap', 0.1, 'the hits of neighbouring beams this close are joined by a '
           'wall in the fine grid scans are matched against; 0: never [m]', 0.0, 1.0),
         P('match_min_explained', 0.8, 'a match is trusted only if this share of the scan '
           "points on the map's seen part lie within match_reach of a wall; a scan not trusted "
           'is not drawn', 0.0, 1.0),
+        P('match_max_misfit', 0.02, '... and those lie this near it (RMS) [m]', 0.001, 1.0),
+        P('match_max_sigma', 0.02, "a scan is drawn only where the pose (match and odometry's "
+          'prediction together) is this certain along its worst direction (one standard '
+          'deviation, a heading as the shift it makes 1 m away) [m]', 0.0001, 1.0),
+    )),
+    Section('loop closure', (
+        P('loop_closure', True, 'close loops: back where it has been, tie the scan to the '
+          'early ones, relax the pose graph and redraw the map'),
+        P('loop_min_travel', 3.0, 'a loop is closed with scans at least this much travel '
+          'before [m] ...', 0.1, 1000.0),
+        P('loop_radius', 0.5, '... that lie within this distance of the robot [m]', 0.05,
+          10.0),
     )),
 )
 """The mapper's parameters (wall_follower.mapping.slam.Mapper)."""
