@@ -48,7 +48,7 @@ def cast_rays(edges, x, y, angles):
     return t.min(axis=1) if t.shape[1] else np.full(len(angles), np.inf)
 
 
-def _point_segment_distance(p, a, b):
+def point_segment_distance(p, a, b):
     """Distances (N, M) from points p (N, 2) to segments a->b (M, 2)."""
     ab = b - a
     ap = p[:, None, :] - a[None, :, :]
@@ -84,5 +84,5 @@ def polygon_clearance(polygon, edges):
     a1, b1 = polygon, np.roll(polygon, -1, axis=0)
     if _segments_cross(a1, b1, a2, b2).any() or _inside_convex(a2, polygon).any():
         return 0.0
-    return float(min(_point_segment_distance(polygon, a2, b2).min(),
-                     _point_segment_distance(edges.reshape(-1, 2), a1, b1).min()))
+    return float(min(point_segment_distance(polygon, a2, b2).min(),
+                     point_segment_distance(edges.reshape(-1, 2), a1, b1).min()))

@@ -17,7 +17,7 @@ from collections import namedtuple
 import numpy as np
 
 from wall_follower.evaluation.scoring.course import CourseMap
-from wall_follower.evaluation.scoring.geometry import _point_segment_distance, cast_rays
+from wall_follower.evaluation.scoring.geometry import point_segment_distance, cast_rays
 from wall_follower.rotation import wrap_angle
 
 __all__ = ['MapQuality', 'map_quality']
@@ -88,7 +88,7 @@ def _worst_distance(saved_map, occupied, edges, start_pose):
     centres = np.column_stack((saved_map.origin[0] + (cols + 0.5) * res,
                                saved_map.origin[1] + (rows + 0.5) * res))
     a, b = _to_map(edges[:, 0], start_pose), _to_map(edges[:, 1], start_pose)
-    return max(float(_point_segment_distance(centres[i:i + _CHUNK], a, b).min(axis=1).max())
+    return max(float(point_segment_distance(centres[i:i + _CHUNK], a, b).min(axis=1).max())
                for i in range(0, len(centres), _CHUNK))
 
 
