@@ -17,7 +17,7 @@ from collections import namedtuple
 import numpy as np
 
 from wall_follower.evaluation.scoring.course import CourseMap
-from wall_follower.evaluation.scoring.geometry import point_segment_distance, cast_rays
+from wall_follower.evaluation.scoring.geometry import cast_rays, point_segment_distance
 from wall_follower.rotation import wrap_angle
 
 __all__ = ['MapQuality', 'map_quality']
