@@ -1,6 +1,6 @@
 """Parameters shared by the nodes that read odometry: what counts as a jump.
 
-See wall_follower.control.odom_check.
+See wall_follower.control.course.odom_check.
 """
 from wall_follower.params import Parameter as P, Section
 

@@ -29,7 +29,7 @@ RECORDING = (
     )),
     odometry.JUMPS,
 )
-"""How a recording is kept (wall_follower.control.lap.LapRecorder): when a lap counts as
+"""How a recording is kept (wall_follower.control.course.lap.LapRecorder): when a lap counts as
 closed (LapDetector) and what is a jump, not counted as travel (JumpDetector). From the next
 goal too."""
 

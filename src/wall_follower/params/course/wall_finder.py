@@ -57,7 +57,7 @@ FINDER = (
         P('max_reacquire', 3, 'choices again before giving up', 0, 100),
     )),
 )
-"""The finder's parameters (wall_follower.control.finder.WallFinder); its speed limits are
+"""The finder's parameters (wall_follower.control.course.finder.WallFinder); its speed limits are
 the clamp's."""
 
 TABLE = NODE + FINDER

@@ -137,6 +137,6 @@ FOLLOWER = (
           '[m/s]', 0.0, 0.19),
     )),
 )
-"""The follower's parameters (wall_follower.control.follower.FollowerParams)."""
+"""The follower's parameters (wall_follower.control.following.follower.FollowerParams)."""
 
 TABLE = NODE + FOLLOWER
