@@ -17,7 +17,7 @@ odometry frame and the drive loop's half width ahead. Each frame:
    line's path and vision.line_pursuit steers the base along it. `pixel_p`:
    the lab's slice centroid steers (vision.pixel_p).
 
-The parameters are the node's (params.line_follower's TABLE: name -> value).
+The parameters are the node's (params.camera.line_follower's TABLE: name -> value).
 """
 from collections import namedtuple
 

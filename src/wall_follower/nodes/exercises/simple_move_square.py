@@ -8,7 +8,7 @@ sector ahead that it cannot see, even here where the laser does not steer.
 Each scan is answered from the odometry of the same moment, waited for
 briefly when it has not come yet (in lockstep simulation the scan may come
 first), and the robot stands while odometry lags the scan by more than
-~odom_timeout, while it cannot be trusted (control.odom_check: not finite,
+~odom_timeout, while it cannot be trusted (control.course.odom_check: not finite,
 no unit quaternion; control.stamps: stamped far ahead), and for good once
 it has jumped further than ~max_speed allows or its time went back: the
 square was laid out in a frame that no longer holds. Its parameters

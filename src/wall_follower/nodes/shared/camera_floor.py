@@ -2,7 +2,7 @@
 
 Nothing about the camera is assumed: its size and focal lengths come
 from camera_info, its height and tilt from the tf of the frame named in
-each image's header, in the floor frame (params.line_follower's
+each image's header, in the floor frame (params.camera.line_follower's
 floor_frame), read in the convention frame_convention names
 (vision.floor). The robot's pose at the frame's time comes from the tf of
 the floor frame in the odometry frame.
