@@ -95,7 +95,8 @@ PIXEL_P = (
           '[rad/s per px]', 0.0, 1.0),
     )),
 )
-"""The lab's baseline (vision.pixel_p.PixelP), on the lab's slice (params.camera.line_mask.SLICE)."""
+"""The lab's baseline (vision.pixel_p.PixelP), on the lab's slice
+(params.camera.line_mask.SLICE)."""
 
 RULES = HSV_RULES
 
