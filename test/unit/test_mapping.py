@@ -265,3 +265,23 @@ def test_a_true_map_scores_full_and_a_shifted_one_does_not(tmp_path):
     save_map(name, np.roll(data, (3, 3), axis=(0, 1)), 0.05, origin)   # 15 cm off in x and y
     shifted = map_quality(load_map(name + '.yaml'), ROOM, (-0.8, -0.95, 0.0), path, 3.5)
     assert shifted.precision < 0.6 and shifted.recall < 0.1
+
+
+def test_a_wall_seen_at_a_slant_after_head_on_stays_a_wall():
+    # The top wall at y = 1.21 lies a centimetre into its cells (the map's cells start at
+    # multiples of 0.05 m): seen head on, then twelve times from near the room's ends, at
+    # 85 degrees from its normal, beams 0.6 m apart on it. Each beam crossed the wall's
+    # cells on its way to its end and cleared them, and the wall came out with gaps
+    # (issue 41, a generated room).
+    half = (3.0, 1.21)
+    poses = [(0.0, 0.9, 0.0)] + [(x, y, 0.0) for x in (-2.8, -2.7, 2.7, 2.8)
+                                 for y in (0.95, 1.0, 1.05)]
+    mapper = Mapper(scan_matching=False, linear_update=0.0, start_patience=0)
+    for pose in poses:
+        ranges, angles = _room_scan(pose, half=half)
+        mapper.add_scan(ranges, angles, 0.12, 3.5, pose)
+    assert mapper.drawn == len(poses)
+    xs = np.arange(-0.3, 0.3, mapper.grid.resolution) + 0.025
+    rows, cols, _ = mapper.grid.cells(np.column_stack((xs, np.full(len(xs), half[1]))))
+    occupancy = mapper.grid.occupancy()[rows, cols]
+    assert (occupancy > 50).all(), occupancy

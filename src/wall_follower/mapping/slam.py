@@ -53,7 +53,7 @@ import numpy as np
 from wall_follower.params import checked
 from wall_follower.params.mapping.slam import GRID, MAPPER, RULES
 
-from .grid import LogOddsGrid
+from .grid import LogOddsGrid, spared
 from .keyframes import REDRAW, Keyframes
 from .matcher import DistanceField, ScanMatcher
 from .poses import between, compose, inverse
@@ -74,6 +74,9 @@ FINE_STEP = 1.0
 # What became of a scan: its pose trusted (drawn when due), not (the pose predicted or
 # hardly sure, not drawn), or moved by a relocation (not drawn).
 TRUSTED, NOT_TRUSTED, RELOCATED = 'trusted', 'not trusted', 'relocated'
+# The published map's beams at a slant stop clearing at most this far short of their end
+# [m] (grid.spared): at 87 degrees from a wall's normal, a cell of 5 cm across it.
+SPARE_MOST = 1.0
 # Scans in a row that must be trusted after a relocation before one is drawn again.
 SETTLE = 3
 # While the prediction does not fit, a relocation is tried at most every this many scans.
@@ -327,7 +330,8 @@ class Mapper(object):
         ends = _transform(pose, base_ends)
         coarse, fine = grids or (self.grid, self.fine)
         if coarse is not None:
-            coarse.integrate(origin, ends, hit)
+            coarse.integrate(origin, ends, hit,
+                             spared(origin, ends, hit, coarse.resolution, SPARE_MOST))
         drawn = fine.integrate(origin, ends, hit)
         fine.mark_hits(joined_walls(ends, hit, self.config['match_join_gap'],
                                     fine.resolution / 2.0), skip=drawn)
