@@ -37,7 +37,6 @@ import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
 from std_msgs.msg import Bool
-from std_srvs.srv import Empty
 
 from actionlib_msgs.msg import GoalStatus
 
@@ -46,8 +45,10 @@ from wall_follower.evaluation.grading.service_calls import PortWatch, connected_
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
 from wall_follower.nodes.evaluation.course_report import course_figures
-from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, Graph, SolutionGone,
-                                                   solution_running, write_record)
+from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATOR, SERVICE_WAIT,
+                                                   Graph, SolutionGone, call_simulator,
+                                                   grader_failed, solution_running,
+                                                   wait_for_simulator, write_record)
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
@@ -61,8 +62,6 @@ POLL = 0.1
 CALL_POLL = 0.01
 # The find_wall calls a record keeps.
 CALLS_KEPT = 10
-# Wall seconds for ground truth to connect (the simulator is started first).
-SIMULATOR_LIMIT = 60.0
 # The robot "moved before the lap" when the lap began this far from the start [m, rad].
 MOVED = (0.05, math.radians(10.0))
 # The longest stretches out of band a record keeps.
@@ -70,16 +69,6 @@ OUT_OF_BAND_KEPT = 3
 STATUS_NAMES = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted',
                 GoalStatus.PREEMPTED: 'preempted', GoalStatus.REJECTED: 'rejected',
                 GoalStatus.RECALLED: 'recalled', GoalStatus.LOST: 'lost'}
-
-
-def wait_for_simulator(monitor, limit):
-    """Until ground truth is connected; False after limit wall seconds or on shutdown."""
-    deadline = time.monotonic() + limit
-    while not monitor.connected(('base_pose_ground_truth',)):
-        if rospy.is_shutdown() or time.monotonic() > deadline:
-            return False
-        time.sleep(0.05)
-    return True
 
 
 class RunClock(object):
@@ -231,10 +220,7 @@ def freeze(monitor):
     Scoring a long run takes seconds, in which a world in lockstep would
     go on for minutes of simulated time, and a result could still come.
     """
-    try:
-        rospy.ServiceProxy('pause_physics', Empty)()
-    except (rospy.ServiceException, rospy.ROSException):
-        rospy.loginfo('grade_case: no pause_physics service: the world runs on')
+    call_simulator('pause_physics')
     monitor.close()
 
 
@@ -300,13 +286,6 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
     }
 
 
-def grader_failed(params, reason):
-    """End a run that the grader itself could not hold: log it, and record it as such."""
-    rospy.logerr('grade_case: %s', reason)
-    write_record(params['json'], {'world': params['world'], 'grader_error': reason})
-    return 1
-
-
 def main():
     init_node('grade_case')
     params = NodeParameters(TABLE).snapshot()
@@ -317,14 +296,9 @@ def main():
     monitor = CourseMonitor(course_map, start_on_goal=True, action_ns=params['action_ns'])
     clock = RunClock()
     graph = Graph(params['action_ns'])
-    if not wait_for_simulator(monitor, SIMULATOR_LIMIT):
-        return grader_failed(params, 'no ground truth from the simulator (it did not start '
-                             'within %.0f wall s, or ended: see the case log)' % SIMULATOR_LIMIT)
-    try:
-        rospy.wait_for_service('unpause_physics', timeout=10.0)
-        rospy.ServiceProxy('unpause_physics', Empty)()
-    except rospy.ROSException:
-        rospy.loginfo('grade_case: no unpause_physics service: the simulator was not paused')
+    if not wait_for_simulator(lambda: monitor.connected(('base_pose_ground_truth',))):
+        return grader_failed(params, NO_SIMULATOR)
+    call_simulator('unpause_physics', wait=SERVICE_WAIT)
     start = rospy.get_time()
     while monitor.pose is None and not rospy.is_shutdown():
         time.sleep(0.01)

@@ -29,7 +29,6 @@ import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
-from std_srvs.srv import Empty
 
 from wall_follower.evaluation.grading.line_criteria import END_DISTANCE
 from wall_follower.evaluation.grading.line_record import (Commands, first_motion, lap_index,
@@ -38,8 +37,10 @@ from wall_follower.evaluation.pictures.line_plot import plot_line_run
 from wall_follower.evaluation.scoring.line_track import (CourseError, centreline_of, course_path,
                                                          read_course)
 from wall_follower.evaluation.worlds.line_courses import describe_camera, camera_from_keys
-from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, Graph, SolutionGone,
-                                                   solution_running, write_record)
+from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATOR, SERVICE_WAIT,
+                                                   Graph, SolutionGone, call_simulator,
+                                                   grader_failed, solution_running,
+                                                   wait_for_simulator, write_record)
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
@@ -47,8 +48,6 @@ from wall_follower.params.evaluation.line_case import TABLE
 
 # Wall seconds between looks at the run.
 POLL = 0.2
-# Wall seconds for ground truth to connect (the simulator is started first).
-SIMULATOR_LIMIT = 60.0
 QUEUE = 1000
 
 
@@ -141,26 +140,6 @@ def watch(centreline, run, graph, params, start):
     return 'shut down'
 
 
-def _service(name, wait=None):
-    """Call a std_srvs/Empty service of the simulator; False when there is none."""
-    try:
-        if wait:
-            rospy.wait_for_service(name, timeout=wait)
-        rospy.ServiceProxy(name, Empty)()
-    except (rospy.ServiceException, rospy.ROSException):
-        rospy.loginfo('line_case: no %s service', name)
-        return False
-    return True
-
-
-def grader_failed(params, reason):
-    """End a run that the grader itself could not hold: log it, and record it as such."""
-    rospy.logerr('line_case: %s', reason)
-    write_record(params['json'], {'task': 'line', 'world': params['world'],
-                                  'grader_error': reason})
-    return 1
-
-
 def main():
     init_node('line_case')
     params = NodeParameters(TABLE).snapshot()
@@ -169,21 +148,16 @@ def main():
         course = read_course(course_file)
         centreline = centreline_of(course, course_file)
     except CourseError as err:
-        return grader_failed(params, 'cannot read the course: %s' % err)
+        return grader_failed(params, 'cannot read the course: %s' % err, task='line')
     run = Run()
     # The course's view of the graph; of it only the solution's nodes are looked at here.
     graph = Graph('record_odom')
-    deadline = time.monotonic() + SIMULATOR_LIMIT
-    while not run.connected():
-        if rospy.is_shutdown() or time.monotonic() > deadline:
-            return grader_failed(params, 'no ground truth from the simulator (it did not start '
-                                 'within %.0f wall s, or ended: see the case log)'
-                                 % SIMULATOR_LIMIT)
-        time.sleep(0.05)
-    _service('unpause_physics', wait=10.0)
+    if not wait_for_simulator(run.connected):
+        return grader_failed(params, NO_SIMULATOR, task='line')
+    call_simulator('unpause_physics', wait=SERVICE_WAIT)
     start = rospy.get_time()
     end_reason = watch(centreline, run, graph, params, start)
-    _service('pause_physics')
+    call_simulator('pause_physics')
     run.close()
     poses = run.trail()
     rospy.loginfo('line_case: run ended: %s', end_reason)

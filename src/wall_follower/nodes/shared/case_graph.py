@@ -11,6 +11,7 @@ import time
 
 import rosgraph
 import rospy
+from std_srvs.srv import Empty
 
 from wall_follower.evaluation.grading.commands import non_finite_text
 from wall_follower.nodes.shared.course_monitor import node_alive
@@ -19,6 +20,12 @@ from wall_follower.nodes.shared.course_monitor import node_alive
 # includes: the simulator, the world's map and the robot's model for rviz), not of the
 # solution.
 OWN_NODES = ('/simulator', '/world_map', '/robot_state_publisher', '/rosout')
+# Wall seconds for ground truth to connect (the simulator is started first).
+SIMULATOR_LIMIT = 60.0
+NO_SIMULATOR = ('no ground truth from the simulator (it did not start within %.0f wall s, or '
+                'ended: see the case log)' % SIMULATOR_LIMIT)
+# Wall seconds for the simulator's unpause_physics service.
+SERVICE_WAIT = 10.0
 # Wall seconds between looks at the graph.
 GRAPH_POLL = 1.0
 GONE = 'none of the solution\'s nodes is running (it crashed or ended)'
@@ -84,6 +91,39 @@ class SolutionGone(object):
         elif self._gone_since is None:
             self._gone_since = now
         return self._gone_since is not None and now - self._gone_since > self._gone_limit
+
+
+def wait_for_simulator(connected, limit=SIMULATOR_LIMIT):
+    """Until connected() says ground truth is heard; False after limit wall seconds or on
+    shutdown."""
+    deadline = time.monotonic() + limit
+    while not connected():
+        if rospy.is_shutdown() or time.monotonic() > deadline:
+            return False
+        time.sleep(0.05)
+    return True
+
+
+def call_simulator(name, wait=None):
+    """Call the simulator's std_srvs/Empty service name (unpause_physics, pause_physics),
+    waiting up to wait wall seconds for it; False, said in the log, when there is none
+    (a simulator that was never paused, or one that has ended)."""
+    try:
+        if wait:
+            rospy.wait_for_service(name, timeout=wait)
+        rospy.ServiceProxy(name, Empty)()
+    except (rospy.ServiceException, rospy.ROSException):
+        rospy.loginfo('%s: no %s service', rospy.get_name(), name)
+        return False
+    return True
+
+
+def grader_failed(params, reason, **record):
+    """End a run that the grader itself could not hold: log it, and record it as such (with
+    the task's own keys of record)."""
+    rospy.logerr('%s: %s', rospy.get_name(), reason)
+    write_record(params['json'], dict(record, world=params['world'], grader_error=reason))
+    return 1
 
 
 def _json_safe(value):
