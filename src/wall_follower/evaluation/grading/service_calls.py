@@ -80,16 +80,13 @@ class CallWatch(object):
     def look(self, time, peers, pose):
         """What a poll saw at time: the peers connected to the service's port, the robot
         at pose."""
-        for peer in set(peers) - set(self._open):
-            self._open[peer] = {'start': time, 'start_pose': pose}
         for peer in set(self._open) - set(peers):
             call = self._open.pop(peer)
             call.update(end=time, end_pose=pose)
-            call.setdefault('last_open', call['start'])
-            call.setdefault('last_open_pose', call['start_pose'])
             self.calls.append(call)
-        for peer in self._open:
-            self._open[peer].update(last_open=time, last_open_pose=pose)
+        for peer in peers:
+            call = self._open.setdefault(peer, {'start': time, 'start_pose': pose})
+            call.update(last_open=time, last_open_pose=pose)
 
     def judged(self):
         """The call to judge find_wall by: the first that lasted (see LASTING), else the
