@@ -397,6 +397,17 @@ def test_a_call_is_a_connection_that_came_and_went_and_the_first_that_lasted_is_
     assert (watch.judged()['last_open'], watch.judged()['last_open_pose']) == (2.0, 'd')
 
 
+def test_a_probe_whose_closing_poll_came_late_is_not_taken_for_the_call():
+    # rospy.wait_for_service's probe was seen by one poll; the next came 0.1 s later (a
+    # loaded machine), then the real call ran from 3.6 to 16.3.
+    watch = CallWatch()
+    for time, peers, pose in ((3.5, {'probe'}, 'a'), (3.6, {'call'}, 'b'), (9.0, {'call'}, 'c'),
+                              (16.3, set(), 'd')):
+        watch.look(time, peers, pose)
+    assert [(c['start'], c['end']) for c in watch.calls] == [(3.5, 3.6), (3.6, 16.3)]
+    assert (watch.judged()['start'], watch.judged()['end_pose']) == (3.6, 'd')
+
+
 def test_a_reply_seen_late_is_judged_where_the_robot_stood_before_it_drove_away():
     # Polled at 20.0 with the call open, the robot parallel to its wall; the next poll came
     # late, at 21.7, after the solution had turned 35 deg away from it.

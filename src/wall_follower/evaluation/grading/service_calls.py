@@ -89,9 +89,15 @@ class CallWatch(object):
             call.update(last_open=time, last_open_pose=pose)
 
     def judged(self):
-        """The call to judge find_wall by: the first that lasted (see LASTING), else the
-        longest; None when no call ended."""
-        lasting = [c for c in self.calls if c['end'] - c['start'] >= LASTING]
+        """The call to judge find_wall by: the first seen open for LASTING, else the longest;
+        None when no call ended.
+
+        Whether a call lasted is told by the polls that saw it open
+        ('start' to 'last_open'), not by the one that found it closed: a
+        probe seen by one poll would last as long as the gap to the next,
+        which under load may pass LASTING.
+        """
+        lasting = [c for c in self.calls if c['last_open'] - c['start'] >= LASTING]
         if lasting:
             return lasting[0]
         return max(self.calls, key=lambda c: c['end'] - c['start']) if self.calls else None
