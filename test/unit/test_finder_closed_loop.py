@@ -13,12 +13,14 @@ from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
-WORLD = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'obstacles.world')
+WORLDS = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds')
+WORLD = os.path.join(WORLDS, 'obstacles.world')
 LASER_X = -0.032  # the Burger of worlds/burger.inc
 TIME_LIMIT = 20.0
 WALL_DISTANCE = defaults(FINDER)['wall_distance']
@@ -35,9 +37,9 @@ POSES = {
 }
 
 
-def find_wall(pose, profile):
+def find_wall(pose, profile, world=WORLD):
     """Run one search; returns (finder, seconds, final true pose, stalled, commands)."""
-    sim = Simulation(load_world(WORLD), laser_profile=profile, seed=3, poses={0: pose})
+    sim = Simulation(load_world(world), laser_profile=profile, seed=3, poses={0: pose})
     finder = WallFinder(laser_x=LASER_X)
     finder.start()
     stalled, commands = False, []
@@ -93,4 +95,20 @@ def test_a_second_call_from_where_the_first_ended_answers_at_once(course_map, st
     # outside the tolerance.
     assert elapsed <= 1.0
     assert course_map.right_wall_distance(second_pose) == pytest.approx(WALL_DISTANCE, abs=0.015)
+    assert not stalled
+
+
+def test_among_slanted_walls_and_islands_it_first_drives_to_where_a_wall_is_seen_across(tmp_path):
+    # Generated world 7 of seed 3: from its start, beside a slanted bar, every
+    # wall in sight has the point straight across from the robot round its
+    # end or behind something; the search once failed there at once ("no
+    # wall in range"), and the grader's lap never began.
+    world = world_generator.generate(3, 7)
+    path = world_generator.write_world(world, str(tmp_path), os.path.join(WORLDS, 'burger.inc'),
+                                       3, 7)
+    finder, elapsed, pose, stalled, _ = find_wall(world.start, 'stage', path)
+    assert finder.success, finder.failure_reason
+    course = CourseMap(path)
+    assert course.right_wall_distance(pose) == pytest.approx(WALL_DISTANCE, abs=0.015)
+    assert abs(math.degrees(course.right_wall_alignment(pose)[1])) <= 3.0
     assert not stalled

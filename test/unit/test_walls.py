@@ -6,7 +6,8 @@ import pytest
 
 from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
 from wall_follower.control.sensing.scan import ScanView
-from wall_follower.control.sensing.walls import closest_match, extract_walls, path_is_clear, refine
+from wall_follower.control.sensing.walls import (
+    closest_match, extract_walls, nearest_seen_point, path_is_clear, path_to_is_clear, refine)
 
 ROOM = box(-2.0, -1.5, 2.0, 1.5)
 
@@ -72,6 +73,28 @@ def test_path_to_a_wall_is_blocked_by_a_box_in_the_way():
     top = [w for w in extract_walls(view, min_length=0.5) if abs(degrees(w) - 90.0) < 2.0]
     assert not any(path_is_clear(view, w, 0.15) for w in bottom)
     assert path_is_clear(view, top[0], 0.15)
+
+
+def test_a_wall_seen_only_round_its_end_is_reached_at_its_nearest_seen_point():
+    # A bar ahead on the left: the point of its near side straight across
+    # from the laser, (0, 0.5), lies beyond the bar's end at x = 0.5.
+    bar = box(0.5, 0.5, 2.5, 0.6)
+    view = scan_view(bar, (0.0, 0.0, 0.0), STAGE)
+    side = [w for w in extract_walls(view, min_length=0.5) if abs(degrees(w) - 90.0) < 2.0][0]
+    assert not side.foot_inside()
+    # Within a Stage grid cell (the STAGE laser reads long by up to one).
+    assert nearest_seen_point(side, 0.2) == pytest.approx((0.7, 0.5), abs=0.02)
+    target = nearest_seen_point(side, 0.2)
+    # The bar's own near end lies along the way there, and is not in it.
+    assert not path_to_is_clear(view, target, 0.15)
+    assert path_to_is_clear(view, target, 0.15, wall=side)
+    blocked = scan_view(bar + box(0.3, 0.2, 0.4, 0.3), (0.0, 0.0, 0.0), STAGE)
+    assert not path_to_is_clear(blocked, target, 0.15, wall=side)
+
+
+def test_the_nearest_seen_point_of_a_wall_seen_across_is_its_foot():
+    wall = extract_walls(scan_view(ROOM, (0.5, 0.3, 0.0), STAGE), min_length=0.5)[0]
+    assert nearest_seen_point(wall, 0.2) == pytest.approx((0.0, 1.2), abs=0.01)
 
 
 def test_closest_match_keeps_the_same_wall_and_ignores_the_next_one():

@@ -5,9 +5,10 @@ be driven by unit tests, by the simulator in a closed loop, or by the
 find_wall service node alike:
 
     IDLE -> start() -> CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
-                           |    +-> ALIGN (already beside the wall)
-                           |    +-> DONE (already in place: parallel at wall_distance)
-                           +-> FAILED (no wall in range, or the wall kept getting lost)
+                        |  |    +-> ALIGN (already beside the wall)
+                        |  |    +-> DONE (already in place: parallel at wall_distance)
+                        |  +-> FAILED (no wall in range, or the wall kept getting lost)
+                        +-> NEARER -> CHOOSE_WALL (no wall seen straight across from here)
     (a chosen wall lost from sight for a while: back to CHOOSE_WALL)
 
 Every state re-measures the chosen wall on every scan (closed loop): the
@@ -19,7 +20,8 @@ import math
 
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.walls import closest_match, extract_walls, path_is_clear, refine
+from wall_follower.control.sensing.walls import (
+    closest_match, extract_walls, nearest_seen_point, path_is_clear, path_to_is_clear, refine)
 from wall_follower.params import checked
 from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.rotation import wrap_angle
@@ -28,6 +30,7 @@ CHOOSE_WALL = 'CHOOSE_WALL'
 ROTATE_TO_WALL = 'ROTATE_TO_WALL'
 APPROACH = 'APPROACH'
 ALIGN = 'ALIGN'
+NEARER = 'NEARER'
 DONE = 'DONE'
 FAILED = 'FAILED'
 IDLE = 'IDLE'
@@ -87,6 +90,7 @@ class WallFinder(object):
             ROTATE_TO_WALL: self._rotate_to_wall,
             APPROACH: self._approach,
             ALIGN: self._align,
+            NEARER: self._nearer,
         }.get(self.state)
         command = handler(view) if handler is not None else STOP
         self._last = command
@@ -96,8 +100,8 @@ class WallFinder(object):
 
     def _choose_wall(self, view):
         p = self.params
-        walls = [wall for wall in extract_walls(view, min_length=p['min_wall_length'])
-                 if wall.foot_inside() and path_is_clear(view, wall, p['corridor_half_width'])]
+        seen = extract_walls(view, min_length=p['min_wall_length'])
+        walls = self._across(view, seen)
         in_place = [wall for wall in walls if self._in_place(wall)]
         if in_place:
             # Where a search ends: nothing to do, and turning to look for the
@@ -110,8 +114,7 @@ class WallFinder(object):
         # there is nothing better.
         walls = [wall for wall in walls if wall.foot_inside(p['end_margin'])] or walls
         if not walls:
-            return self._fail('no wall in range: no clear, straight run of hits at least '
-                              '%.2f m long in the scan' % p['min_wall_length'])
+            return self._go_nearer(view, seen)
         self.wall = walls[0]
         self._lost = 0
         if (abs(self._heading_error(RIGHT)) <= p['approach_heading']
@@ -120,6 +123,28 @@ class WallFinder(object):
             return self._start_align(view)
         self.state = ROTATE_TO_WALL
         return self._rotate_to_wall(view)
+
+    def _across(self, view, walls):
+        """The walls whose point straight across from the laser was seen, with nothing on
+        the way there."""
+        return [wall for wall in walls if wall.foot_inside()
+                and path_is_clear(view, wall, self.params['corridor_half_width'])]
+
+    def _go_nearer(self, view, walls):
+        """No wall is seen straight across (every one's nearest point lies round its end or
+        behind something, as among slanted walls and islands): drive towards the nearest
+        point seen of the nearest wall with a clear way there, until one is."""
+        p = self.params
+        reachable = [wall for wall in walls if path_to_is_clear(
+            view, nearest_seen_point(wall, p['end_margin']), p['corridor_half_width'], wall=wall)]
+        if not reachable:
+            return self._fail('no wall in range: no clear, straight run of hits at least '
+                              '%.2f m long in the scan' % p['min_wall_length'])
+        self.wall = min(reachable, key=lambda wall: math.hypot(
+            *nearest_seen_point(wall, p['end_margin'])))
+        self._lost = 0
+        self.state = NEARER
+        return self._nearer(view, tracked=True)
 
     def _rotate_to_wall(self, view):
         if not self._track(view):
@@ -144,10 +169,24 @@ class WallFinder(object):
         if abs(remaining) <= p['distance_tolerance'] / 2.0 or (
                 crossed and abs(remaining) <= p['distance_tolerance']):
             return self._start_align(view)
-        linear = _speed(remaining, p['max_linear'], p['linear_gain'], p['min_linear'])
-        # Driving while still turned away would reach the wall at an angle.
-        linear *= max(0.0, 1.0 - abs(heading_error) / p['approach_heading'])
-        return Command(linear, self._turn(heading_error))
+        return self._drive(remaining, heading_error)
+
+    def _nearer(self, view, tracked=False):
+        """Towards the nearest seen point of the chosen wall until some wall is seen straight
+        across, then choose again; at wall_distance from that point with none, give up."""
+        p = self.params
+        if not tracked:
+            if self._across(view, extract_walls(view, min_length=p['min_wall_length'])):
+                self.state = CHOOSE_WALL
+                return self._choose_wall(view)
+            if not self._track(view):
+                return self._on_lost()
+        target = nearest_seen_point(self.wall, p['end_margin'])
+        remaining = math.hypot(*target) - p['wall_distance']
+        if remaining <= p['distance_tolerance']:
+            return self._fail('no wall seen straight across even %.2f m from the nearest one'
+                              % p['wall_distance'])
+        return self._drive(remaining, math.atan2(target[1], target[0]))
 
     def _start_align(self, view):
         self.state = ALIGN
@@ -224,6 +263,14 @@ class WallFinder(object):
         turn still to make.
         """
         return float(wrap_angle(self.wall.angle - target))
+
+    def _drive(self, remaining, heading_error):
+        """Forward by remaining (m), slowing as it runs out, while turning heading_error (rad)
+        away: driving while still turned away would reach the wall at an angle."""
+        p = self.params
+        linear = _speed(remaining, p['max_linear'], p['linear_gain'], p['min_linear'])
+        linear *= max(0.0, 1.0 - abs(heading_error) / p['approach_heading'])
+        return Command(linear, self._turn(heading_error))
 
     def _turn(self, heading_error):
         """Turn rate that brings heading_error to the middle of the tolerance band."""

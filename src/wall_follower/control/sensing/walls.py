@@ -250,12 +250,44 @@ def path_is_clear(view, wall, half_width, margin=0.08):
     The corridor runs along the wall's normal, half_width to each side, and
     stops margin short of the wall so that the wall's own hits do not count.
     """
+    return path_to_is_clear(view, wall.distance * wall.normal, half_width, margin)
+
+
+def path_to_is_clear(view, target, half_width, margin=0.08, wall=None):
+    """True when no hit lies in the corridor from the laser to the point target (x, y).
+
+    The corridor is half_width to each side of the straight line there and
+    stops margin short of target. With the wall target lies on, hits within
+    margin of its line are its own and not in the way: a path that meets the
+    wall at a slant runs along its near end.
+    """
+    reach = math.hypot(*target)
+    if reach <= 0.0:
+        return True
+    unit = np.asarray(target, dtype=float) / reach
     points = view.points()
-    normal = wall.normal
-    along = points.dot(normal)
-    across = np.abs(points[:, 0] * normal[1] - points[:, 1] * normal[0])
-    blocking = (along > 0.0) & (along < wall.distance - margin) & (across < half_width)
+    along = points.dot(unit)
+    across = np.abs(points[:, 0] * unit[1] - points[:, 1] * unit[0])
+    blocking = (along > 0.0) & (along < reach - margin) & (across < half_width)
+    if wall is not None:
+        blocking &= np.abs(wall.line.offsets(points)) > margin
     return not blocking.any()
+
+
+def nearest_seen_point(wall, margin=0.0):
+    """(x, y) of the point of wall nearest the laser among those seen with margin of wall
+    on either side (the middle of a piece shorter than twice that).
+
+    Where the foot of the perpendicular was seen, that is the foot; where
+    it lies beyond the seen piece (round its end, or behind something),
+    the piece's end, pulled margin in.
+    """
+    low, high = wall.start + margin, wall.end - margin
+    if low > high:
+        low = high = 0.5 * (wall.start + wall.end)
+    along = min(max(wall.foot, low), high) - wall.foot
+    normal = np.asarray(wall.normal, dtype=float)
+    return wall.distance * normal + along * np.array((-normal[1], normal[0]))
 
 
 def closest_match(walls, reference, max_angle, max_distance):
