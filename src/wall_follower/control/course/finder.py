@@ -78,6 +78,7 @@ class WallFinder(object):
         self.wall = None
         self._last = STOP
         self._remaining = None
+        self._crossings = 0
         self._lost = 0
         self._reacquired = 0
         self._settled = 0
@@ -162,12 +163,18 @@ class WallFinder(object):
         heading_error = self._heading_error(0.0)
         remaining = self.wall.distance - (p['wall_distance'] - p['laser_x'])
         crossed = self._remaining is not None and remaining * self._remaining <= 0.0
+        jump = abs(remaining - self._remaining) if crossed else 0.0
         self._remaining = remaining
+        self._crossings += crossed
         # Aim for the middle of the tolerance band; but a coarse laser (Stage
         # measures in 2 cm steps) may jump right over the middle, and then
-        # having crossed the target inside the band has to do.
+        # having crossed the target inside the band has to do. Seen at a
+        # slant, a wall's reading may step by more than the whole band: once
+        # the target has been crossed back and forth, a reading on the side of
+        # it nearer than the other does.
         if abs(remaining) <= p['distance_tolerance'] / 2.0 or (
-                crossed and abs(remaining) <= p['distance_tolerance']):
+                crossed and abs(remaining) <= p['distance_tolerance']) or (
+                self._crossings >= 2 and abs(remaining) <= jump / 2.0):
             return self._start_align(view)
         return self._drive(remaining, heading_error)
 
