@@ -88,16 +88,21 @@ class InnerCorner(Manoeuvre):
         return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
 
     def done(self, obs):
-        """True once a straight wall is along the right again and no turn onto a wall across
-        the way is due yet.
+        """True once a straight wall is along the right again, not one the turn is leaving,
+        and no turn onto a wall across the way is due yet.
 
+        The wall the turn leaves swings away behind the right as the robot
+        turns (its angle goes negative): turning onto a short step, it is
+        the only long wall on the right for a while, and taken for the next
+        one it handed the turn to FOLLOW, which steered back at it, mid-turn.
         A wall farther across the way (the next one of a room whose walls
         meet at wide angles) is turned onto when it comes within reach, from
         FOLLOW: a turn held on until it was gone would carry the robot round
         off the wall it has just reached.
         """
         p = self.params
-        return obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and not self.due(obs)
+        return (obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and obs.wall.angle > -p.rejoin_behind
+                and not self.due(obs))
 
     def clear_of_lane_edges(self, obs):
         """True when nothing is nearer than front_turn_distance in the lane widened by

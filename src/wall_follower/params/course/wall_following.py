@@ -99,6 +99,9 @@ FOLLOWER = (
           'purpose), raise the distance gain for this long [s] ...', 0.0, 60.0),
         P('settle_gain', 1.5, '... by this factor, to come back out to target_distance sooner',
           0.0, 10.0),
+        P('rejoin_behind', math.radians(15.0), 'a left turn ends only on a wall turned at '
+          'most this far away on the right: the wall it leaves lies ever farther behind [rad]',
+          0.0, math.pi / 2),
         P('front_turn_distance', 0.38, 'anything nearer than this in the lane ahead starts the '
           'left turn [m]', 0.0, 5.0),
         P('front_clear_distance', 0.6, 'the left turn goes on while anything in the lane ahead '
