@@ -48,14 +48,19 @@ def cast_rays(edges, x, y, angles):
     return t.min(axis=1) if t.shape[1] else np.full(len(angles), np.inf)
 
 
+def segment_distance(p, a, b):
+    """Distances from points p (..., 2) to segments a->b (..., 2), broadcast against each
+    other."""
+    ab = b - a
+    length2 = np.maximum((ab ** 2).sum(axis=-1), 1e-18)
+    s = np.clip(((p - a) * ab).sum(axis=-1) / length2, 0.0, 1.0)
+    offset = p - a - s[..., None] * ab
+    return np.hypot(offset[..., 0], offset[..., 1])
+
+
 def point_segment_distance(p, a, b):
     """Distances (N, M) from points p (N, 2) to segments a->b (M, 2)."""
-    ab = b - a
-    ap = p[:, None, :] - a[None, :, :]
-    length2 = np.maximum((ab ** 2).sum(axis=-1), 1e-18)
-    s = np.clip((ap * ab[None]).sum(axis=-1) / length2, 0.0, 1.0)
-    closest = a[None] + s[..., None] * ab[None]
-    return np.hypot(*(p[:, None, :] - closest).transpose(2, 0, 1))
+    return segment_distance(p[:, None, :], a[None], b[None])
 
 
 def _segments_cross(a1, b1, a2, b2):

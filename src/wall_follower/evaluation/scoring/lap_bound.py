@@ -43,6 +43,7 @@ from scipy.sparse.linalg import splu
 from scipy.spatial import cKDTree
 
 from wall_follower.evaluation.scoring.course import BAND, TARGET, CourseMap, RunScore
+from wall_follower.evaluation.scoring.geometry import segment_distance
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.engine import Simulation
@@ -143,7 +144,8 @@ class WallDistance(object):
         for row_step in (-1, 0, 1):
             for col_step in (-1, 0, 1):
                 edge = owner[rows + row_step, cols + col_step]
-                distance = _segment_distance(points, self.edges[np.maximum(edge, 0)])
+                ends = self.edges[np.maximum(edge, 0)]
+                distance = segment_distance(points, ends[..., 0, :], ends[..., 1, :])
                 self.table = np.minimum(self.table, np.where(edge >= 0, distance, np.inf))
 
     def _cells(self, points):
@@ -165,15 +167,6 @@ class WallDistance(object):
         fc, fr, t00, t01, t10, t11 = self._cells(points)
         return np.stack(((t01 - t00) * (1 - fr) + (t11 - t10) * fr,
                          (t10 - t00) * (1 - fc) + (t11 - t01) * fc), axis=-1) / GRID
-
-
-def _segment_distance(points, edges):
-    """Distances of (..., 2) points to (..., 2, 2) segments, one each."""
-    start, along = edges[..., 0, :], edges[..., 1, :] - edges[..., 0, :]
-    share = ((points - start) * along).sum(axis=-1) / np.maximum((along ** 2).sum(axis=-1),
-                                                                 1e-18)
-    offset = points - start - np.clip(share, 0.0, 1.0)[..., None] * along
-    return np.hypot(offset[..., 0], offset[..., 1])
 
 
 def band_middle(walls, start, target=TARGET, step=WALK_STEP, longest=200.0):
