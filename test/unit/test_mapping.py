@@ -10,7 +10,7 @@ from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.mapfile import SavedMap, load_map, save_map
 from wall_follower.mapping.matcher import DistanceField
 from wall_follower.mapping.poses import between, compose, inverse
-from wall_follower.mapping.slam import Mapper, scan_points
+from wall_follower.mapping.slam import NOT_TRUSTED, TRUSTED, Mapper, scan_points
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 
@@ -97,10 +97,11 @@ def test_the_mapper_keeps_the_prediction_when_a_match_leaves_the_window():
     pose = mapper.add_scan(ranges, angles, 0.12, 3.5, (0.015, 0.0, 0.0))
     assert pose == (0.015, 0.0, 0.0) and mapper.drawn == 1
     assert 'from the prediction' in mapper.decision and mapper.counts['not trusted'] == 1
+    assert mapper.outcome == NOT_TRUSTED
     mapper.reconfigure(start_patience=0, search_window_linear=0.15)
     pose = mapper.add_scan(ranges, angles, 0.12, 3.5, (0.015, 0.0, 0.0))
     assert math.hypot(pose[0], pose[1]) < mapper.config['match_resolution']
-    assert mapper.decision == 'matched'
+    assert mapper.decision == 'matched' and mapper.outcome == TRUSTED
 
 
 def test_the_mapper_corrects_drifting_odometry_and_publishes_map_to_odom():

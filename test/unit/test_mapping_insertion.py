@@ -17,7 +17,8 @@ from wall_follower.evaluation.scoring.geometry import cast_rays
 from wall_follower.mapping.grid import LogOddsGrid
 from wall_follower.mapping.matcher import DistanceField, ScanMatcher
 from wall_follower.mapping.poses import between, compose
-from wall_follower.mapping.slam import SETTLE, Mapper, joined_walls, scan_points
+from wall_follower.mapping.slam import (NOT_TRUSTED, RELOCATED, SETTLE, Mapper, joined_walls,
+                                        scan_points)
 
 # The room's free space, counter-clockwise, and the pillar (centre, half side) [m].
 OCTAGON = [(-0.62, -1.5), (0.62, -1.5), (1.5, -0.62), (1.5, 0.62), (0.62, 1.5),
@@ -221,10 +222,11 @@ def test_after_a_slip_the_robot_is_relocated_and_scans_drawn_once_it_settles():
     for pose, odom_pose in zip(truth[:110], odom[:110]):
         drawn = mapper.drawn
         mapper.add_scan(_scan(pose), BEAMS, RANGE[0], RANGE[1], between(truth[0], odom_pose))
-        decisions.append((mapper.decision, mapper.drawn > drawn))
+        decisions.append((mapper.decision, mapper.drawn > drawn, mapper.outcome))
     assert decisions[100][0].startswith('relocated') and not decisions[100][1]
+    assert decisions[100][2] == RELOCATED
     # not drawn until SETTLE scans in a row are trusted
-    assert not any(drawn for _, drawn in decisions[100:101 + SETTLE])
+    assert not any(drawn for _, drawn, _ in decisions[100:101 + SETTLE])
     error = between(between(truth[0], truth[109]), mapper.pose)
     assert math.hypot(error[0], error[1]) < 0.01
 
@@ -241,7 +243,7 @@ def test_a_slip_no_fit_explains_leaves_the_robot_where_odometry_puts_it_drawing_
     predicted = compose(mapper.pose, between(odom[99], odom[100]))
     mapper.add_scan(_scan(truth[100]), BEAMS, RANGE[0], RANGE[1], between(truth[0], odom[100]))
     assert mapper.drawn == drawn and mapper.pose == pytest.approx(predicted)
-    assert mapper.decision.startswith('match not trusted')
+    assert mapper.decision.startswith('match not trusted') and mapper.outcome == NOT_TRUSTED
 
 
 def test_joined_walls_fill_the_gap_between_neighbouring_hits_on_one_surface_only():

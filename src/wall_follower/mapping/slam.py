@@ -72,8 +72,10 @@ START_TURN = math.radians(0.5)
 # The fine grid's beams are sampled a cell apart (see LogOddsGrid).
 FINE_STEP = 1.0
 # What became of a scan: its pose trusted (drawn when due), not (the pose predicted or
-# hardly sure, not drawn), or moved by a relocation (not drawn).
+# hardly sure, not drawn), or moved by a relocation (not drawn); or trusted, and it
+# closed a loop.
 TRUSTED, NOT_TRUSTED, RELOCATED = 'trusted', 'not trusted', 'relocated'
+LOOP_CLOSED = 'loop closed'
 # The published map's beams at a slant stop clearing at most this far short of their end
 # [m] (grid.spared): at 87 degrees from a wall's normal, a cell of 5 cm across it.
 SPARE_MOST = 1.0
@@ -135,7 +137,9 @@ class Mapper(object):
 
     Its parameters (keyword arguments; their defaults, ranges and meanings
     are the MAPPER table) are the defaults overridden by those given.
-    `decision` says what became of the last scan, `counts` of all of them.
+    `outcome` says what became of the last scan (TRUSTED, NOT_TRUSTED,
+    RELOCATED or LOOP_CLOSED), `decision` why, in words, and `counts` tells
+    of all of them.
     """
 
     def __init__(self, laser=(0.0, 0.0, 0.0), **params):
@@ -164,6 +168,7 @@ class Mapper(object):
         self.drawn = 0
         self.last_match = None
         self.decision = ''
+        self.outcome = None
         self.counts = {NOT_TRUSTED: 0, RELOCATED: 0, 'loops closed': 0}
         self._waiting = []        # odometry of the scans seen before the map started
 
@@ -231,6 +236,7 @@ class Mapper(object):
             else:
                 pose, verdict, self.decision = predicted, TRUSTED, 'placed by odometry'
         self.pose, self.odom = pose, odom_pose
+        self.outcome = verdict
         self.scans += 1
         if verdict != TRUSTED:
             self.counts[verdict] += 1
@@ -357,6 +363,7 @@ class Mapper(object):
                                                              match.pose),
                                              self.config['loop_min_travel'])
         self.counts['loops closed'] += 1
+        self.outcome = LOOP_CLOSED
         redraw = moved >= REDRAW[0] or turned >= REDRAW[1]
         self.decision = ('loop closed: %.1f cm, %.2f deg off; the graph relaxed (poses moved '
                          'up to %.1f cm, %.2f deg)%s'

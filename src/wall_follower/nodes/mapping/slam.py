@@ -44,7 +44,7 @@ from wall_follower.cfg import SlamConfig
 from wall_follower.control.course.odom_check import OdomCheck, odometry_problem
 from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
-from wall_follower.mapping.slam import Mapper
+from wall_follower.mapping.slam import LOOP_CLOSED, NOT_TRUSTED, RELOCATED, Mapper
 from wall_follower.nodes.shared.messages import pose_message, pose_of, yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
@@ -205,13 +205,13 @@ class SlamNode(object):
     def _tell(self, stamp):
         """What became of the scan of stamp: at debug level always; a match not trusted
         and a relocation as a (throttled) warning, a loop closed at info level."""
-        decision = self.mapper.decision
+        decision, outcome = self.mapper.decision, self.mapper.outcome
         rospy.logdebug('slam: scan of %.3f s: %s', stamp, decision)
-        if decision.startswith('match not trusted'):
+        if outcome == NOT_TRUSTED:
             rospy.logwarn_throttle(5.0, 'slam: %s; odometry used, scan not drawn' % decision)
-        elif decision.startswith('relocated'):
+        elif outcome == RELOCATED:
             rospy.logwarn('slam: %s', decision)
-        elif decision.startswith('loop closed'):
+        elif outcome == LOOP_CLOSED:
             rospy.loginfo('slam: %s', decision)
 
     def _send_transform(self, stamp):
