@@ -136,13 +136,13 @@ class WallFinder(object):
         behind something, as among slanted walls and islands): drive towards the nearest
         point seen of the nearest wall with a clear way there, until one is."""
         p = self.params
-        reachable = [wall for wall in walls if path_to_is_clear(
-            view, nearest_seen_point(wall, p['end_margin']), p['corridor_half_width'], wall=wall)]
+        targets = [(wall, nearest_seen_point(wall, p['end_margin'])) for wall in walls]
+        reachable = [(wall, target) for wall, target in targets
+                     if path_to_is_clear(view, target, p['corridor_half_width'], wall=wall)]
         if not reachable:
             return self._fail('no wall in range: no clear, straight run of hits at least '
                               '%.2f m long in the scan' % p['min_wall_length'])
-        self.wall = min(reachable, key=lambda wall: math.hypot(
-            *nearest_seen_point(wall, p['end_margin'])))
+        self.wall = min(reachable, key=lambda pair: math.hypot(*pair[1]))[0]
         self._lost = 0
         self.state = NEARER
         return self._nearer(view, tracked=True)
