@@ -24,6 +24,8 @@ import tempfile
 import time
 import uuid
 
+import rospkg
+
 from wall_follower.sim.laser_profiles import PROFILES
 from wall_follower.sim.stage_interface import world_path
 
@@ -80,6 +82,15 @@ def master_environment(port, base=None):
     """base (the environment by default) with ROS_MASTER_URI on localhost:port."""
     return dict(os.environ if base is None else base,
                 ROS_MASTER_URI='http://localhost:%d' % port)
+
+
+def package_installed(name):
+    """True when the ROS package name is on the package path (stage_ros, gmapping, ...)."""
+    try:
+        rospkg.RosPack().get_path(name)
+    except rospkg.ResourceNotFound:
+        return False
+    return True
 
 
 def display_wrapper():

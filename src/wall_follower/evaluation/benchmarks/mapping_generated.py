@@ -20,9 +20,7 @@ import random
 import shutil
 import tempfile
 
-import rospkg
-
-from wall_follower.evaluation.launching import run_rostest
+from wall_follower.evaluation.launching import package_installed, run_rostest
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.evaluation.worlds import generator as world_generator
 
@@ -64,14 +62,6 @@ def write_odom_world(seed, index, directory, robot_include):
     return path, error
 
 
-def _gmapping_installed():
-    try:
-        rospkg.RosPack().get_path('gmapping')
-    except rospkg.ResourceNotFound:
-        return False
-    return True
-
-
 def gmapping_lap(path):
     """mapping.test with gmapping in the world at path (NAME_odom.world); its figures or None."""
     return run_rostest('mapping.test', {
@@ -105,7 +95,7 @@ def run(count, seed, out, robot_include, map_a_lap):
     """Map count generated rooms of seed (their worlds and maps kept in out, or a
     temporary folder); prints the table. map_a_lap: benchmarks.mapping's."""
     directory = out or tempfile.mkdtemp(prefix='benchmark-mapping-')
-    gmapping = _gmapping_installed()
+    gmapping = package_installed('gmapping')
     rows, misses, cpu, scans = [], [], 0.0, 0
     for index in range(count):
         path, error = write_odom_world(seed, index, directory, robot_include)

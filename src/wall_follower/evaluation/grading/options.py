@@ -34,10 +34,9 @@ import tempfile
 import uuid
 
 import rosgraph.names
-import rospkg
 
 from wall_follower.evaluation.grading import launch_check
-from wall_follower.evaluation.launching import ProcessGroup, display_wrapper
+from wall_follower.evaluation.launching import ProcessGroup, display_wrapper, package_installed
 from wall_follower.evaluation.worlds.generator import Settings
 from wall_follower.evaluation.worlds.line_courses import DEFAULT_ROOM as LINE_ROOM
 from wall_follower.params import parameters
@@ -200,9 +199,7 @@ def _plain(number):
 
 def _stage_problems():
     found = []
-    try:
-        rospkg.RosPack().get_path('stage_ros')
-    except rospkg.ResourceNotFound:
+    if not package_installed('stage_ros'):
         found.append('--simulator stage needs the stage_ros package, which is not installed '
                      '(the built-in simulator is the default)')
     if display_wrapper() is None:
