@@ -2,18 +2,7 @@
 that run only where it is, and the stand-in that says such a check was NOT RUN."""
 import unittest
 
-import rospkg
-
-from wall_follower.evaluation.launching import display_wrapper
-
-
-def package_installed(name):
-    """True when ROS finds the package `name` on its package path."""
-    try:
-        rospkg.RosPack().get_path(name)
-    except rospkg.ResourceNotFound:
-        return False
-    return True
+from wall_follower.evaluation.launching import display_wrapper, package_installed
 
 
 def real_stage_suite(name, suite):
