@@ -94,6 +94,38 @@ def test_figure_of_eight_does_not_close_at_its_middle_crossing():
     assert recorder.total_distance >= 0.99 * total
 
 
+def arc(center, radius, start, end, count=12):
+    """Waypoints on a circle round center, from angle start to end [rad]."""
+    return [(center[0] + radius * math.cos(start + (end - start) * i / count),
+             center[1] + radius * math.sin(start + (end - start) * i / count))
+            for i in range(count + 1)]
+
+
+def test_a_lap_from_a_corner_closes_where_it_cuts_the_corner_past_the_start():
+    """find_wall left the robot in a corner, heading north into it; the lap comes
+    back north, turns west short of the start line and passes 8 cm from the start,
+    heading 135 deg: 45 deg off the start heading, 90 deg off the way it crossed
+    the start line, had it crossed it."""
+    leaving = arc((-0.2, 0.0), 0.2, 0.0, math.pi / 2)
+    around = [(-2.0, 0.2), (-2.0, -2.0), (0.0, -2.0)]
+    returning = arc((-0.2, -0.2), 0.2, 0.0, math.pi / 2) + [(-1.0, 0.0)]
+    poses = walk(leaving + around + returning)
+    assert all(pose[2] < 0.0 or abs(pose[3] - math.pi / 2) > math.radians(60.0)
+               for pose in poses[40:] if abs(pose[1]) < 0.3)
+    recorder = LapRecorder()
+    closing = feed(recorder, poses)
+    assert closing is not None
+    # Just past the point nearest the start, (-0.06, -0.06).
+    assert math.hypot(closing[1] + 0.059, closing[2] + 0.059) < 2.0 * SPEED / RATE
+    assert recorder.total_distance == pytest.approx(path_length(poses[:poses.index(closing) + 1]))
+
+
+def test_passing_the_start_point_the_other_way_closes_nothing():
+    path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (1.5, 1.0), (1.5, 0.05), (-1.0, 0.05)]
+    poses = walk(path)
+    assert feed(LapRecorder(), poses) is None
+
+
 def test_path_length_of_a_known_polygon():
     rectangle = [(0.0, 0.0), (2.0, 0.0), (2.0, 3.0), (0.0, 3.0), (0.0, 0.0)]
     length = PathLength()

@@ -11,6 +11,15 @@ distance and been well away from the start, and it ends when the robot
 crosses the line through the start point, perpendicular to the start
 heading, heading roughly the way it started, close enough to the start.
 
+A robot that starts in a corner (find_wall can leave it there) does not
+come back that way: the lap cuts the corner, and passes the start point
+mid-turn, across the start heading or short of the start line. There the
+lap ends once the robot is past its nearest point to the start, near
+enough, and heading roughly the way its path left the start point: the
+first stretch of the path, up to where it first got close_tolerance from
+the start, is kept to compare with. The middle of a figure of eight still
+ends nothing: its two ways through the start are far apart.
+
 Odometry can jump: a simulator's reset_positions puts the robot back at its
 spawn pose, and a real robot's odometry can be reset to zero. A pose
 further from the one before than the robot can drive in the time between
@@ -29,6 +38,11 @@ from wall_follower.control.course.odom_check import JumpDetector
 from wall_follower.params import defaults
 from wall_follower.params.course.odom_recorder import TABLE
 from wall_follower.rotation import wrap_angle
+
+# The path's first stretch (LapDetector) is kept a point every this many
+# metres, and at most this many points (a robot can stand at its start).
+STRETCH_SPACING = 0.01
+STRETCH_POINTS = 200
 
 # The defaults of the keyword arguments below: the odom_recorder node's.
 _DEFAULT = defaults(TABLE)
@@ -89,6 +103,9 @@ class LapDetector(object):
     max_heading_error: and only if its heading then is within this angle
         (rad) of the start heading, so that a path crossing the start line
         obliquely (the middle of a figure of eight) does not end the lap.
+        Otherwise the lap ends past the nearest point to the start, within
+        close_tolerance of it, heading within this angle of the path's
+        first stretch there (see the module's docstring).
     """
 
     def __init__(self, start, min_travel=_DEFAULT['min_travel'],
@@ -104,6 +121,11 @@ class LapDetector(object):
         self.closed = False
         self._previous = self._frame(self.x0, self.y0)
         self._travelled_before = 0.0   # path length (m) before the latest jump
+        # The path's first stretch, (along, across, yaw) in the start frame,
+        # until it first gets close_tolerance from the start.
+        self._first_stretch = [(0.0, 0.0, self.yaw0)]
+        self._first_stretch_over = False
+        self._nearest = None   # the nearest distance to the start on this pass by it
 
     def _frame(self, x, y):
         """(along, across) position relative to the start pose's heading."""
@@ -127,19 +149,49 @@ class LapDetector(object):
         along, across = self._frame(x, y)
         previous_along, previous_across = self._previous
         self._previous = (along, across)
-        if math.hypot(along, across) >= self.leave_radius:
+        distance = math.hypot(along, across)
+        self._extend_first_stretch(along, across, yaw, distance)
+        if distance >= self.leave_radius:
             self.left_start = True
         if not (self.left_start and travelled - self._travelled_before >= self.min_travel):
             return False
+        self.closed = (self._crossed_start_line(previous_along, previous_across, along, across, yaw)
+                       or self._passed_start_point(along, across, yaw, distance))
+        return self.closed
+
+    def _crossed_start_line(self, previous_along, previous_across, along, across, yaw):
+        """True on crossing the start line near the start point, heading the start's way."""
         if not (previous_along < 0.0 <= along):
             return False
         # Where, to the side of the start point, the start line was crossed.
         share = -previous_along / (along - previous_along)
         crossing = previous_across + share * (across - previous_across)
         heading_error = abs(float(wrap_angle(yaw - self.yaw0)))
-        if abs(crossing) <= self.close_tolerance and heading_error <= self.max_heading_error:
-            self.closed = True
-        return self.closed
+        return abs(crossing) <= self.close_tolerance and heading_error <= self.max_heading_error
+
+    def _passed_start_point(self, along, across, yaw, distance):
+        """True past the nearest point to the start, near it, heading the first stretch's way."""
+        if distance > self.close_tolerance:
+            self._nearest = None
+            return False
+        if self._nearest is None or distance < self._nearest:
+            self._nearest = distance
+            return False
+        # The first stretch's heading where it came nearest to here.
+        _, _, first_yaw = min(self._first_stretch,
+                              key=lambda point: math.hypot(point[0] - along, point[1] - across))
+        return abs(float(wrap_angle(yaw - first_yaw))) <= self.max_heading_error
+
+    def _extend_first_stretch(self, along, across, yaw, distance):
+        """Keep the path's first stretch, a point every STRETCH_SPACING, up to close_tolerance."""
+        if self._first_stretch_over:
+            return
+        if distance > self.close_tolerance or len(self._first_stretch) >= STRETCH_POINTS:
+            self._first_stretch_over = True
+            return
+        last_along, last_across, _ = self._first_stretch[-1]
+        if math.hypot(along - last_along, across - last_across) >= STRETCH_SPACING:
+            self._first_stretch.append((along, across, yaw))
 
 
 class LapRecorder(object):

@@ -23,9 +23,9 @@ RECORDING = (
           0.0, 1000.0),
         P('leave_radius', 0.5, '... and been this far from the start point [m]', 0.0, 100.0),
         P('close_tolerance', 0.3, 'the lap ends when the robot crosses the start line this '
-          'near the start point [m] ...', 0.0, 100.0),
+          'near the start point, or passes this near it [m] ...', 0.0, 100.0),
         P('max_heading_error', math.radians(60.0), '... heading within this of the start '
-          'heading [rad]', 0.0, math.pi),
+          'heading (passing it: of the path that left it) [rad]', 0.0, math.pi),
     )),
     odometry.JUMPS,
 )
