@@ -126,6 +126,21 @@ def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     assert figures['time_in_band'] >= 0.97, figures['time_in_band']
 
 
+def test_a_left_turn_out_of_a_notch_is_not_held_on_by_a_far_wall_ahead(tmp_path):
+    # Generated world 1 of seed 3, the Gazebo laser: the south wall has a V
+    # notch. Turning left out of it, the wall on the right was the notch's
+    # far side, slanting behind, and the east wall, 0.9 m away, lay across
+    # the way: the turn went on onto it for 127 deg, lost the south wall and
+    # searched across the room: 85 % in band. A wall ahead holds a left turn
+    # on only while it is nearer than front_clear_distance.
+    world = generated_world(tmp_path, 3, 1, (0.14, -1.20, 0.0))
+    score, _ = lap(world, 'gazebo', seed=4)
+    figures = score.summary()
+    assert figures['lap_closed']
+    assert not figures['contact'], figures['min_clearance']
+    assert figures['time_in_band'] >= 0.97, figures['time_in_band']
+
+
 def test_a_stub_at_the_end_of_a_wall_is_passed_in_band(tmp_path):
     # Generated world 0 of seed 4: a slanted wall ends in a stub that stands
     # 9 cm out of it towards the robot, its tip at (-0.22, 1.28), then turns

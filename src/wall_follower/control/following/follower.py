@@ -164,14 +164,17 @@ class WallFollower(object):
         are clear.
 
         Only the end of a wall beside the robot (a short wall, a box) can
-        end the turn otherwise: anything near behind it only means the
-        turn is not over yet.
+        end the turn otherwise: anything near in the lane, or a wall across
+        it nearer than front_clear_distance, only means the turn is not
+        over yet. A wall farther across the way is turned onto when it
+        comes within reach, from FOLLOW, like any other.
         """
         if not self.inner_corner.clear_of_lane_edges(obs):
             return WALL_AHEAD
         if self.inner_corner.done(obs):
             return FOLLOW
-        if obs.ahead is not None or obs.front < self.params.front_clear_distance:
+        if obs.front < self.params.front_clear_distance or (
+                obs.ahead is not None and obs.ahead.distance < self.params.front_clear_distance):
             return WALL_AHEAD
         if self._near(obs):
             return OUTER_CORNER if self._beside(obs.nearest) else WALL_AHEAD
