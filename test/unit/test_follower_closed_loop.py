@@ -75,6 +75,14 @@ def test_a_waffle_keeps_its_tail_off_the_walls_at_inner_corners():
     assert figures['time_in_band'] >= 0.97
 
 
+def assert_a_lap_in_band(score, least=0.97):
+    """The run closed its lap without contact, with at least `least` of it in band."""
+    figures = score.summary()
+    assert figures['lap_closed']
+    assert not figures['contact'], figures['min_clearance']
+    assert figures['time_in_band'] >= least, figures['time_in_band']
+
+
 def generated_world(directory, seed, index, start):
     """The generator's world index of seed, written into directory with its start moved to start."""
     world = world_generator.generate(seed, index)._replace(start=start)
@@ -91,10 +99,7 @@ def test_a_pillar_beyond_an_outer_corner_does_not_turn_the_robot_off_the_wall(tm
     # Started where find_wall leaves it, on the room's east wall, heading north.
     world = generated_world(tmp_path, 1, 0, (1.28, 0.0, math.pi / 2))
     score, states = lap(world, 'stage', time_limit=120.0)
-    figures = score.summary()
-    assert figures['lap_closed']
-    assert not figures['contact'], figures['min_clearance']
-    assert figures['time_in_band'] >= 0.97
+    assert_a_lap_in_band(score)
     assert 'SEARCH' not in states
 
 
@@ -120,10 +125,7 @@ def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # 94 % of the lap in band. Started where find_wall leaves the robot.
     world = generated_world(tmp_path, 3, 1, (0.14, -1.20, 0.0))
     score, _ = lap(world, 'stage')
-    figures = score.summary()
-    assert figures['lap_closed']
-    assert not figures['contact'], figures['min_clearance']
-    assert figures['time_in_band'] >= 0.97, figures['time_in_band']
+    assert_a_lap_in_band(score)
 
 
 def test_a_left_turn_out_of_a_notch_is_not_held_on_by_a_far_wall_ahead(tmp_path):
@@ -135,10 +137,7 @@ def test_a_left_turn_out_of_a_notch_is_not_held_on_by_a_far_wall_ahead(tmp_path)
     # on only while it is nearer than front_clear_distance.
     world = generated_world(tmp_path, 3, 1, (0.14, -1.20, 0.0))
     score, _ = lap(world, 'gazebo', seed=4)
-    figures = score.summary()
-    assert figures['lap_closed']
-    assert not figures['contact'], figures['min_clearance']
-    assert figures['time_in_band'] >= 0.97, figures['time_in_band']
+    assert_a_lap_in_band(score)
 
 
 def test_a_stub_at_the_end_of_a_wall_is_passed_in_band(tmp_path):
@@ -150,10 +149,7 @@ def test_a_stub_at_the_end_of_a_wall_is_passed_in_band(tmp_path):
     # still rounds 1.2 s too near (and once lost the wall at).
     world = generated_world(tmp_path, 4, 0, (1.26, -1.02, 0.0))
     score, _ = lap(world, 'stage')
-    figures = score.summary()
-    assert figures['lap_closed']
-    assert not figures['contact'], figures['min_clearance']
-    assert figures['time_in_band'] >= 0.95, figures['time_in_band']
+    assert_a_lap_in_band(score, least=0.95)
     near_the_stub = [stretch for stretch in score.stretches_out_of_band()
                      if math.hypot(stretch[2][0] + 0.22, stretch[2][1] - 1.28) < 0.5]
     assert not near_the_stub
