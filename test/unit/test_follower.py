@@ -617,39 +617,6 @@ def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
     assert all(0.17 < distance < 0.36 for distance in distances)
 
 
-def wall_ending_in(stub, bend=None):
-    """A right wall 0.25 m off that ends 0.3 m ahead, and what is at its end: a stub
-    standing out of it towards the robot by `stub` metres (0 for none), then either
-    the next wall turning away to the right or, bend (rad) given, bending in."""
-    end = (0.3, -0.25)
-    world = [((-5.0, -0.25), end)]
-    if stub:
-        world += box(0.26, -0.25, 0.3, -0.25 + stub)
-    if bend is None:
-        return world + [(end, (0.3, -3.0))]
-    return world + [(end, (0.3 + 2.0 * math.cos(bend), -0.25 + 2.0 * math.sin(bend)))]
-
-
-def test_a_stub_where_the_wall_ends_is_the_corner_s_tip_and_is_passed_out_of_the_band_s_reach():
-    plain = Observation(scan_view(wall_ending_in(0.0), (0.0, 0.0, 0.0), STAGE), EXACT)
-    stub = Observation(scan_view(wall_ending_in(0.08), (0.0, 0.0, 0.0), STAGE), EXACT)
-    assert plain.protrusion == 0.0
-    assert stub.protrusion == pytest.approx(0.08, abs=0.01)
-    assert stub.wall_end == pytest.approx((0.3, -0.17), abs=0.015)
-    # Passing it at pass_clearance means riding out from the wall before it.
-    _, straight = update(wall_ending_in(0.0))
-    _, out = update(wall_ending_in(0.08))
-    assert abs(straight.angular) < 0.05
-    assert out.angular > 0.3
-
-
-def test_the_next_wall_bending_in_is_no_stub_to_pass():
-    obs = Observation(scan_view(wall_ending_in(0.0, bend=math.radians(35.0)),
-                                (0.0, 0.0, 0.0), STAGE), EXACT)
-    assert obs.protrusion == 0.0
-    assert obs.wall_end == pytest.approx((0.3, -0.25), abs=0.05)
-
-
 # --- no wall near ----------------------------------------------------------------------
 
 @pytest.mark.parametrize('convention', ALL, ids=IDS)

@@ -41,12 +41,7 @@ class FollowWall(Manoeuvre):
         # riding that much nearer before it keeps the turn's middle in band.
         dip = self.inner_corner.dip(obs)
         gain = p.settle_gain if self.settling > 0.0 else 1.0
-        target = p.target_distance - dip
-        if obs.protrusion:
-            # Something standing out of the wall ahead is passed pass_clearance
-            # off, farther out than the wall itself if it must.
-            target = max(target, p.pass_clearance + obs.protrusion)
-        turn = steer(p, distance, angle, target, gain)
+        turn = steer(p, distance, angle, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns

@@ -4,7 +4,6 @@ import math
 import numpy as np
 
 from wall_follower.control.motion import seen_after_move
-from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
 from wall_follower.rotation import wrap_angle
@@ -22,9 +21,7 @@ class Observation(object):
     clear_margin each side. ahead: the straight wall across that lane (a
     Line measured like the right wall: pi/2 for a wall square ahead), or
     None. nearest: (distance, bearing) of the closest hit on the right
-    side, or None. protrusion: how far the tip of the corner at the wall's
-    end stands out of the wall towards the robot (a stub or a box there;
-    see corner_tip), 0 if it does not; wall_end is then that tip.
+    side, or None.
     """
 
     def __init__(self, view, params, motion=(0.0, 0.0)):
@@ -38,6 +35,7 @@ class Observation(object):
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
         sector = hits[(off_right <= params.wall_sector) & near]
         self.wall, self.wall_end = right_wall(sector, params)
+        self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
         across = np.abs(front[:, 1])
@@ -47,9 +45,6 @@ class Observation(object):
             front[across <= params.corridor_half_width + params.clear_margin][:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
-        self.wall_end, self.protrusion = corner_tip(
-            off_the_walls(self.right, self.ahead, params), self.wall, self.wall_end, params)
-        self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
 
     def rejoined(self, max_angle, min_ahead):
         """True when a corner is over: a straight wall on the right, nearly parallel.
@@ -80,56 +75,6 @@ def second_smallest(values):
     if values.size < 2:
         return math.inf
     return float(np.partition(values, 1)[1])
-
-
-def off_the_walls(right, ahead, params):
-    """The hits ahead on the right that are neither in the lane nor on the wall across it.
-
-    Only hits within pass_lookahead ahead count. Whatever is in the lane
-    starts a left turn instead.
-    """
-    hits = right[(right[:, 0] > 0.0) & (right[:, 0] <= params.pass_lookahead)
-                 & (-right[:, 1] > params.corridor_half_width)]
-    if ahead is None:
-        return hits
-    return hits[np.abs(Line(ahead.distance, ahead.angle + RIGHT).offsets(hits))
-                >= params.wall_inlier_distance]
-
-
-def corner_tip(hits, wall, end, params):
-    """(tip, protrusion) of the corner at the wall's end: where it is, and how far out of the
-    wall towards the robot it stands [m].
-
-    A stub or a box just where the wall ends makes the corner the robot
-    has to round, and has to pass: the tip is the hit within tip_reach of
-    the wall's end that lies farthest on along the wall and out of it. It
-    counts only if it stands out beyond wall_inlier_distance (nearer, it is
-    the wall itself), and only if nothing farther from the end stands out
-    more (the next wall bending in, or a step in this one: the robot
-    follows that as it comes). Otherwise the tip is the wall's end and the
-    protrusion 0. The second-farthest hit each time, so that one spurious
-    beam does not count.
-    """
-    if wall is None:
-        return end, 0.0
-    line = Line(wall.distance, wall.angle + RIGHT)
-    along = np.array((-line.normal[1], line.normal[0]))
-    out = -line.offsets(hits)
-    near = np.hypot(*(hits - end).T) < params.tip_reach
-    reach = (hits[near] - end).dot(along - line.normal)
-    if reach.size < 2:
-        return end, 0.0
-    tip = np.argpartition(reach, -2)[-2]
-    standing = out[near][tip]
-    if reach[tip] <= 0.0 or standing <= params.wall_inlier_distance \
-            or second_largest(out[~near]) > standing:
-        return end, 0.0
-    return hits[near][tip], float(standing)
-
-
-def second_largest(values):
-    """The second-largest value (-inf if fewer than two)."""
-    return -second_smallest(-values)
 
 
 def nearest_in(points):

@@ -49,12 +49,6 @@ FOLLOWER = (
         P('closest_distance', 0.215, 'heading into the wall, slow down so as to turn parallel '
           'no nearer than this [m]', 0.0, 1.0),
         P('min_arc_radius', 0.2, '... but never onto an arc tighter than this [m]', 0.0, 1.0),
-        P('pass_clearance', 0.235, 'pass anything that stands out of the wall on the right at '
-          'least this far off, riding farther out than target_distance if need be [m] ...',
-          0.0, 1.0),
-        P('pass_lookahead', 0.6, '... looking for it this far ahead [m]', 0.0, 5.0),
-        P('tip_reach', 0.15, 'a hit this near the end of the wall on the right, farther on '
-          'and out, is the tip of the corner there [m]', 0.0, 1.0),
     )),
     Section('wall_fit', (
         P('wall_sector', math.radians(60.0), 'half width of the sector around the right '
