@@ -18,7 +18,7 @@ lap ends once the robot is past its nearest point to the start, near
 enough, and heading roughly the way its path left the start point: the
 first stretch of the path, up to where it first got close_tolerance from
 the start, is kept to compare with. The middle of a figure of eight still
-ends nothing: its two ways through the start are far apart.
+ends nothing: its two ways through the start cross at a wide angle.
 
 Odometry can jump: a simulator's reset_positions puts the robot back at its
 spawn pose, and a real robot's odometry can be reset to zero. A pose
