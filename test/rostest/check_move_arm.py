@@ -12,6 +12,7 @@ limits, and the result says where it came to rest: it goes no further. No joint_
 heard breaks a limit or puts a link into the floor or into another.
 """
 import re
+import threading
 import unittest
 from xmlrpc.client import ServerProxy
 
@@ -28,7 +29,7 @@ from arm_watch import WALL_LIMIT, ArmWatch
 from waiting import wait_until
 from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import read_acceleration_limits
-from wall_follower.msg import MoveArmAction, MoveArmGoal
+from wall_follower.msg import MoveArmAction, MoveArmActionFeedback, MoveArmGoal
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = rospy.Duration(60.0)   # simulated s
@@ -44,6 +45,33 @@ def point_goal(x, y, z, frame='world', scaling=0.0):
     target.header.frame_id = frame
     target.point.x, target.point.y, target.point.z = x, y, z
     return MoveArmGoal(target=target, velocity_scaling=scaling)
+
+
+def goal_id(client):
+    """The id of a SimpleActionClient's newest goal, as its feedback carries it."""
+    return client.gh.comm_state_machine.action_goal.goal_id.id
+
+
+class FeedbackLog(object):
+    """Every progress move_arm publishes, by goal, heard on a subscription of its own.
+
+    Feedback and result come on connections of their own, and actionlib's client drops a
+    goal's feedback that comes in after its result: the last feedback (1.0) is then never
+    given to a feedback_cb, though move_arm sent it."""
+
+    def __init__(self, action):
+        self._lock = threading.Lock()
+        self._progress = {}
+        rospy.Subscriber(action + '/feedback', MoveArmActionFeedback, self._on_feedback)
+
+    def _on_feedback(self, msg):
+        with self._lock:
+            self._progress.setdefault(msg.status.goal_id.id, []).append(msg.feedback.progress)
+
+    def of(self, client):
+        """The progress heard so far of a client's newest goal, in the order sent."""
+        with self._lock:
+            return list(self._progress.get(goal_id(client), ()))
 
 
 def resident_memory(node):
@@ -63,10 +91,10 @@ class MoveArmTest(unittest.TestCase):
         cls.watch = ArmWatch()
         cls.buffer = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.buffer)
+        cls.feedback = FeedbackLog('move_arm')
         cls.client = actionlib.SimpleActionClient('move_arm', MoveArmAction)
         if not cls.client.wait_for_server(rospy.Duration(WALL_LIMIT)):
             raise AssertionError('no move_arm action server')
-        cls.progress = []
 
     def hand(self):
         """Where tf has the hand's origin in world at the newest joint state."""
@@ -75,23 +103,22 @@ class MoveArmTest(unittest.TestCase):
         return np.array([t.translation.x, t.translation.y, t.translation.z])
 
     def move(self, goal):
-        self.client.send_goal(goal, feedback_cb=lambda f: self.progress.append(f.progress))
+        self.client.send_goal(goal)
         self.assertTrue(self.client.wait_for_result(RESULT_LIMIT), 'move_arm did not answer')
         return self.client.get_state(), self.client.get_result()
 
     def assert_reached(self, goal, where):
-        del self.progress[:]
         state, result = self.move(goal)
         self.assertEqual(state, GoalStatus.SUCCEEDED, result.message)
         self.assertTrue(result.success, result.message)
         self.assertLess(result.position_error, POSITION_TOLERANCE)
         error = np.linalg.norm(self.hand() - where)
         self.assertLess(error, POSITION_TOLERANCE, 'hand %.4f m from %s' % (error, where))
-        # feedback and result come on connections of their own: the last feedback may
-        # still be on its way when the result is in
-        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] == 1.0,
-                                   WALL_LIMIT), 'progress %s' % self.progress[-3:])
-        self.assertEqual(self.progress, sorted(self.progress))
+        # the last feedback may still be on its way when the result is in
+        self.assertTrue(wait_until(lambda: self.feedback.of(self.client)[-1:] == [1.0],
+                                   WALL_LIMIT), 'progress %s' % self.feedback.of(self.client)[-3:])
+        progress = self.feedback.of(self.client)
+        self.assertEqual(progress, sorted(progress))
 
     def assert_refused(self, goal, words):
         before = self.watch.latest()
@@ -152,9 +179,8 @@ class MoveArmTest(unittest.TestCase):
         self.assert_reached(MoveArmGoal(named_target='home'),
                             tool_position(self.watch.model, np.zeros(4)))
         first = point_goal(-0.5, -0.2, 0.4, scaling=0.3)
-        del self.progress[:]
-        self.client.send_goal(first, feedback_cb=lambda f: self.progress.append(f.progress))
-        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] > 0.3,
+        self.client.send_goal(first)
+        self.assertTrue(wait_until(lambda: self.feedback.of(self.client)[-1:] > [0.3],
                                    WALL_LIMIT))
         # a second client's goal, as another user would send it
         other = actionlib.SimpleActionClient('move_arm', MoveArmAction)
@@ -169,10 +195,9 @@ class MoveArmTest(unittest.TestCase):
         self.assertEqual(other.get_state(), GoalStatus.SUCCEEDED, other.get_result().message)
         self.assertLess(np.linalg.norm(self.hand() - (0.4, 0.4, 0.5)), POSITION_TOLERANCE)
 
-        del self.progress[:]
         far = point_goal(-0.4, 0.3, 0.2, scaling=0.3)
-        self.client.send_goal(far, feedback_cb=lambda f: self.progress.append(f.progress))
-        self.assertTrue(wait_until(lambda: self.progress and self.progress[-1] > 0.3,
+        self.client.send_goal(far)
+        self.assertTrue(wait_until(lambda: self.feedback.of(self.client)[-1:] > [0.3],
                                    WALL_LIMIT))
         cancelled = self.watch.latest()[0]
         self.client.cancel_goal()
