@@ -129,17 +129,17 @@ def driven(metres, limit):
 
 def move_arm(target, limit):
     """Send move_arm a goal to the SRDF state `target`; 0 once it succeeded."""
-    import actionlib
     import rospy
     from wall_follower.msg import MoveArmAction, MoveArmGoal
+    from wall_follower.nodes.shared.goal_client import GoalClient
 
     rospy.init_node('fresh_debian_move_arm', disable_signals=True)
-    client = actionlib.SimpleActionClient('move_arm', MoveArmAction)
+    client = GoalClient('move_arm', MoveArmAction)
     if not client.wait_for_server(rospy.Duration(limit)):
         print('no move_arm action server after %.0f s' % limit)
         return 1
     client.send_goal(MoveArmGoal(named_target=target))
-    if not client.wait_for_result(rospy.Duration(limit)):
+    if not client.wait_for_result(limit):
         print('move_arm did not finish the move to %r in %.0f s' % (target, limit))
         return 1
     result = client.get_result()

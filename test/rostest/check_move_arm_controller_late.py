@@ -10,7 +10,6 @@ import threading
 import time
 import unittest
 
-import actionlib
 import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
@@ -21,6 +20,7 @@ from arm_watch import WALL_LIMIT
 from waiting import wait_until
 from wall_follower.arm.model import read_srdf, read_urdf
 from wall_follower.msg import MoveArmAction, MoveArmGoal
+from wall_follower.nodes.shared.goal_client import GoalClient
 
 # Wall seconds the late controller waits, after the goal is active, before it subscribes:
 # long enough that a trajectory published without waiting for it has surely gone.
@@ -36,7 +36,7 @@ class LateControllerTest(unittest.TestCase):
         cls.semantics = read_srdf(rospy.get_param('robot_description_semantic'), cls.model)
         cls.states = rospy.Publisher('joint_states', JointState, queue_size=10)
         cls.timer = rospy.Timer(rospy.Duration(0.02), cls.publish_state)
-        cls.client = actionlib.SimpleActionClient('move_arm', MoveArmAction)
+        cls.client = GoalClient('move_arm', MoveArmAction)
         if not cls.client.wait_for_server(rospy.Duration(WALL_LIMIT)):
             raise AssertionError('no move_arm action server')
 
@@ -50,7 +50,7 @@ class LateControllerTest(unittest.TestCase):
 
     def test_1_no_controller_aborts_saying_so(self):
         self.client.send_goal(MoveArmGoal(named_target='ready'))
-        self.assertTrue(self.client.wait_for_result(rospy.Duration(WALL_LIMIT)))
+        self.assertTrue(self.client.wait_for_result(WALL_LIMIT))
         self.assertEqual(self.client.get_state(), GoalStatus.ABORTED)
         self.assertIn('nothing subscribes to /arm_controller/command',
                       self.client.get_result().message)

@@ -18,7 +18,6 @@ import os
 import tempfile
 import time
 
-import actionlib
 import numpy as np
 import rospkg
 import rospy
@@ -36,6 +35,9 @@ from wall_follower.evaluation.launching import (LAUNCH_STOP_GRACE, ProcessGroup,
                                                 launch_command, master_environment)
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.msg import MoveArmAction, MoveArmGoal
+from wall_follower.nodes.shared.goal_client import GoalClient
+
+RESULT_LIMIT = 120.0   # wall s for move_arm to answer one goal
 
 
 def package_files():
@@ -103,7 +105,7 @@ def _execute(model, checker, velocity, acceleration, rng, count, timeout):
     rospy.Subscriber('joint_states', JointState, lambda msg: states.append(
         (msg.header.stamp.to_sec(), np.array(msg.position), np.array(msg.velocity))),
         queue_size=1000)
-    client = actionlib.SimpleActionClient('move_arm', MoveArmAction)
+    client = GoalClient('move_arm', MoveArmAction)
     deadline = time.time() + timeout
     while not client.wait_for_server(rospy.Duration(1.0)):
         if time.time() > deadline:
@@ -116,8 +118,7 @@ def _execute(model, checker, velocity, acceleration, rng, count, timeout):
         goal.target.point.x, goal.target.point.y, goal.target.point.z = point
         before = len(states)
         client.send_goal(goal)
-        client.wait_for_result(rospy.Duration(120.0))
-        result = client.get_result()
+        result = client.get_result() if client.wait_for_result(RESULT_LIMIT) else None
         if result is None or not result.success:
             trials.append((float('nan'), float('nan'), float('nan')))
             continue
