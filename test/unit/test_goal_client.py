@@ -2,6 +2,7 @@
 from actionlib.action_client import CommState
 from actionlib_msgs.msg import GoalStatus
 
+from fake_clock import FakeClock
 from wall_follower.nodes.shared.goal_client import GoalClient
 
 
@@ -43,19 +44,8 @@ class AnsweringAtOnce(object):
         return handle
 
 
-class Clock(object):
-    def __init__(self):
-        self.now = 0.0
-
-    def __call__(self):
-        return self.now
-
-    def sleep(self, seconds):
-        self.now += seconds
-
-
 def test_a_goal_refused_before_send_goal_returned_has_ended():
-    clock = Clock()
+    clock = FakeClock()
     client = GoalClient('move_arm', None, client=AnsweringAtOnce(), clock=clock,
                         sleep=clock.sleep)
     client.send_goal('goal')
@@ -73,7 +63,7 @@ class NeverAnswering(AnsweringAtOnce):
 
 
 def test_a_goal_not_ended_is_waited_for_until_the_timeout_only():
-    clock = Clock()
+    clock = FakeClock()
     server = NeverAnswering()
     client = GoalClient('move_arm', None, client=server, clock=clock, sleep=clock.sleep)
     client.send_goal('goal')

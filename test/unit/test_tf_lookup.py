@@ -7,6 +7,7 @@ import rospy
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
 
+from fake_clock import FakeClock
 from wall_follower.nodes.shared.laser_mount import mount_of
 from wall_follower.nodes.shared.tf_lookup import lookup
 
@@ -32,17 +33,6 @@ class FakeBuffer(object):
             raise tf2_ros.LookupException('"%s" passed to lookupTransform argument target_frame '
                                           'does not exist.' % target)
         return self.found
-
-
-class FakeClock(object):
-    def __init__(self):
-        self.now = 0.0
-
-    def __call__(self):
-        return self.now
-
-    def sleep(self, seconds):
-        self.now += seconds
 
 
 def test_the_transform_is_waited_for_in_the_given_clock():
