@@ -42,8 +42,8 @@ def test_a_row_says_which_simulator_its_laps_ran_on():
 def test_each_generated_lap_is_timed_against_its_loop_s_bound_found_once(monkeypatch):
     found = []
 
-    def fastest_lap(world, start):
-        found.append(world)
+    def fastest_lap(world, start, margin):
+        found.append((world, margin))
         return lap_bound.LapBound(50.0, 9.5, np.array([[0.0, -1.0], [1.0, -1.0]]),
                                   np.zeros(2), (-0.032, 0.0), 0.0)
 
@@ -54,7 +54,7 @@ def test_each_generated_lap_is_timed_against_its_loop_s_bound_found_once(monkeyp
     monkeypatch.setattr(lap_bound, 'drive', drive)
     monkeypatch.setattr(follow_generated, 'grade_case',
                         lambda record: {'lap_genuine': record['genuine']})
-    bounds = follow_generated.Bounds()
+    bounds = follow_generated.Bounds(0.02)
 
     def record(laser, start, lap_time, genuine=True):
         return {'world': '/out/%s/gen_s5_003.world' % laser, 'genuine': genuine,
@@ -67,7 +67,7 @@ def test_each_generated_lap_is_timed_against_its_loop_s_bound_found_once(monkeyp
         pytest.approx(1.2)
     assert bounds.graded(record('lds02', [0.5, -1.0, 0.0], 60.0, False))['lap_over_bound'] \
         is None
-    assert found == ['/out/stage/gen_s5_003.world']
+    assert found == [('/out/stage/gen_s5_003.world', 0.02)]
     # A lap round another loop (an island, say) has a bound of its own.
     bounds.graded(record('gazebo', [3.0, 2.0, 0.0], 20.0))
     assert len(found) == 2

@@ -39,14 +39,14 @@ def bound(room):
     return lap_bound.fastest_lap(room, START)
 
 
-def racing_line():
+def racing_line(margin=lap_bound.MARGIN):
     """The time of a lap that rides the band's near edge along each wall and, at each
     corner, flies the widest arc the speed limit allows (v / w = 0.39 m) out to the
     point on the band's far edge 45 degrees round, pivots what is left of the quarter
     turn there and flies the same arc back in: a lap any robot can fly, so T* is
-    no more."""
+    no more. The band's edges: margin inside its own."""
     radius = MAX_LINEAR / MAX_ANGULAR
-    near, far = 0.2 + lap_bound.MARGIN, 0.3 - lap_bound.MARGIN
+    near, far = 0.2 + margin, 0.3 - margin
     arc = math.acos(1.0 - (far - near) / radius)
     corner_reach = far + radius * math.sin(arc)
     straight = 2.0 * (WIDTH + DEPTH) - 8.0 * corner_reach
@@ -79,6 +79,15 @@ def test_the_bound_driven_in_the_simulator_laps_the_room_near_its_time(room, bou
     # the wall only within 30 degrees of the right: pivoting at a corner's far
     # point, it reads the walls 45 degrees round, 1 cm further.
     assert driven.in_band >= 0.9
+
+
+def test_held_further_inside_the_band_the_bound_is_slower_and_scored_in_band(room, bound):
+    inside = lap_bound.fastest_lap(room, START, margin=0.02)
+    assert inside.time == pytest.approx(racing_line(0.02), rel=0.02)
+    assert inside.time > 1.02 * bound.time
+    driven = lap_bound.drive(room, inside)
+    assert driven.closed and not driven.contact
+    assert driven.in_band >= 0.995
 
 
 def test_the_band_s_middle_line_runs_round_the_room_0_25_m_in(room):

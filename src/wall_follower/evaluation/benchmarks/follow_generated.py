@@ -47,10 +47,11 @@ def distribution(values, worst):
             float(worst(values)))
 
 
-def run(count, seed, profiles, jobs, out, room):
-    """Grade main.launch on count worlds of seed in each profile; prints the tables."""
+def run(count, seed, profiles, jobs, out, room, bound_margin=lap_bound.MARGIN):
+    """Grade main.launch on count worlds of seed in each profile; prints the tables
+    (T* held bound_margin inside the band, see lap_bound.fastest_lap)."""
     rows, below = [], []
-    bounds = Bounds()
+    bounds = Bounds(bound_margin)
     for profile in profiles:
         options = grader.parser().parse_args(
             ['wall_follower', 'main.launch', '--worlds', str(count), '--seed', str(seed),
@@ -89,8 +90,8 @@ class Bounds(lap_bound.Bounds):
     """The T* of each case's loop, found once a world: every laser's grader writes the
     same world to a file of its own."""
 
-    def __init__(self):
-        super(Bounds, self).__init__()
+    def __init__(self, margin=lap_bound.MARGIN):
+        super(Bounds, self).__init__(margin)
         self._paths = {}
 
     def graded(self, record):
@@ -111,8 +112,10 @@ class Bounds(lap_bound.Bounds):
         checked = [(world, bound, driven) for world, bound, driven in self.all()
                    if bound is not None]
         failed = [(world, reason) for world, bound, reason in self.all() if bound is None]
-        print('\nT* laps (lap_bound) driven in the built-in simulator: %d, %d closed without '
-              'contact' % (len(checked), sum(d.closed and not d.contact for _, _, d in checked)))
+        print('\nT* laps (lap_bound, the laser held %.1f mm inside the band) driven in the '
+              'built-in simulator: %d, %d closed without contact' % (
+                  1000.0 * self.margin, len(checked),
+                  sum(d.closed and not d.contact for _, _, d in checked)))
         for name, values, worst in (
                 ('driven / T*', [d.time / b.time for _, b, d in checked if d.closed], max),
                 ('in band %', [100.0 * d.in_band for _, _, d in checked if d.closed], min)):

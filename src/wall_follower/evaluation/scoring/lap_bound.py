@@ -445,17 +445,18 @@ class _Smoothed(object):
         return value + weight * float((outside ** 2).sum()), gradient
 
 
-def fastest_lap(world_path, start, spacing=SPACING):
+def fastest_lap(world_path, start, spacing=SPACING, margin=MARGIN):
     """T* of the band loop nearest start ((x, y) in the world of world_path): a LapBound.
 
-    Raises BoundError when there is no band loop there.
+    margin: how far inside the band's edges the laser is held [m]. Raises
+    BoundError when there is no band loop there.
     """
     course = CourseMap(world_path)
     laser = course.laser_offset[:2]
     walls = WallDistance(course.edges)
     middle = band_middle(walls, start)
     walls.tabulate(middle.min(axis=0) - 0.2, middle.max(axis=0) + 0.2)
-    corridor = Corridor(walls, middle, spacing=spacing)
+    corridor = Corridor(walls, middle, margin=margin, spacing=spacing)
     bounds = corridor.offsets.copy()
     # The centre may stand off the laser's interval by the laser's own offset.
     bounds += np.array((-1.0, 1.0)) * (math.hypot(*laser) + 0.01)
@@ -621,13 +622,14 @@ class Bounds(object):
     loop of a world optimised and driven once, however many laps go round it.
 
     of() answers (LapBound, DrivenLap), or (None, the reason) where there is no
-    bound (no band loop near the lap's start, say).
+    bound (no band loop near the lap's start, say). margin: fastest_lap's.
     """
 
     # A lap whose start is this near a known bound's path goes round its loop [m].
     SAME_LOOP = 0.2
 
-    def __init__(self):
+    def __init__(self, margin=MARGIN):
+        self.margin = margin
         self._known = {}
 
     def of(self, world_path, start):
@@ -638,7 +640,7 @@ class Bounds(object):
             if bound is not None and np.hypot(*(bound.centres - start).T).min() <= self.SAME_LOOP:
                 return bound, driven
         try:
-            bound = fastest_lap(world_path, start)
+            bound = fastest_lap(world_path, start, margin=self.margin)
         except BoundError as error:
             known.append((None, str(error)))
         else:
