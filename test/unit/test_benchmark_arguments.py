@@ -22,11 +22,16 @@ CASES = [
                  '', marks=pytest.mark.ros),
     (['wander', '--worlds', '/nowhere/x.world'], 'argument --worlds: no world /nowhere/x.world',
      ''),
+    # A margin that leaves no band would find no T* anywhere.
+    pytest.param(['follow', '--bound-margin', '0.05'], "argument --bound-margin: '0.05' is not "
+                 'a margin from 0 to under 0.05 m', '(half the band)', marks=pytest.mark.ros),
+    pytest.param(['follow', '--bound-margin', 'wide'], "argument --bound-margin: 'wide' is not "
+                 'a margin', '(half the band)', marks=pytest.mark.ros),
 ]
 
 
 @pytest.mark.parametrize('argv, says, names', CASES)
-def test_an_unknown_world_or_profile_is_a_usage_error(capsys, argv, says, names):
+def test_an_unknown_world_or_profile_or_a_bad_margin_is_a_usage_error(capsys, argv, says, names):
     with pytest.raises(SystemExit) as ended:
         main(argv)
     assert ended.value.code == 2

@@ -68,6 +68,19 @@ def lap_args(simulator, world, profile, seed):
     return args
 
 
+def bound_margin(text):
+    """The argparse type of --bound-margin: a margin that leaves some of the band [m]."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = float('nan')
+    widest = 0.5 * (lap_bound.BAND[1] - lap_bound.BAND[0])
+    if not 0.0 <= value < widest:
+        raise argparse.ArgumentTypeError('%r is not a margin from 0 to under %g m (half the '
+                                         'band)' % (text, widest))
+    return value
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog='benchmark follow', description=__doc__)
     parser.add_argument('--worlds', nargs='+', default=list(WORLDS), type=shipped_world())
@@ -86,7 +99,8 @@ def main(argv=None):
                         help='with --generated: sides of the main rooms [m]')
     parser.add_argument('--out', help='with --generated: directory for the cases '
                         '(default: a new temporary one)')
-    parser.add_argument('--bound-margin', type=float, default=lap_bound.MARGIN, metavar='M',
+    parser.add_argument('--bound-margin', type=bound_margin, default=lap_bound.MARGIN,
+                        metavar='M',
                         help='T* holds the laser this far inside the band\'s edges [m] '
                         '(default %(default)s)')
     args = parser.parse_args(argv)
