@@ -21,9 +21,6 @@ class Handle(object):
     def get_result(self):
         return 'result'
 
-    def get_goal_status_text(self):
-        return 'refused'
-
     def cancel(self):
         self.cancelled = True
 
@@ -52,7 +49,6 @@ def test_a_goal_refused_before_send_goal_returned_has_ended():
     assert client.wait_for_result(5.0)
     assert clock.now == 0.0
     assert client.get_state() == GoalStatus.ABORTED
-    assert client.get_goal_status_text() == 'refused'
     assert client.get_result() == 'result'
 
 

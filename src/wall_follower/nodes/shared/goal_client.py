@@ -22,9 +22,8 @@ POLL = 0.01    # wall s between two looks at the goal's state
 class GoalClient(object):
     """The part of SimpleActionClient's interface the package's tools use, without its race.
 
-    client: an actionlib.ActionClient-like object (send_goal(goal, transition_cb,
-    feedback_cb) giving a ClientGoalHandle); by default actionlib's, on the action
-    `name` of type `action`.
+    client: an actionlib.ActionClient-like object (send_goal(goal) giving a
+    ClientGoalHandle); by default actionlib's, on the action `name` of type `action`.
     """
 
     def __init__(self, name, action, client=None, clock=time.monotonic, sleep=time.sleep):
@@ -36,13 +35,9 @@ class GoalClient(object):
         """True once the server is there, within timeout (a rospy.Duration)."""
         return self._client.wait_for_server(timeout)
 
-    def send_goal(self, goal, feedback_cb=None):
-        """Send goal; the goal sent before it is no longer followed (nor cancelled).
-
-        feedback_cb(feedback), if given, hears the goal's feedback until its result (actionlib
-        drops feedback that comes after it)."""
-        relay = None if feedback_cb is None else (lambda _handle, feedback: feedback_cb(feedback))
-        self._goal = self._client.send_goal(goal, feedback_cb=relay)
+    def send_goal(self, goal):
+        """Send goal; the goal sent before it is no longer followed (nor cancelled)."""
+        self._goal = self._client.send_goal(goal)
 
     def wait_for_result(self, timeout):
         """True once the goal sent last has ended, within timeout wall seconds."""
@@ -63,9 +58,6 @@ class GoalClient(object):
 
     def get_result(self):
         return self._goal.get_result()
-
-    def get_goal_status_text(self):
-        return self._goal.get_goal_status_text()
 
     def cancel_goal(self):
         self._goal.cancel()
