@@ -130,8 +130,8 @@ def driven(metres, limit):
 def move_arm(target, limit):
     """Send move_arm a goal to the SRDF state `target`; 0 once it succeeded."""
     import rospy
+    from wall_follower.evaluation.goal_client import GoalClient
     from wall_follower.msg import MoveArmAction, MoveArmGoal
-    from wall_follower.nodes.shared.goal_client import GoalClient
 
     rospy.init_node('fresh_debian_move_arm', disable_signals=True)
     client = GoalClient('move_arm', MoveArmAction)

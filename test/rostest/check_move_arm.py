@@ -28,8 +28,8 @@ from arm_watch import WALL_LIMIT, ArmWatch
 from waiting import wait_until
 from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import read_acceleration_limits
+from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmActionFeedback, MoveArmGoal
-from wall_follower.nodes.shared.goal_client import GoalClient
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = 60.0   # wall s

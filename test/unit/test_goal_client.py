@@ -3,7 +3,7 @@ from actionlib.action_client import CommState
 from actionlib_msgs.msg import GoalStatus
 
 from fake_clock import FakeClock
-from wall_follower.nodes.shared.goal_client import GoalClient
+from wall_follower.evaluation.goal_client import GoalClient
 
 
 class Handle(object):

@@ -31,11 +31,11 @@ from wall_follower.arm.model import (read_acceleration_limits, read_srdf, read_u
                                      read_velocity_limits)
 from wall_follower.arm.planning import Planner, PlanningError
 from wall_follower.arm.timing import fastest_duration
+from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.evaluation.launching import (LAUNCH_STOP_GRACE, ProcessGroup, free_port,
                                                 launch_command, master_environment)
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.msg import MoveArmAction, MoveArmGoal
-from wall_follower.nodes.shared.goal_client import GoalClient
 
 RESULT_LIMIT = 120.0   # wall s for move_arm to answer one goal
 
