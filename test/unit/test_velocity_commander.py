@@ -4,13 +4,14 @@ Needs ROS's Python modules but no master: rospy's Publisher and shutdown
 hooks are replaced by the test's.
 """
 import threading
-import time
 
 import pytest
 import rospy
 
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command
 from wall_follower.nodes.shared.velocity import VelocityCommander
+
+WAIT_LIMIT = 30.0   # wall s the fake's writer thread may take, at most
 
 
 class Publisher(object):
@@ -24,6 +25,7 @@ class Publisher(object):
         self.sent = []
         self.closed = False
         self.written = 0
+        self.write_done = threading.Condition()
         self.impl = self
 
     def publish(self, twist):
@@ -33,7 +35,15 @@ class Publisher(object):
         threading.Timer(self.WRITE_DELAY, self._write).start()
 
     def _write(self):
-        self.written += 1
+        with self.write_done:
+            self.written += 1
+            self.write_done.notify_all()
+
+    def wait_written(self, count):
+        """Until `count` messages are written (WAIT_LIMIT wall s at most: a machine under load
+        may run the writer's timer late, and the test must not guess how late)."""
+        with self.write_done:
+            return self.write_done.wait_for(lambda: self.written >= count, WAIT_LIMIT)
 
     def get_stats(self):
         return ('/cmd_vel', 0, [(0, 0, self.written, True)])
@@ -67,7 +77,7 @@ def test_shutdown_sends_one_stop_and_nothing_after_it(commander):
 def test_the_shutdown_hook_returns_once_the_stop_is_written(commander):
     """rospy closes the connections right after the hooks: a stop still queued is lost."""
     commander.send(Command(0.1, 0.2))
-    time.sleep(2 * Publisher.WRITE_DELAY)
+    assert commander._pub.wait_written(1)
     for hook in commander.hooks:
         hook()
     assert commander._pub.written == 2
