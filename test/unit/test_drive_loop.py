@@ -161,6 +161,14 @@ def test_with_patience_the_loop_gives_up_without_a_usable_scan():
     assert all(c == STOP for t, c in sent)
 
 
+def test_a_clock_that_runs_past_patience_in_a_burst_waits_once_for_the_scan_on_its_way():
+    # Answered at 0.15 s; then the node is starved: on waking, ROS time has run
+    # on to 2.5 s before the newest scan, taken just before, is handed on.
+    outcome, sent, _ = run([(0.1, GOOD), (0.2, 2.5), (2.51, GOOD)], until=3.0, patience=1.0)
+    assert outcome == 'end'
+    assert any(c == Command(0.1, 0.2) for t, c in sent if t > 2.5)
+
+
 def test_a_clock_moving_back_drops_the_scan_and_tells_the_node():
     resets = []
     outcome, sent, scans = run([(0.1, GOOD), (0.4, 0.05), (0.3, GOOD)], until=0.5,

@@ -69,6 +69,7 @@ class DriveLoop(object):
         # ROS times, set by run(): of this pass, of the last answer (or the start), of
         # the last command sent, and of the next tick.
         self._now = self._started = self._sent = self._due_at = None
+        self._out_of_patience = False   # patience ran out on the pass before
 
     def tune(self, rate, keepalive, input_timeout, ahead_half_width, ahead_min_known):
         """Take new settings (as in the constructor); call it between two readings, from
@@ -92,6 +93,7 @@ class DriveLoop(object):
         """
         seen = None
         self._now = self._started = self._sent = self._due_at = rospy.get_time()
+        self._out_of_patience = False
         try:
             while not rospy.is_shutdown():
                 outcome = finished()
@@ -123,10 +125,19 @@ class DriveLoop(object):
             self._started = self._sent = self._due_at = self._now
 
     def _stop_without_input(self, reading, patience):
-        """Stop for want of a usable reading, warning why; True once patience has run out."""
+        """Stop for want of a usable reading, warning why; True once patience has run out
+        on two passes in a row.
+
+        A node starved of the CPU for a while wakes to a backlog of /clock
+        that moves ROS time on in a burst, perhaps before its scan thread has
+        handed on the newest scan, already on its way: the wait for a newer
+        reading between the two passes lets it come.
+        """
         if patience is not None and self._now - self._started > patience:
-            rospy.logwarn('%s: %s; giving up', self.name, reading.problem)
-            return True
+            if self._out_of_patience:
+                rospy.logwarn('%s: %s; giving up', self.name, reading.problem)
+                return True
+            self._out_of_patience = True
         self._send(STOP)
         if reading.check is not None or self._now - self._started > self.input_timeout:
             self._warn('%s; stopped' % reading.problem, self._now)
@@ -135,6 +146,7 @@ class DriveLoop(object):
     def _answer(self, answer, reading):
         """Send answer's command for a usable reading, made safe."""
         self._started = self._now
+        self._out_of_patience = False
         self._due_at = self._next_due(self._due_at, self._now)
         self._send(self._safe(answer(reading.view, reading.taken), reading.view, self._now))
 
