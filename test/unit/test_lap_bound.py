@@ -36,7 +36,9 @@ def room(tmp_path_factory):
 
 @pytest.fixture(scope='module')
 def bound(room):
-    return lap_bound.fastest_lap(room, START)
+    """The bound held in the band by the laser's distance to the nearest wall alone,
+    which the racing line below is reasoned on."""
+    return lap_bound.fastest_lap(room, START, judged=False)
 
 
 def racing_line(margin=lap_bound.MARGIN):
@@ -81,8 +83,17 @@ def test_the_bound_driven_in_the_simulator_laps_the_room_near_its_time(room, bou
     assert driven.in_band >= 0.9
 
 
+def test_held_in_the_band_as_the_judge_reads_it_the_bound_is_slower_and_in_band(room, bound):
+    judged = lap_bound.fastest_lap(room, START)
+    assert 1.02 * bound.time < judged.time < 1.06 * bound.time
+    driven = lap_bound.drive(room, judged)
+    assert driven.closed and not driven.contact
+    assert judged.time <= driven.time <= 1.03 * judged.time
+    assert driven.in_band >= 0.995
+
+
 def test_held_further_inside_the_band_the_bound_is_slower_and_scored_in_band(room, bound):
-    inside = lap_bound.fastest_lap(room, START, margin=0.02)
+    inside = lap_bound.fastest_lap(room, START, margin=0.02, judged=False)
     assert inside.time == pytest.approx(racing_line(0.02), rel=0.02)
     assert inside.time > 1.02 * bound.time
     driven = lap_bound.drive(room, inside)

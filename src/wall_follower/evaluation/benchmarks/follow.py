@@ -166,6 +166,7 @@ def print_bounds(bounds):
                      fmt(driven.time, '.1f'), fmt(driven.time / bound.time, '.3f'),
                      fmt(100.0 * driven.in_band, '.1f'),
                      'contact' if driven.contact else ('' if driven.closed else 'no lap')])
-    print('T*, the least lap time (lap_bound, the laser held %.1f mm inside the band), each '
-          'lap driven in the built-in simulator:' % (1000.0 * bounds.margin))
+    print('T*, the least lap time (lap_bound: the laser, and the judge\'s reading, held '
+          '%.1f mm inside the band), each lap driven in the built-in simulator:'
+          % (1000.0 * bounds.margin))
     print_table(['world', 'T* s', 'path m', 'driven s', 'driven / T*', 'in band %', ''], rows)

@@ -112,8 +112,8 @@ class Bounds(lap_bound.Bounds):
         checked = [(world, bound, driven) for world, bound, driven in self.all()
                    if bound is not None]
         failed = [(world, reason) for world, bound, reason in self.all() if bound is None]
-        print('\nT* laps (lap_bound, the laser held %.1f mm inside the band) driven in the '
-              'built-in simulator: %d, %d closed without contact' % (
+        print('\nT* laps (lap_bound: the laser, and the judge\'s reading, held %.1f mm inside '
+              'the band) driven in the built-in simulator: %d, %d closed without contact' % (
                   1000.0 * self.margin, len(checked),
                   sum(d.closed and not d.contact for _, _, d in checked)))
         for name, values, worst in (

@@ -25,6 +25,14 @@ stations to carry a change round the loop. The fastest lap rides the
 band's outer edge round convex corners at full speed and across inner
 corners to the point 0.30 m from both walls, turning there.
 
+The band is the course judge's: the nearest range within 30 degrees of the
+robot's right, read from the laser. That is never nearer than the nearest
+wall, and farther where the nearest wall is out of the judge's sector (a
+lap that turns at an inner corner's far point reads the walls 45 degrees
+round, 1 cm beyond the band). So the bound is judged as well: the judge's
+reading at the stations holds each station's high edge down by what it
+reads beyond the nearest wall (fastest_lap(judged=True)).
+
 drive() checks a bound by driving it: the built-in simulator (its
 kinematics, one Euler step a world update, and its collisions) tracks the
 arcs and pivots in time, and the lap is scored from ground truth as a
@@ -67,6 +75,14 @@ WALK_STEP = 0.01
 # The optimisation's stages: which timing of the path, the penalty weight on
 # the laser's squared excursions out of the band [s/m^2], and the most steps.
 STAGES = (('spread', 1e5, 3000), ('spread', 1e7, 1000), ('flown', 1e7, 500))
+# The judged bound (fastest_lap(judged=True)): at most this many rounds of
+# lowering the band's high edge where the judge reads out of it, each followed
+# by the last stage again; done when the judge reads no more than
+# JUDGED_TOLERANCE [m] past the edge anywhere. The high edge is never lowered
+# to less than JUDGED_WIDTH [m] above the low one.
+JUDGED_ROUNDS = 4
+JUDGED_TOLERANCE = 0.001
+JUDGED_WIDTH = 0.01
 # The variables are smoothed along the loop over about this many stations.
 CORRELATION = 10.0
 # Smoothing of max() and abs() in the times [s] and [rad].
@@ -211,7 +227,6 @@ class Corridor(object):
 
     def __init__(self, walls, middle, band=BAND, margin=MARGIN, spacing=SPACING):
         self.walls = walls
-        self.low, self.high = band[0] + margin, band[1] - margin
         middle = _resampled(middle, spacing)
         window = max(1, int(round(SMOOTHING / spacing)))
         for _ in range(2):
@@ -220,25 +235,44 @@ class Corridor(object):
         tangent = np.roll(middle, -1, axis=0) - np.roll(middle, 1, axis=0)
         tangent /= np.hypot(tangent[:, 0], tangent[:, 1])[:, None]
         self.normals = np.column_stack((-tangent[:, 1], tangent[:, 0]))
-        self.offsets = self._intervals()
+        self.low, self.top = band[0] + margin, band[1] - margin
+        self.high = np.full(len(middle), self.top)
+        self.offsets, lost = self._intervals()
+        if lost.any():
+            raise BoundError('the band is lost at (%.2f, %.2f)'
+                             % tuple(self.stations[np.flatnonzero(lost)[0]]))
+
+    def hold_judged(self, farther):
+        """Lower each station's high edge so that the judge's reading, `farther` (M,) [m]
+        beyond the laser's distance to the nearest wall there, stays within the band's
+        (held margin inside). Never raised, nor lowered to less than JUDGED_WIDTH above
+        the low edge, nor where the station's normal would then miss the band."""
+        before, offsets = self.high, self.offsets
+        self.high = np.maximum(np.minimum(self.high, self.top - farther),
+                               self.low + JUDGED_WIDTH)
+        self.offsets, lost = self._intervals()
+        self.high[lost], self.offsets[lost] = before[lost], offsets[lost]
 
     def _intervals(self, reach=0.15, step=0.002):
-        """(M, 2) offsets along each normal between which the band is, at each station."""
+        """(M, 2) offsets along each normal between which the band is, at each station,
+        and (M,) whether the normal misses the band there (its interval then NaN)."""
         offsets = np.arange(-reach, reach + step / 2, step)
         points = self.stations[:, None, :] + offsets[None, :, None] * self.normals[:, None, :]
         distance = self.walls.distance(points)
-        inside = (distance >= self.low) & (distance <= self.high)
-        middle = np.argmin(np.abs(distance - 0.5 * (self.low + self.high))
+        high = self.high[:, None]
+        inside = (distance >= self.low) & (distance <= high)
+        middle = np.argmin(np.abs(distance - 0.5 * (self.low + high))
                            + 10.0 * (np.abs(offsets) > 0.5 * reach)[None, :], axis=1)
-        intervals = np.empty((len(self.stations), 2))
+        intervals = np.full((len(self.stations), 2), np.nan)
+        lost = ~inside[np.arange(len(middle)), middle]
         for index, (row, centre) in enumerate(zip(inside, middle)):
-            if not row[centre]:
-                raise BoundError('the band is lost at (%.2f, %.2f)' % tuple(self.stations[index]))
+            if lost[index]:
+                continue
             outside = np.flatnonzero(~row)
             below, above = outside[outside < centre], outside[outside > centre]
             intervals[index] = (offsets[below[-1] + 1] if below.size else -reach,
                                 offsets[above[0] - 1] if above.size else reach)
-        return intervals
+        return intervals, lost
 
 
 def _resampled(loop, spacing):
@@ -371,6 +405,14 @@ class _Flown(_Timing):
         count = len(self.corridor.stations)
         return variables[:count], variables[count:]
 
+    @staticmethod
+    def headings(direction, turn):
+        """The headings the laser is checked at (M,) each: arriving at each station,
+        leaving it, and halfway between."""
+        arrive = np.roll(direction + 0.5 * turn, 1)
+        leave = arrive + wrap_angle(direction - 0.5 * turn - arrive)
+        return arrive, leave, 0.5 * (arrive + leave)
+
     def __call__(self, variables, weight):
         offsets, turn = self.split(variables)
         centre, unit, length, direction = self.pieces(offsets)
@@ -378,10 +420,8 @@ class _Flown(_Timing):
         pivot = wrap_angle(direction - np.roll(direction, 1)) - 0.5 * (turn + np.roll(turn, 1))
         pivoting, by_pivot = _smooth_abs(pivot)
         by_pivot = by_pivot / MAX_ANGULAR
-        arrive = np.roll(direction + 0.5 * turn, 1)
-        leave = arrive + wrap_angle(direction - 0.5 * turn - arrive)
         value, by_centre, (by_arrive, by_leave, by_mean) = self.penalty(
-            centre, (arrive, leave, 0.5 * (arrive + leave)), weight)
+            centre, self.headings(direction, turn), weight)
         by_arrive = by_arrive + 0.5 * by_mean
         by_leave = by_leave + 0.5 * by_mean
         by_direction = by_pivot - np.roll(by_pivot, -1) + by_leave + np.roll(by_arrive, -1)
@@ -445,11 +485,19 @@ class _Smoothed(object):
         return value + weight * float((outside ** 2).sum()), gradient
 
 
-def fastest_lap(world_path, start, spacing=SPACING, margin=MARGIN):
+def fastest_lap(world_path, start, spacing=SPACING, margin=MARGIN, judged=True):
     """T* of the band loop nearest start ((x, y) in the world of world_path): a LapBound.
 
-    margin: how far inside the band's edges the laser is held [m]. Raises
-    BoundError when there is no band loop there.
+    margin: how far inside the band's edges the laser is held [m]. judged:
+    hold the judge's reading in the band too (the nearest range within
+    RIGHT_SECTOR of the right, course.CourseMap.right_wall_distance), not
+    only the laser's distance to the nearest wall. The two differ where the
+    nearest wall is outside the judge's sector: across an inner corner, the
+    judge reads the wall beside the robot, farther than the one ahead. The
+    judge's reading is taken at the stations; where it leaves the band the
+    station's high edge is lowered by the difference, and the path optimised
+    again from where it was, at most JUDGED_ROUNDS times. Raises BoundError when
+    there is no band loop there.
     """
     course = CourseMap(world_path)
     laser = course.laser_offset[:2]
@@ -457,26 +505,53 @@ def fastest_lap(world_path, start, spacing=SPACING, margin=MARGIN):
     middle = band_middle(walls, start)
     walls.tabulate(middle.min(axis=0) - 0.2, middle.max(axis=0) + 0.2)
     corridor = Corridor(walls, middle, margin=margin, spacing=spacing)
-    bounds = corridor.offsets.copy()
-    # The centre may stand off the laser's interval by the laser's own offset.
-    bounds += np.array((-1.0, 1.0)) * (math.hypot(*laser) + 0.01)
     spread, flying = _Spread(corridor, laser), _Flown(corridor, laser)
-    variables = np.zeros(len(bounds))
+    variables = np.zeros(len(corridor.stations))
     for timing, weight, steps in STAGES:
-        if timing == 'flown' and len(variables) == len(bounds):
+        if timing == 'flown' and len(variables) == len(corridor.stations):
             _, _, length, direction = spread.pieces(variables)
             variables = np.concatenate((variables, spread_turns(direction)))
-        smoothed = _Smoothed(spread if timing == 'spread' else flying, bounds)
-        variables = smoothed.variables(minimize(
-            smoothed, smoothed.smoothed(variables), args=(weight,), jac=True,
-            method='L-BFGS-B', options={'maxiter': steps, 'maxcor': 20}).x)
+        variables = _optimised(spread if timing == 'spread' else flying, variables, weight,
+                               steps)
+    for _ in range(JUDGED_ROUNDS if judged else 0):
+        farther, beyond = _judged(course, flying, variables)
+        if beyond <= JUDGED_TOLERANCE:
+            break
+        corridor.hold_judged(farther)
+        variables = _optimised(flying, variables, STAGES[-1][1], STAGES[-1][2])
     offsets, turns = flying.split(variables)
     centres, _, length, direction = flying.pieces(offsets)
     time = flight_time(length, direction, turns)
-    arrive = np.roll(direction + 0.5 * turns, 1)
-    leave = arrive + wrap_angle(direction - 0.5 * turns - arrive)
-    excursion = flying.excursion(centres, (arrive, leave, 0.5 * (arrive + leave)))
+    excursion = flying.excursion(centres, _Flown.headings(direction, turns))
     return LapBound(time, float(length.sum()), centres, turns, tuple(laser), excursion)
+
+
+def _optimised(timing, variables, weight, steps):
+    """variables after at most steps of L-BFGS-B on timing, in its corridor's bounds."""
+    bounds = timing.corridor.offsets.copy()
+    # The centre may stand off the laser's interval by the laser's own offset.
+    bounds += np.array((-1.0, 1.0)) * (math.hypot(*timing.laser_mount) + 0.01)
+    smoothed = _Smoothed(timing, bounds)
+    return smoothed.variables(minimize(
+        smoothed, smoothed.smoothed(variables), args=(weight,), jac=True,
+        method='L-BFGS-B', options={'maxiter': steps, 'maxcor': 20}).x)
+
+
+def _judged(course, flying, variables):
+    """How much farther the judge reads than the laser's distance to the nearest wall at
+    each station, the most over the headings flown there (M,) [m]; and how far the
+    judge's reading goes past the corridor's high edge at most [m]."""
+    offsets, turns = flying.split(variables)
+    centres, _, _, direction = flying.pieces(offsets)
+    farther = np.zeros(len(centres))
+    beyond = 0.0
+    for heading in _Flown.headings(direction, turns):
+        distance = flying.corridor.walls.nearest(flying.laser(centres, heading)[0])[0]
+        reading = np.array([course.right_wall_distance((x, y, yaw))
+                            for (x, y), yaw in zip(centres, heading)])
+        farther = np.maximum(farther, reading - distance)
+        beyond = max(beyond, float(np.max(reading - flying.corridor.top)))
+    return farther, beyond
 
 
 def flight_time(length, direction, turns):
