@@ -55,7 +55,7 @@ class OuterCorner(Manoeuvre):
     def due(self, obs):
         """True unless the wall on the right goes on past where the arc round its end starts."""
         p = self.params
-        return obs.wall is None or obs.wall_ahead + p.laser_x <= self.turn.lead + p.outer_turn_lead
+        return obs.wall is None or obs.wall_runs + p.laser_x <= self.turn.lead + p.outer_turn_lead
 
     def begin(self, obs, previous):
         self.arc = self._corner_arc(obs)
@@ -142,5 +142,5 @@ class OuterCorner(Manoeuvre):
         if not along_the_way(obs.wall, self.params.rejoin_angle):
             return None
         angle = obs.wall.angle
-        return CornerArc(obs.wall_end, (math.cos(angle), math.sin(angle)), self.turn.center,
+        return CornerArc(obs.wall_tip, (math.cos(angle), math.sin(angle)), self.turn.center,
                          self.params.laser_x)

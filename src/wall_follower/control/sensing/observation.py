@@ -5,7 +5,8 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
+from wall_follower.control.sensing.wall_fit import (along_the_way, right_wall, wall_runs_to,
+                                                    wall_through)
 from wall_follower.rotation import wrap_angle
 
 
@@ -15,7 +16,10 @@ class Observation(object):
     wall: the straight wall on the right (a Line, angle from the right, > 0
     when the robot heads into it), or None. wall_end: (x, y) of that wall's
     farthest hit ahead, and wall_ahead its x: how far ahead of the laser
-    the wall is still seen (-inf without a wall). right: every hit on the
+    the wall is still seen (-inf without a wall). wall_tip: (x, y) of the
+    farthest hit ahead it runs on to, past a saw-tooth that the line
+    misses (wall_fit.wall_runs_to), where a turn round its end would
+    begin; wall_runs its x (-inf without a wall). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
     clear_margin each side. ahead: the straight wall across that lane (a
@@ -36,6 +40,9 @@ class Observation(object):
         sector = hits[(off_right <= params.wall_sector) & near]
         self.wall, self.wall_end = right_wall(sector, params)
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
+        self.wall_tip = (wall_runs_to(self.wall, self.wall_end, sector, params)
+                         if self.wall is not None else None)
+        self.wall_runs = self.wall_tip[0] if self.wall_tip is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
         across = np.abs(front[:, 1])

@@ -36,6 +36,36 @@ def right_wall(points, params):
     return wall, inliers[np.argmax(inliers[:, 0])]
 
 
+def wall_runs_to(wall, end, points, params):
+    """The farthest hit of points ahead that wall (a follower's Line) runs on to from end,
+    its farthest hit ahead (right_wall()).
+
+    On a wall slanted to Stage's grid the hits form a saw-tooth, a whole
+    cell deep, and the line fitted through a few teeth is tilted off the
+    wall: its inliers stop short of the wall's end. The hits ahead of end
+    still follow the wall, each within wall_continue_gap of the one
+    before, and never farther beyond the line than wall_inlier_distance
+    and wall_continue_angle allow; the wall runs on over them. Past a
+    wall's real end the next hits lie on a wall farther away or beyond a
+    bend sharper than that angle, or there are none.
+    """
+    line = Line(wall.distance, wall.angle + RIGHT)
+    tangent = np.array((-line.normal[1], line.normal[0]))
+    if tangent[0] < 0.0:
+        tangent = -tangent
+    along = points.dot(tangent)
+    start = float(np.dot(end, tangent))
+    offsets = line.offsets(points)
+    slope = math.tan(params.wall_continue_angle)
+    for index in sorted(np.flatnonzero(along > start), key=lambda index: along[index]):
+        hit = points[index]
+        if (math.hypot(*(hit - end)) > params.wall_continue_gap
+                or offsets[index] > params.wall_inlier_distance + (along[index] - start) * slope):
+            break
+        end = hit
+    return end
+
+
 def wall_through(seed, points, params):
     """The Line of the straight wall through most of the seed hits, or None.
 

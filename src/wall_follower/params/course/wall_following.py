@@ -64,6 +64,10 @@ FOLLOWER = (
           0.001, 0.5),
         P('wall_seed_support', 0.6, 'share of the seed hits the final wall line must still pass '
           'through', 0.0, 1.0),
+        P('wall_continue_gap', 0.06, 'the wall runs on past its fitted line over hits this near '
+          'the one before [m] ...', 0.0, 1.0),
+        P('wall_continue_angle', math.radians(15.0), '... that bend away from the line by no '
+          'more than this [rad]', 0.0, math.pi / 2),
         P('wall_lost_distance', 0.45, 'a wall farther than this is not followed (outer corner, '
           'or no wall) [m]', 0.1, 5.0),
     )),
