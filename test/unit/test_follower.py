@@ -590,7 +590,8 @@ def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
     # the one the turn left behind, 60 degrees off: its end is not the
     # corner that came up, so the robot circles the nearest hit instead.
     seen = Observation.__new__(Observation)
-    seen.wall, seen.wall_end = Line(0.25, math.radians(angle_deg)), np.array((0.1, -0.25))
+    seen.wall = Line(0.25, math.radians(angle_deg))
+    seen.wall_end = seen.wall_tip = np.array((0.1, -0.25))
     assert (WallFollower(EXACT).outer_corner._corner_arc(seen) is not None) == pinned
 
 
