@@ -169,6 +169,14 @@ def test_a_clock_that_runs_past_patience_in_a_burst_waits_once_for_the_scan_on_i
     assert any(c == Command(0.1, 0.2) for t, c in sent if t > 2.5)
 
 
+def test_after_the_clock_moved_back_patience_again_runs_out_on_two_passes():
+    # Patience first runs out at 1.0 s; then the clock moves back to 0.5 s,
+    # and patience is counted afresh: out at 1.5 s, given up a pass later.
+    outcome, _, _ = run([(1.03, 0.5)], until=10.0, patience=1.0)
+    assert outcome == FINISHED_NO_INPUT
+    assert Clock.now == pytest.approx(1.5 + PERIOD, abs=0.01)
+
+
 def test_a_clock_moving_back_drops_the_scan_and_tells_the_node():
     resets = []
     outcome, sent, scans = run([(0.1, GOOD), (0.4, 0.05), (0.3, GOOD)], until=0.5,

@@ -123,6 +123,7 @@ class DriveLoop(object):
         if self._now < previous:
             self._clock_moved_back(previous, self._now, on_clock_reset)
             self._started = self._sent = self._due_at = self._now
+            self._out_of_patience = False
 
     def _stop_without_input(self, reading, patience):
         """Stop for want of a usable reading, warning why; True once patience has run out
