@@ -6,12 +6,18 @@ import pytest
 
 from wall_follower.control.following.follower import FollowerParams
 from wall_follower.control.sensing.lines import Line
+from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.control.sensing.wall_fit import wall_runs_to
 
 PARAMS = FollowerParams()
-# A wall parallel on the right, 0.25 m from the laser (a follower's Line).
-WALL = Line(0.25, 0.0)
+# A wall parallel on the right, 0.25 m from the laser.
+WALL = Line(0.25, RIGHT)
 END = np.array((0.2, -0.25))
+
+
+def runs_to(points):
+    """Where WALL runs on to from END over points."""
+    return wall_runs_to(WALL, WALL.offsets(points), END, points, PARAMS)
 
 
 def hits(start, heading_deg, length, step=0.01):
@@ -25,26 +31,26 @@ def test_a_wall_that_runs_on_at_a_slight_slant_runs_to_its_last_hit():
     # The saw-tooth of a wall slanted to Stage's grid: the line fitted through
     # a few teeth is tilted some 12 deg off the hits farther on.
     ahead = hits(END, -12.0, 0.4)
-    assert wall_runs_to(WALL, END, ahead, PARAMS) == pytest.approx(ahead[-1])
+    assert runs_to(ahead) == pytest.approx(ahead[-1])
 
 
 def test_the_teeth_of_a_saw_tooth_do_not_stop_it():
     ahead = hits(END, 0.0, 0.4, step=0.02)
     ahead[::2, 1] += 0.02   # every other hit a cell farther
-    assert wall_runs_to(WALL, END, ahead, PARAMS) == pytest.approx(ahead[-1])
+    assert runs_to(ahead) == pytest.approx(ahead[-1])
 
 
 def test_a_wall_that_ends_runs_to_its_end_however_near_the_next_one_lies():
     farther = hits(END + np.array((0.02, -0.3)), 0.0, 0.4)
-    assert wall_runs_to(WALL, END, farther, PARAMS) == pytest.approx(END)
+    assert runs_to(farther) == pytest.approx(END)
 
 
 def test_a_bend_away_sharper_than_the_continue_angle_ends_it():
     away = hits(END, -40.0, 0.4)
-    reached = wall_runs_to(WALL, END, away, PARAMS)
+    reached = runs_to(away)
     assert reached[0] < END[0] + 0.1
 
 
 def test_a_gap_wider_than_the_continue_gap_ends_it():
     beyond = hits(END + np.array((PARAMS.wall_continue_gap + 0.02, 0.0)), 0.0, 0.3)
-    assert wall_runs_to(WALL, END, beyond, PARAMS) == pytest.approx(END)
+    assert runs_to(beyond) == pytest.approx(END)

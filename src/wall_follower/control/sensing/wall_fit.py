@@ -21,7 +21,8 @@ from wall_follower.rotation import wrap_angle
 
 
 def right_wall(points, params):
-    """(the Line, (x, y) of its farthest hit ahead) of the wall on the right, or None, None.
+    """(the Line, (x, y) of its farthest hit ahead, (x, y) of the farthest hit ahead it runs
+    on to (wall_runs_to)) of the wall on the right, or None, None, None.
 
     Seeded by the hits straight to the right only, so that the other leg of
     a corner, or an obstacle, in the wider sector is not averaged into it.
@@ -30,15 +31,17 @@ def right_wall(points, params):
     seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
     wall = wall_through(seed, points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
-        return None, None
+        return None, None, None
     line = Line(wall.distance, wall.angle + RIGHT)
-    inliers = points[np.abs(line.offsets(points)) < params.wall_inlier_distance]
-    return wall, inliers[np.argmax(inliers[:, 0])]
+    offsets = line.offsets(points)
+    inliers = points[np.abs(offsets) < params.wall_inlier_distance]
+    end = inliers[np.argmax(inliers[:, 0])]
+    return wall, end, wall_runs_to(line, offsets, end, points, params)
 
 
-def wall_runs_to(wall, end, points, params):
-    """The farthest hit of points ahead that wall (a follower's Line) runs on to from end,
-    its farthest hit ahead (right_wall()).
+def wall_runs_to(line, offsets, end, points, params):
+    """The farthest of points ahead that the wall along line (in the laser's frame; offsets:
+    the points' from it) runs on to from end, its farthest inlier ahead.
 
     On a wall slanted to Stage's grid the hits form a saw-tooth, a whole
     cell deep, and the line fitted through a few teeth is tilted off the
@@ -49,13 +52,11 @@ def wall_runs_to(wall, end, points, params):
     wall's real end the next hits lie on a wall farther away or beyond a
     bend sharper than that angle, or there are none.
     """
-    line = Line(wall.distance, wall.angle + RIGHT)
     tangent = np.array((-line.normal[1], line.normal[0]))
     if tangent[0] < 0.0:
         tangent = -tangent
     along = points.dot(tangent)
     start = float(np.dot(end, tangent))
-    offsets = line.offsets(points)
     slope = math.tan(params.wall_continue_angle)
     for index in sorted(np.flatnonzero(along > start), key=lambda index: along[index]):
         hit = points[index]
