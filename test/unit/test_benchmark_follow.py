@@ -3,9 +3,9 @@ a lap against its T*."""
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.scoring import lap_bound
 from wall_follower.evaluation.benchmarks import follow_generated
 from wall_follower.evaluation.benchmarks.follow import combined
+from wall_follower.evaluation.scoring import driven_bound, lap_bound
 
 
 def lap(ratio, band=0.98, clearance=0.12, contact=False, max_linear=0.19):
@@ -48,10 +48,10 @@ def test_each_generated_lap_is_timed_against_its_loop_s_bound_found_once(monkeyp
                                   np.zeros(2), (-0.032, 0.0), 0.0)
 
     def drive(world, bound):
-        return lap_bound.DrivenLap(51.0, 0.99, 0.03, 0.1, False, True)
+        return driven_bound.DrivenLap(51.0, 0.99, 0.03, 0.1, False, True)
 
-    monkeypatch.setattr(lap_bound, 'fastest_lap', fastest_lap)
-    monkeypatch.setattr(lap_bound, 'drive', drive)
+    monkeypatch.setattr(driven_bound, 'fastest_lap', fastest_lap)
+    monkeypatch.setattr(driven_bound, 'drive', drive)
     monkeypatch.setattr(follow_generated, 'grade_case',
                         lambda record: {'lap_genuine': record['genuine']})
     bounds = follow_generated.Bounds(0.02)

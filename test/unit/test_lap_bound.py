@@ -6,7 +6,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from wall_follower.evaluation.scoring import lap_bound
+from wall_follower.evaluation.scoring import driven_bound, lap_bound
 from wall_follower.evaluation.scoring.geometry import cast_rays, solid_edges
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
 from wall_follower.sim.worldfile import load_world
@@ -74,7 +74,7 @@ def test_t_star_is_far_below_the_middle_line_pivoting_at_each_corner(bound):
 
 
 def test_the_bound_driven_in_the_simulator_laps_the_room_near_its_time(room, bound):
-    driven = lap_bound.drive(room, bound)
+    driven = driven_bound.drive(room, bound)
     assert driven.closed and not driven.contact
     assert bound.time <= driven.time <= 1.03 * bound.time
     # Held 1.5 mm inside the band, and scored by the course's judge, which reads
@@ -86,7 +86,7 @@ def test_the_bound_driven_in_the_simulator_laps_the_room_near_its_time(room, bou
 def test_held_in_the_band_as_the_judge_reads_it_the_bound_is_slower_and_in_band(room, bound):
     judged = lap_bound.fastest_lap(room, START)
     assert 1.02 * bound.time < judged.time < 1.06 * bound.time
-    driven = lap_bound.drive(room, judged)
+    driven = driven_bound.drive(room, judged)
     assert driven.closed and not driven.contact
     assert judged.time <= driven.time <= 1.03 * judged.time
     assert driven.in_band >= 0.995
@@ -96,7 +96,7 @@ def test_held_further_inside_the_band_the_bound_is_slower_and_scored_in_band(roo
     inside = lap_bound.fastest_lap(room, START, margin=0.02, judged=False)
     assert inside.time == pytest.approx(racing_line(0.02), rel=0.02)
     assert inside.time > 1.02 * bound.time
-    driven = lap_bound.drive(room, inside)
+    driven = driven_bound.drive(room, inside)
     assert driven.closed and not driven.contact
     assert driven.in_band >= 0.995
 

@@ -24,7 +24,7 @@ import os
 import sys
 import tempfile
 
-from wall_follower.evaluation.scoring import lap_bound
+from wall_follower.evaluation.scoring import driven_bound, lap_bound
 from wall_follower.evaluation.benchmarks import follow_generated
 from wall_follower.evaluation.launching import (WORLDS, display_wrapper, laser_profile, run_launch,
                                                 shipped_world)
@@ -119,7 +119,7 @@ def main(argv=None):
         args.profiles, args.seeds = ['stage'], 1
     args.profiles = args.profiles or list(PROFILES)
     rows = []
-    bounds = lap_bound.Bounds(args.bound_margin)
+    bounds = driven_bound.Bounds(args.bound_margin)
     for world in args.worlds:
         # Every lap begins at the world's start pose.
         path = world_path(world)

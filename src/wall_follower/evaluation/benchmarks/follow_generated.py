@@ -17,7 +17,7 @@ import numpy as np
 
 from wall_follower.evaluation.grading import grader
 from wall_follower.evaluation.grading.criteria import MIN_IN_BAND, grade_case
-from wall_follower.evaluation.scoring import lap_bound
+from wall_follower.evaluation.scoring import driven_bound, lap_bound
 from wall_follower.evaluation.tables import fmt, print_table
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
@@ -86,7 +86,7 @@ def run(count, seed, profiles, jobs, out, room, bound_margin=lap_bound.MARGIN):
     return 0
 
 
-class Bounds(lap_bound.Bounds):
+class Bounds(driven_bound.Bounds):
     """The T* of each case's loop, found once a world: every laser's grader writes the
     same world to a file of its own."""
 
