@@ -282,6 +282,17 @@ def test_a_left_turn_for_a_step_at_the_lanes_edge_goes_on_until_it_is_clear_of_i
     assert controller.state == WALL_AHEAD
 
 
+def test_a_left_turn_held_only_by_the_wall_it_leaves_hands_back_to_following():
+    # Nearer its wall than the widened lane's half-width, a robot turning left
+    # finds that wall itself at the widened lane's edge. Held on for it, the
+    # turn went on until the wall was behind and lost: on a generated world
+    # (seed 14, world 28) the lap never closed.
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    update(right_wall(0.17), (0.0, 0.0, math.radians(20.0)), controller=controller)
+    assert controller.state == FOLLOW
+
+
 def test_a_wall_right_in_front_is_turned_from_on_the_spot():
     controller, command = update(corridor_end(0.15))
     assert controller.state == WALL_AHEAD

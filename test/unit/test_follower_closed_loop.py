@@ -151,3 +151,15 @@ def test_the_saw_tooth_of_a_slanted_bar_does_not_end_its_wall_early(tmp_path):
     score, states = lap(world, 'stage', time_limit=60.0)
     assert_a_lap_in_band(score)
     assert 'WALL_AHEAD' not in states
+
+
+def test_a_turn_from_a_slanted_wall_landed_near_does_not_go_on_until_it_is_lost(tmp_path):
+    # Generated world 28 of seed 14: round the tip of a bar, the robot lands
+    # 0.18 m from the bar's slanted side, nearer than the half-width of the
+    # widened lane that holds a left turn on. A left turn begun there was
+    # held on by the saw-tooth of that side itself until it lay behind; the
+    # wall lost, the robot drove across the room and circled a pillar, and
+    # the lap never closed. Started where find_wall leaves the robot.
+    world = generated_world(tmp_path, 14, 28, (1.578, 0.082, math.radians(89.7)))
+    score, _ = lap(world, 'stage', time_limit=150.0)
+    assert_a_lap_in_band(score)

@@ -167,8 +167,12 @@ class WallFollower(object):
         end the turn otherwise: anything near in the lane, or a wall across
         it nearer than front_clear_distance, only means the turn is not
         over yet. A wall farther across the way is turned onto when it
-        comes within reach, from FOLLOW, like any other.
+        comes within reach, from FOLLOW, like any other. A turn held on by
+        nothing but the wall it is leaving is over, and FOLLOW steers back
+        along that wall.
         """
+        if self.inner_corner.leaving_its_wall(obs):
+            return FOLLOW
         if not self.inner_corner.clear_of_lane_edges(obs):
             return WALL_AHEAD
         if self.inner_corner.done(obs):

@@ -115,6 +115,22 @@ class InnerCorner(Manoeuvre):
         """
         return obs.front_wide >= self.params.front_turn_distance
 
+    def leaving_its_wall(self, obs):
+        """True when the turn is held on by nothing but the wall on the right it is leaving.
+
+        A robot nearer that wall than the widened lane's half-width
+        (corridor_half_width + clear_margin) finds the wall itself, or the
+        saw-tooth of a slanted one, at the widened lane's edge, and
+        clear_of_lane_edges would hold the turn on until the wall lay behind
+        and was lost. Turned away from it by more than rejoin_behind, with
+        the lane itself clear and no wall across it, the turn is over.
+        """
+        p = self.params
+        return (obs.wall is not None and obs.wall.angle < -p.rejoin_behind
+                and obs.wall.distance < p.corridor_half_width + p.clear_margin
+                and obs.front >= p.front_turn_distance and obs.ahead is None
+                and not self.clear_of_lane_edges(obs))
+
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
 
