@@ -293,6 +293,20 @@ def test_a_left_turn_held_only_by_the_wall_it_leaves_hands_back_to_following():
     assert controller.state == FOLLOW
 
 
+def test_a_left_turn_that_has_left_a_walls_end_behind_goes_round_it():
+    # The wall on the right ended 0.1 m behind the laser, and the robot has
+    # turned 60 deg left of it with the lane ahead clear and no wall along
+    # the right. The nearest hit is that wall's end, behind the right: a
+    # left turn held on for it only carried the robot away, until the wall
+    # was lost. Round that end instead.
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    view = scan_view(right_wall(0.25, end=-0.1), (0.0, 0.0, math.radians(60.0)), STAGE)
+    assert Observation(view, EXACT).wall is None
+    controller.update(view)
+    assert controller.state == OUTER_CORNER
+
+
 def test_a_wall_right_in_front_is_turned_from_on_the_spot():
     controller, command = update(corridor_end(0.15))
     assert controller.state == WALL_AHEAD

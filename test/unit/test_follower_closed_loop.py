@@ -163,3 +163,17 @@ def test_a_turn_from_a_slanted_wall_landed_near_does_not_go_on_until_it_is_lost(
     world = generated_world(tmp_path, 14, 28, (1.578, 0.082, math.radians(89.7)))
     score, _ = lap(world, 'stage', time_limit=150.0)
     assert_a_lap_in_band(score)
+
+
+def test_a_left_turn_is_not_held_on_by_the_end_of_a_wall_behind(tmp_path):
+    # Generated world 11 of seed 14, the LDS-01 laser: past the peak of a
+    # slanted wall a left turn had the lane ahead clear, no wall along the
+    # right, and the nearest hit was the end of the wall it had left,
+    # behind the right. Held on for it, the turn carried the robot away
+    # until that wall was lost, and it searched across the room (50 % in
+    # band). Started on the slanted wall, 4 s before its peak.
+    world = generated_world(tmp_path, 14, 11, (2.215, -0.970, math.radians(150.0)))
+    score, states = lap(world, 'lds01', seed=1, time_limit=150.0)
+    figures = score.summary()
+    assert figures['lap_closed'] and not figures['contact']
+    assert 'SEARCH' not in states

@@ -163,8 +163,9 @@ class WallFollower(object):
         """Turn on until the wall ahead has come round to the right and the lane's edges
         are clear.
 
-        Only the end of a wall beside the robot (a short wall, a box) can
-        end the turn otherwise: anything near in the lane, or a wall across
+        Only the end of a wall beside the robot (a short wall, a box), or
+        one behind it with no wall along the right (_to_round), can end the
+        turn otherwise: anything near in the lane, or a wall across
         it nearer than front_clear_distance, only means the turn is not
         over yet. A wall farther across the way is turned onto when it
         comes within reach, from FOLLOW, like any other. A turn held on by
@@ -181,8 +182,22 @@ class WallFollower(object):
                 obs.ahead is not None and obs.ahead.distance < self.params.front_clear_distance):
             return WALL_AHEAD
         if self._near(obs):
-            return OUTER_CORNER if self._beside(obs.nearest) else WALL_AHEAD
+            return OUTER_CORNER if self._to_round(obs) else WALL_AHEAD
         return self._wall_or_search(obs)
+
+    def _to_round(self, obs):
+        """True when the nearest hit on the right is the end of a wall for the left turn to
+        round: beside the robot, or behind it while no wall is along the right.
+
+        With no wall fitted, a hit behind the right is the end of the wall
+        the turn has left: held on for it, the turn carried the robot away
+        until that wall was lost. With one fitted, it is the old wall of an
+        ordinary turn, which goes on until the new wall is rejoined.
+        """
+        if self._beside(obs.nearest):
+            return True
+        ahead_of_right = float(wrap_angle(obs.nearest[1] - RIGHT))
+        return obs.wall is None and ahead_of_right < -self.params.corner_bearing
 
     def _from_outer_corner(self, obs):
         """Round the corner until the next wall is along the right, while anything is near."""

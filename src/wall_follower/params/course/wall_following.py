@@ -132,7 +132,8 @@ FOLLOWER = (
         P('corner_gate', 0.1, 'the tip of a corner is looked for this near where it is expected '
           '[m]', 0.0, 1.0),
         P('corner_bearing', math.radians(30.0), 'after a left turn, circle the end of a wall '
-          'only if this near the right [rad]', 0.0, math.pi),
+          'only if this near the right, or farther behind it with no wall along the right '
+          '[rad]', 0.0, math.pi),
         P('rejoin_ahead', 0.15, 'after a corner, follow a wall seen at least this far ahead [m] '
           '...', 0.0, 5.0),
         P('rejoin_angle', math.radians(40.0), '... and within this angle of the heading [rad]',
