@@ -172,10 +172,8 @@ class WallFollower(object):
         nothing but the wall it is leaving is over, and FOLLOW steers back
         along that wall.
         """
-        if self.inner_corner.leaving_its_wall(obs):
-            return FOLLOW
         if not self.inner_corner.clear_of_lane_edges(obs):
-            return WALL_AHEAD
+            return FOLLOW if self.inner_corner.leaving_its_wall(obs) else WALL_AHEAD
         if self.inner_corner.done(obs):
             return FOLLOW
         if obs.front < self.params.front_clear_distance or (
@@ -194,10 +192,10 @@ class WallFollower(object):
         until that wall was lost. With one fitted, it is the old wall of an
         ordinary turn, which goes on until the new wall is rejoined.
         """
-        if self._beside(obs.nearest):
-            return True
         ahead_of_right = float(wrap_angle(obs.nearest[1] - RIGHT))
-        return obs.wall is None and ahead_of_right < -self.params.corner_bearing
+        if ahead_of_right > self.params.corner_bearing:
+            return False
+        return ahead_of_right >= -self.params.corner_bearing or obs.wall is None
 
     def _from_outer_corner(self, obs):
         """Round the corner until the next wall is along the right, while anything is near."""
@@ -219,8 +217,3 @@ class WallFollower(object):
     def _near(self, obs):
         """True when the nearest hit on the right is near enough to be a wall to follow."""
         return obs.nearest is not None and obs.nearest[0] < self.params.wall_lost_distance
-
-    def _beside(self, hit):
-        """True when a (distance, bearing) hit is within corner_bearing of the right."""
-        off_right = abs(float(wrap_angle(hit[1] - RIGHT)))
-        return off_right <= self.params.corner_bearing

@@ -116,7 +116,8 @@ class InnerCorner(Manoeuvre):
         return obs.front_wide >= self.params.front_turn_distance
 
     def leaving_its_wall(self, obs):
-        """True when the turn is held on by nothing but the wall on the right it is leaving.
+        """True when what holds the widened lane's edges (not clear_of_lane_edges) can only
+        be the wall on the right that the turn is leaving.
 
         A robot nearer that wall than the widened lane's half-width
         (corridor_half_width + clear_margin) finds the wall itself, or the
@@ -128,8 +129,7 @@ class InnerCorner(Manoeuvre):
         p = self.params
         return (obs.wall is not None and obs.wall.angle < -p.rejoin_behind
                 and obs.wall.distance < p.corridor_half_width + p.clear_margin
-                and obs.front >= p.front_turn_distance and obs.ahead is None
-                and not self.clear_of_lane_edges(obs))
+                and obs.front >= p.front_turn_distance and obs.ahead is None)
 
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
