@@ -55,6 +55,10 @@ class OdometryStops(unittest.TestCase):
         self.assertTrue(wait_until(lambda: self.client.get_state() != GoalStatus.ACTIVE,
                                    WAIT_LIMIT), 'the goal was left waiting')
         ended = rospy.get_time()
+        # The goal's end comes on the status topic, its result on a connection of its own:
+        # the status can come first, and the result is None until it comes.
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(WAIT_LIMIT)),
+                        'no result for the aborted goal')
         self.assertEqual(self.client.get_state(), GoalStatus.ABORTED)
         self.assertGreater(ended - stopped, timeout - LATE_ODOMETRY,
                            'aborted %.1f s after the odometry stopped' % (ended - stopped))
