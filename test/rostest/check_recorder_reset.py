@@ -81,6 +81,9 @@ class ResetMidLap(unittest.TestCase):
         self.reset()
         self.assertTrue(wait_until(lambda: self.client.get_state() != GoalStatus.ACTIVE,
                                    LAP_LIMIT), 'no lap after the reset')
+        # The goal's end comes on the status topic, its result on a connection of its own.
+        self.assertTrue(self.client.wait_for_result(rospy.Duration(WAIT_LIMIT)),
+                        'no result for the lap')
         self.assertEqual(self.client.get_state(), GoalStatus.SUCCEEDED,
                          self.client.get_goal_status_text())
         points = [(p.x, p.y) for p in self.client.get_result().list_of_odoms]
