@@ -30,6 +30,7 @@ from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmActionFeedback, MoveArmGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = 60.0   # wall s
@@ -87,6 +88,8 @@ class MoveArmTest(unittest.TestCase):
         cls.buffer = tf2_ros.Buffer()
         cls.listener = tf2_ros.TransformListener(cls.buffer)
         cls.feedback = FeedbackLog('move_arm')
+        if not action_server_registered('move_arm', WALL_LIMIT):
+            raise AssertionError('no move_arm action server')
         cls.client = GoalClient('move_arm', MoveArmAction)
         if not cls.client.wait_for_server(rospy.Duration(WALL_LIMIT)):
             raise AssertionError('no move_arm action server')

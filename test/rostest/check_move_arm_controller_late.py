@@ -21,6 +21,7 @@ from waiting import wait_until
 from wall_follower.arm.model import read_srdf, read_urdf
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 # Wall seconds the late controller waits, after the goal is active, before it subscribes:
 # long enough that a trajectory published without waiting for it has surely gone.
@@ -36,6 +37,8 @@ class LateControllerTest(unittest.TestCase):
         cls.semantics = read_srdf(rospy.get_param('robot_description_semantic'), cls.model)
         cls.states = rospy.Publisher('joint_states', JointState, queue_size=10)
         cls.timer = rospy.Timer(rospy.Duration(0.02), cls.publish_state)
+        if not action_server_registered('move_arm', WALL_LIMIT):
+            raise AssertionError('no move_arm action server')
         cls.client = GoalClient('move_arm', MoveArmAction)
         if not cls.client.wait_for_server(rospy.Duration(WALL_LIMIT)):
             raise AssertionError('no move_arm action server')

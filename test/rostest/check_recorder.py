@@ -20,6 +20,7 @@ from std_srvs.srv import Empty
 from wall_follower.evaluation.scoring.course import stretches_on_trail, taken_every
 from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecordGoal
 from wall_follower.nodes.shared.messages import pose_of
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 from waiting import wait_until
 
@@ -39,6 +40,7 @@ class RecordOdomGoals(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
+        assert action_server_registered('record_odom', 30.0), 'no record_odom server'
         cls.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         assert cls.client.wait_for_server(rospy.Duration(30.0)), 'no record_odom server'
         cls.period = rospy.get_param('/odom_recorder/sample_period', 1.0)

@@ -18,7 +18,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import wait_in_wall_time
+from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
 
 from odometry_world import STEP, OdometryWorld
 from waiting import wait_until
@@ -33,6 +33,8 @@ class FastClock(unittest.TestCase):
 
     def setUp(self):
         self.world = OdometryWorld(START_CLOCK, WALL_STEP)
+        self.assertTrue(action_server_registered('record_odom', WAIT_LIMIT),
+                        'no record_odom server')
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
 
     def tearDown(self):

@@ -9,11 +9,13 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 
 class NoOdometry(unittest.TestCase):
 
     def test_goal_aborted_with_a_message(self):
+        self.assertTrue(action_server_registered('record_odom', 30.0))
         client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(30.0)))
         client.send_goal(OdomRecordGoal())

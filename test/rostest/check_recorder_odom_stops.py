@@ -18,6 +18,7 @@ from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 from waiting import wait_until
 
@@ -35,6 +36,8 @@ class OdometryStops(unittest.TestCase):
         self.passing.set()
         self.relay = rospy.Publisher('odom_relayed', Odometry, queue_size=100)
         rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=100)
+        self.assertTrue(action_server_registered('record_odom', WAIT_LIMIT),
+                        'no record_odom server')
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         self.assertTrue(self.client.wait_for_server(rospy.Duration(WAIT_LIMIT)),
                         'no record_odom server')

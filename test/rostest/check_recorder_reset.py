@@ -23,6 +23,7 @@ from std_srvs.srv import Empty
 
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 from wall_follower.nodes.shared.messages import pose_of
 
 from waiting import wait_until
@@ -43,6 +44,8 @@ class ResetMidLap(unittest.TestCase):
     def setUp(self):
         self.truths = []
         rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth, queue_size=10000)
+        self.assertTrue(action_server_registered('record_odom', WAIT_LIMIT),
+                        'no record_odom server')
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
         self.assertTrue(self.client.wait_for_server(rospy.Duration(WAIT_LIMIT)),
                         'no record_odom server')

@@ -23,6 +23,7 @@ from nav_msgs.msg import Odometry
 from rosout_log import RosoutLog
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.shared.waiting import action_server_registered
 
 from waiting import wait_until
 
@@ -55,6 +56,8 @@ class RobotOnAnotherClock(unittest.TestCase):
         recorded points.
         """
         odom = rospy.Publisher(namespace + '/odom', Odometry, queue_size=100)
+        self.assertTrue(action_server_registered(namespace + '/record_odom', WAIT_LIMIT),
+                        'no record_odom')
         client = actionlib.SimpleActionClient(namespace + '/record_odom', OdomRecordAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(WAIT_LIMIT)), 'no record_odom')
         self.assertTrue(wait_until(lambda: odom.get_num_connections() > 0, WAIT_LIMIT),

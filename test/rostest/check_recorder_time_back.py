@@ -24,7 +24,7 @@ from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from rosgraph_msgs.msg import Log
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import wait_in_wall_time
+from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
 
 from odometry_world import SPEED, STEP, OdometryWorld
 from rosout_log import RosoutLog
@@ -51,6 +51,8 @@ class TimeMovesBack(unittest.TestCase):
         self.log = RosoutLog(RECORDER)
         rospy.Subscriber('record_odom/status', GoalStatusArray, self.statuses.append)
         self.world = OdometryWorld(OLD_CLOCK, WALL_STEP)
+        self.assertTrue(action_server_registered('record_odom', WAIT_LIMIT),
+                        'no record_odom server')
         self.client = actionlib.SimpleActionClient('record_odom', OdomRecordAction)
 
     def tearDown(self):
@@ -73,8 +75,9 @@ class TimeMovesBack(unittest.TestCase):
         self.assertTrue(self.points(feedback, POINTS_BEFORE_CANCEL),
                         'no feedback on the clock from %.0f s' % before_clock)
         self.client.cancel_goal()
-        self.assertTrue(wait_until(lambda: self.client.get_state() == GoalStatus.PREEMPTED,
-                                   WAIT_LIMIT), 'the goal was not cancelled')
+        self.assertTrue(wait_in_wall_time(self.client.wait_for_result, WAIT_LIMIT),
+                        'no result after the cancel')
+        self.assertEqual(self.client.get_state(), GoalStatus.PREEMPTED)
         points = self.client.get_result().list_of_odoms
         self.assertGreaterEqual(len(points), POINTS_BEFORE_CANCEL)
         first = points[0]

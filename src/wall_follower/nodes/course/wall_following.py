@@ -26,7 +26,7 @@ from wall_follower.nodes.shared.laser_mount import laser_x
 from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.waiting import wait_in_wall_time
+from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
 from wall_follower.params import pick
 from wall_follower.params.course.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall
@@ -81,9 +81,8 @@ class WallFollowingNode(object):
     def start_recording(self):
         """Send the record_odom goal; False when the action server never appears."""
         name = rospy.resolve_name('record_odom')
-        self._recorder = actionlib.ActionClient(name, OdomRecordAction)
         rospy.loginfo('wall_following: waiting for the %s action server', name)
-        if not self._wait_for_recorder():
+        if not self._wait_for_recorder(name):
             rospy.logerr('wall_following: no %s action server after %.0f s; '
                          'is odom_recorder running?', name, self.node['service_wait'])
             return False
@@ -103,14 +102,20 @@ class WallFollowingNode(object):
         rospy.loginfo('wall_following: recording odometry on %s', name)
         return True
 
-    def _wait_for_recorder(self):
-        """Wait up to service_wait seconds of wall time, whatever the ROS clock does.
+    def _wait_for_recorder(self, name):
+        """Connect to the server of action `name` within service_wait seconds of wall time,
+        whatever the ROS clock does.
 
         actionlib's own time-out is counted in ROS time, which stands still
-        on simulated time until a /clock comes: that wait never ended.
+        on simulated time until a /clock comes: that wait never ended. The
+        client is made once the server is registered (action_server_registered
+        says why).
         """
-        if wait_in_wall_time(self._recorder.wait_for_server, self.node['service_wait']):
-            return True
+        deadline = time.monotonic() + self.node['service_wait']
+        if action_server_registered(name, self.node['service_wait']):
+            self._recorder = actionlib.ActionClient(name, OdomRecordAction)
+            if wait_in_wall_time(self._recorder.wait_for_server, deadline - time.monotonic()):
+                return True
         if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
             rospy.logerr('wall_following: /use_sim_time is set and no /clock has come; '
                          'is the simulator running?')
