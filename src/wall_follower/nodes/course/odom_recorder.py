@@ -43,6 +43,7 @@ from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordRe
 from wall_follower.nodes.shared.messages import pose_message, pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params import pick
 from wall_follower.params.course.odom_recorder import RECORDING, TABLE
 
@@ -113,6 +114,7 @@ class OdomRecorderNode(object):
         # Every pose counts toward the distance and may be the one a sample is due at;
         # a fast simulator can outrun this node for a while, and a full queue drops some.
         self.odom_sub = rospy.Subscriber('odom', Odometry, self._on_odom, queue_size=ODOM_QUEUE)
+        keep_connected([self.odom_sub])
         self.server = RecordOdomServer('record_odom', OdomRecordAction, self._execute,
                                        self._before_goal)
         self.server.start()

@@ -52,6 +52,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.evaluation.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.worldfile import WorldFileError
@@ -82,6 +83,7 @@ class RunClock(object):
         self.commands = CommandLog(rospy.get_param('simulator/base_watchdog_timeout', 0.2))
         self._subs = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
                       rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=100)]
+        keep_connected(self._subs)
 
     def _on_command(self, msg):
         now = rospy.get_time()

@@ -44,6 +44,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.evaluation.line_case import TABLE
 
 # Wall seconds between looks at the run.
@@ -65,6 +66,7 @@ class Run(object):
                              queue_size=QUEUE),
             rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=QUEUE),
             rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=QUEUE)]
+        keep_connected(self._subs)
 
     def _on_truth(self, msg):
         with self.lock:

@@ -48,6 +48,7 @@ from wall_follower.mapping.slam import LOOP_CLOSED, NOT_TRUSTED, RELOCATED, Mapp
 from wall_follower.nodes.shared.messages import pose_message, pose_of, yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import pick
 from wall_follower.params.mapping.slam import MAPPER, READ_AT_START, RULES, TABLE
@@ -91,8 +92,8 @@ class SlamNode(object):
         self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
         self.last_published = None
         self.cpu = 0.0
-        rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE)
-        rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)
+        keep_connected([rospy.Subscriber('odom', Odometry, self.on_odom, queue_size=SCAN_QUEUE),
+                        rospy.Subscriber('scan', LaserScan, self.on_scan, queue_size=SCAN_QUEUE)])
 
     def on_odom(self, msg):
         p, q = msg.pose.pose.position, msg.pose.pose.orientation

@@ -24,6 +24,7 @@ from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 
 from wall_follower.evaluation.scoring.course import RunScore, stretches_on_trail
 from wall_follower.nodes.shared.messages import pose_of
+from wall_follower.nodes.shared.subscriptions import keep_connected
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.
@@ -157,6 +158,7 @@ class CourseMonitor(object):
             AnyTypeSubscriber(action_ns + '/result', self._on_result, queue_size=5),
             rospy.Subscriber(action_ns + '/status', GoalStatusArray, self._on_status, queue_size=5),
         ]
+        self._keeper = keep_connected(self._subs)
 
     @property
     def truth_at_result(self):
@@ -379,5 +381,6 @@ class CourseMonitor(object):
         return True
 
     def close(self):
+        self._keeper.stop()
         for sub in self._subs:
             sub.unregister()

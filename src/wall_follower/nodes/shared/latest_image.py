@@ -19,6 +19,7 @@ from sensor_msgs.msg import CompressedImage, Image
 
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.nodes.shared.latest_scan import Reading
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.driving import CAMERA_INPUT
 from wall_follower.vision.image_check import decode_compressed, raw_image_problem
 
@@ -69,6 +70,7 @@ class LatestImage(object):
         self._arrived = threading.Condition()
         topic, kind, self._read = image_topics(compressed)
         self._sub = rospy.Subscriber(topic, kind, self._on_image, queue_size=1, buff_size=2 ** 24)
+        keep_connected([self._sub])
 
     @property
     def topic(self):

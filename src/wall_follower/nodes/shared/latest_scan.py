@@ -7,6 +7,7 @@ from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.driving import LASER_INPUT
 
 Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])
@@ -30,6 +31,7 @@ class LatestScan(object):
         self._latest = (None, None, None)   # (ScanCheck, arrival, taken), replaced as one
         self._arrived = threading.Condition()
         self._sub = rospy.Subscriber(topic, LaserScan, self._on_scan, queue_size=1)
+        keep_connected([self._sub])
 
     def _on_scan(self, msg):
         arrival = rospy.Time.now()

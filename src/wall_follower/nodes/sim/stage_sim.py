@@ -60,6 +60,7 @@ from std_srvs.srv import Empty, EmptyResponse
 
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.sim.stage_sim import TABLE
 from wall_follower.rotation import quaternion_of_yaw
 from wall_follower.sim import compiled_camera, compiled_raytrace
@@ -254,6 +255,7 @@ class StageSimNode(object):
                 topics.prefix + 'cmd_vel', Twist, self._on_cmd_vel, index, queue_size=1))
             self._command_subs.append(rospy.Subscriber(
                 topics.prefix + 'cmd_pose', Pose, self._on_cmd_pose, index, queue_size=1))
+        keep_connected(self._command_subs)
         self._running = threading.Event()
         if not paused:
             self._running.set()
