@@ -51,13 +51,11 @@ class ConnectionKeeper(object):
 
     def __init__(self, subscribers, master=None, node=None, period=PERIOD):
         self._subscribers = list(subscribers)
-        self._master = master if master is not None else rosgraph.Master(rospy.get_name())
-        self._node = node
+        self._master, self._node = master, node
         self._period = period
         self._short = {}       # topic: the publishers' nodes, of the topics short at the last look
         self._announced = {}   # topic: the publishers' nodes announced, while still short
         self._stop = threading.Event()
-        self.announced = []    # the topics announced again, in order
         self._thread = threading.Thread(target=self._run, name='connection_keeper')
         self._thread.daemon = True
 
@@ -71,15 +69,15 @@ class ConnectionKeeper(object):
     def check(self):
         """One look at the master; announces again what was short at the look before too."""
         try:
-            short = short_of_publishers(self._subscribers, self._master.getSystemState())
+            master = self._this_master()
+            short = short_of_publishers(self._subscribers, master.getSystemState())
             for topic, nodes in short.items():
                 nodes = frozenset(nodes)
                 if nodes <= set(self._short.get(topic, ())) and \
                         self._announced.get(topic) != nodes:
-                    uris = [self._master.lookupNode(name) for name in sorted(nodes)]
+                    uris = [master.lookupNode(name) for name in sorted(nodes)]
                     self._this_node().publisherUpdate(MASTER_ID, topic, uris)
                     self._announced[topic] = nodes
-                    self.announced.append(topic)
                     rospy.logwarn('%s: not connected to every publisher of %s (%s); asking '
                                   'rospy to connect', rospy.get_name(), topic,
                                   ', '.join(sorted(nodes)))
@@ -89,6 +87,11 @@ class ConnectionKeeper(object):
         self._announced = {topic: nodes for topic, nodes in self._announced.items()
                            if topic in short}
 
+    def _this_master(self):
+        if self._master is None:
+            self._master = rosgraph.Master(rospy.get_name())
+        return self._master
+
     def _this_node(self):
         if self._node is None:
             self._node = xmlrpc.client.ServerProxy(rospy.get_node_uri())
@@ -96,7 +99,8 @@ class ConnectionKeeper(object):
 
     def _run(self):
         while not self._stop.wait(self._period) and not rospy.is_shutdown():
-            self.check()
+            if rospy.core.is_initialized():   # a node of its own to announce to
+                self.check()
 
 
 def keep_connected(subscribers):
