@@ -30,7 +30,7 @@ from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmActionFeedback, MoveArmGoal
-from wall_follower.nodes.shared.waiting import action_server_registered
+from wall_follower.nodes.shared.connections import action_server_registered
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = 60.0   # wall s

@@ -21,7 +21,7 @@ from waiting import wait_until
 from wall_follower.arm.model import read_srdf, read_urdf
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmGoal
-from wall_follower.nodes.shared.waiting import action_server_registered
+from wall_follower.nodes.shared.connections import action_server_registered
 
 # Wall seconds the late controller waits, after the goal is active, before it subscribes:
 # long enough that a trajectory published without waiting for it has surely gone.

@@ -19,8 +19,8 @@ from std_srvs.srv import Empty
 
 from wall_follower.evaluation.scoring.course import stretches_on_trail, taken_every
 from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecordGoal
+from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.messages import pose_of
-from wall_follower.nodes.shared.waiting import action_server_registered
 
 from waiting import wait_until
 

@@ -18,7 +18,8 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
+from wall_follower.nodes.shared.connections import action_server_registered
+from wall_follower.nodes.shared.waiting import wait_in_wall_time
 
 from odometry_world import STEP, OdometryWorld
 from waiting import wait_until

@@ -9,7 +9,7 @@ import rostest
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import action_server_registered
+from wall_follower.nodes.shared.connections import action_server_registered
 
 
 class NoOdometry(unittest.TestCase):

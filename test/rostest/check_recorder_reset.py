@@ -23,7 +23,7 @@ from std_srvs.srv import Empty
 
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import action_server_registered
+from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.messages import pose_of
 
 from waiting import wait_until

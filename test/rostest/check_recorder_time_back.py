@@ -24,7 +24,8 @@ from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from rosgraph_msgs.msg import Log
 
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
+from wall_follower.nodes.shared.connections import action_server_registered
+from wall_follower.nodes.shared.waiting import wait_in_wall_time
 
 from odometry_world import SPEED, STEP, OdometryWorld
 from rosout_log import RosoutLog

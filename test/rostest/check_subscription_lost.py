@@ -2,7 +2,7 @@
 """rostest: a scan subscription that rospy never connected is connected again.
 
 rospy loses the master's news of a publisher when it comes while a
-subscriber of its topic is registering (nodes/shared/subscriptions.py says
+subscriber of its topic is registering (nodes/shared/connections.py says
 how). The race needs a loaded machine; its outcome is made here instead:
 the news of the scan's publisher is dropped before rospy queues it. The
 master then lists the publisher, and the subscription has no connection.
@@ -19,8 +19,8 @@ from sensor_msgs.msg import LaserScan
 
 from synthetic_scans import wall_on_the_right
 from waiting import wait_until
+from wall_follower.nodes.shared.connections import PERIOD
 from wall_follower.nodes.shared.latest_scan import LatestScan
-from wall_follower.nodes.shared.subscriptions import PERIOD
 
 TOPIC = '/lost_scan'
 SCAN_PERIOD = 0.1    # wall s

@@ -40,10 +40,10 @@ from wall_follower.control.course.lap import LapRecorder
 from wall_follower.control.course.odom_check import odometry_problem
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.msg import OdomRecordAction, OdomRecordFeedback, OdomRecordResult
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_message, pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params import pick
 from wall_follower.params.course.odom_recorder import RECORDING, TABLE
 

@@ -20,13 +20,14 @@ from actionlib_msgs.msg import GoalStatus
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
+from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.course_markers import CourseMarkers
 from wall_follower.nodes.shared.drive_loop import drive_loop, take_retuned
 from wall_follower.nodes.shared.laser_mount import laser_x
 from wall_follower.nodes.shared.latest_scan import LatestScan
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.waiting import action_server_registered, wait_in_wall_time
+from wall_follower.nodes.shared.waiting import wait_in_wall_time
 from wall_follower.params import pick
 from wall_follower.params.course.wall_following import FOLLOWER, NODE, TABLE
 from wall_follower.srv import FindWall

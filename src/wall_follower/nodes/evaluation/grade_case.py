@@ -49,10 +49,10 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
                                                    Graph, SolutionGone, call_simulator,
                                                    grader_failed, solution_running,
                                                    wait_for_simulator, write_record)
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.evaluation.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
 from wall_follower.sim.worldfile import WorldFileError

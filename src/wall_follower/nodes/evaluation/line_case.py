@@ -41,10 +41,10 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
                                                    Graph, SolutionGone, call_simulator,
                                                    grader_failed, solution_running,
                                                    wait_for_simulator, write_record)
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.evaluation.line_case import TABLE
 
 # Wall seconds between looks at the run.

@@ -45,10 +45,10 @@ from wall_follower.control.course.odom_check import OdomCheck, odometry_problem
 from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.mapping.slam import LOOP_CLOSED, NOT_TRUSTED, RELOCATED, Mapper
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_message, pose_of, yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.startup import init_node
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.nodes.shared.tf_lookup import lookup
 from wall_follower.params import pick
 from wall_follower.params.mapping.slam import MAPPER, READ_AT_START, RULES, TABLE

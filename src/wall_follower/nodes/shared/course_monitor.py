@@ -23,8 +23,8 @@ from std_srvs.srv import Empty
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 
 from wall_follower.evaluation.scoring.course import RunScore, stretches_on_trail
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_of
-from wall_follower.nodes.shared.subscriptions import keep_connected
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.

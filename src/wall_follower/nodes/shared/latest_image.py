@@ -18,8 +18,8 @@ from cv_bridge import CvBridge, CvBridgeError
 from sensor_msgs.msg import CompressedImage, Image
 
 from wall_follower.control.stamps import ahead_problem
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.latest_scan import Reading
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.driving import CAMERA_INPUT
 from wall_follower.vision.image_check import decode_compressed, raw_image_problem
 

@@ -7,7 +7,7 @@ from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.sensing.scan_check import check_scan
 from wall_follower.control.stamps import ahead_problem
-from wall_follower.nodes.shared.subscriptions import keep_connected
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.params.driving import LASER_INPUT
 
 Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])

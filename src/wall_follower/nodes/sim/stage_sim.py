@@ -58,9 +58,9 @@ from sensor_msgs.msg import CameraInfo, Image, LaserScan
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, EmptyResponse
 
+from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
-from wall_follower.nodes.shared.subscriptions import keep_connected
 from wall_follower.params.sim.stage_sim import TABLE
 from wall_follower.rotation import quaternion_of_yaw
 from wall_follower.sim import compiled_camera, compiled_raytrace
