@@ -44,14 +44,15 @@ class Node(object):
         return 1, '', 0
 
 
-def keeper(subscriber, master):
-    node = Node()
-    return ConnectionKeeper([subscriber], master=master, node=node), node
+def keeper(connections, publishers):
+    """(subscriber, master, ConnectionKeeper, node) of a subscriber with `connections`
+    whose master lists `publishers`."""
+    subscriber, master, node = Subscriber(connections), Master(publishers), Node()
+    return subscriber, master, ConnectionKeeper([subscriber], master=master, node=node), node
 
 
 def test_a_publisher_missing_at_two_looks_is_announced_again():
-    subscriber = Subscriber(0)
-    watch, node = keeper(subscriber, Master(['/stage']))
+    subscriber, _, watch, node = keeper(0, ['/stage'])
     watch.check()
     assert node.updates == []   # it may still be connecting
     watch.check()
@@ -59,8 +60,7 @@ def test_a_publisher_missing_at_two_looks_is_announced_again():
 
 
 def test_a_connection_made_between_the_looks_is_left_alone():
-    subscriber = Subscriber(0)
-    watch, node = keeper(subscriber, Master(['/stage']))
+    subscriber, _, watch, node = keeper(0, ['/stage'])
     watch.check()
     subscriber.connections = 1
     watch.check()
@@ -69,9 +69,7 @@ def test_a_connection_made_between_the_looks_is_left_alone():
 
 
 def test_a_publisher_new_at_the_second_look_waits_for_the_third():
-    subscriber = Subscriber(1)
-    master = Master(['/stage'])
-    watch, node = keeper(subscriber, master)
+    _, master, watch, node = keeper(1, ['/stage'])
     watch.check()
     master.publishers = ['/stage', '/laser']
     watch.check()
@@ -81,9 +79,7 @@ def test_a_publisher_new_at_the_second_look_waits_for_the_third():
 
 
 def test_a_master_that_does_not_answer_is_no_error():
-    subscriber = Subscriber(0)
-    master = Master(['/stage'])
-    watch, node = keeper(subscriber, master)
+    _, master, watch, node = keeper(0, ['/stage'])
     watch.check()
     master.error = rosgraph.MasterError('gone')
     watch.check()
@@ -93,9 +89,7 @@ def test_a_master_that_does_not_answer_is_no_error():
 
 
 def test_publishers_that_cannot_be_connected_are_announced_once():
-    subscriber = Subscriber(0)
-    master = Master(['/stage'])
-    watch, node = keeper(subscriber, master)
+    subscriber, _, watch, node = keeper(0, ['/stage'])
     for _ in range(5):
         watch.check()
     assert len(node.updates) == 1
