@@ -70,9 +70,12 @@ PLACE_SLACK = 4.0      # pixels between where the walls are drawn and where they
 ROBOT_SHARE = 0.005    # of the render panel, drawn in the robot's material colours
 # rviz itself, on Xvfb's software OpenGL, now and then dies by a signal as it
 # starts (SIGSEGV after a GLSL link error in its image shader): a config is
-# tried again after such a crash, at most ATTEMPTS times in all.
+# tried again after such a crash, at most ATTEMPTS times in all. Measured over
+# 29 runs of this test (145 launches of a config), 8 launches crashed, about 1
+# in 18, any config: with two attempts a run failed about once in 70, and did
+# (both attempts of line_following.rviz crashed).
 RVIZ_CRASH = re.compile(r'\[rviz-\d+\] process has died \[pid \d+, exit code -\d+')
-ATTEMPTS = 2
+ATTEMPTS = 3
 LIMIT = 90.0           # wall seconds for rviz to show the picture (slow to start when busy)
 POLL = 1.0             # wall seconds between screenshots
 
