@@ -9,6 +9,7 @@ import pytest
 from wall_follower.evaluation.scoring import driven_bound, lap_bound
 from wall_follower.evaluation.scoring.geometry import cast_rays, solid_edges
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
+from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.sim.worldfile import load_world
 
 # The room's inside, and a robot whose laser sits on its rotation centre, so
@@ -112,6 +113,22 @@ def test_the_band_s_middle_line_runs_round_the_room_0_25_m_in(room):
     # With the wall on the right: round the room counter-clockwise.
     area = 0.5 * np.sum(closed[:-1, 0] * closed[1:, 1] - closed[1:, 0] * closed[:-1, 1])
     assert area > 0.0
+
+
+def test_the_middle_line_walks_past_an_inner_corner_of_saw_tooth_walls(tmp_path):
+    # Generated world 15 of seed 20: a saw-tooth wall meets another nearly
+    # square. Less than a step short of their vertex, the way read a step
+    # ahead (along the next wall) led straight off the nearer wall, and the
+    # line pulled the point back to where it was: the walk stood there until
+    # it gave up, and the world had no T*.
+    world = world_generator.write_world(
+        world_generator.generate(20, 15), str(tmp_path),
+        os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'burger.inc'), 20, 15)
+    walls = lap_bound.WallDistance(solid_edges(load_world(world)))
+    middle = lap_bound.band_middle(walls, (0.88, 0.52))
+    assert walls.nearest(middle)[0] == pytest.approx(0.25, abs=1e-6)
+    steps = np.hypot(*np.diff(np.vstack((middle, middle[:1])), axis=0).T)
+    assert steps.max() < 2.0 * lap_bound.WALK_STEP
 
 
 def test_the_tabulated_distance_is_the_walls_within_the_margin_in_the_band(room):

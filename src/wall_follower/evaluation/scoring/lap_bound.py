@@ -186,8 +186,17 @@ def band_middle(walls, start, target=TARGET, step=WALK_STEP, longest=200.0):
     while walked < longest:
         # The way on is read a step ahead: past an inner corner's vertex it
         # is along the next wall already.
-        ahead = _along(walls, point + step * _along(walls, point))
-        point = _onto_line(walls, point + step * ahead, target, rounds=3)
+        along = _along(walls, point)
+        ahead = _along(walls, point + step * along)
+        moved = _onto_line(walls, point + step * ahead, target, rounds=3)
+        if math.hypot(*(moved - point)) < 0.5 * step:
+            # Less than a step short of an inner corner's vertex, the way
+            # along the next wall can lead straight off the wall still
+            # nearest, and the line pulls the point back where it was
+            # (Stage's saw-tooth walls make such a point): step along
+            # that wall, past the vertex.
+            moved = _onto_line(walls, point + step * along, target, rounds=3)
+        point = moved
         walked += step
         if walked > 20 * step and math.hypot(*(point - first)) < 0.75 * step:
             return np.array(points)
