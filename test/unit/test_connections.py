@@ -1,9 +1,10 @@
 """Connections rospy can miss: an action server awaited on the master's graph; and
 ConnectionKeeper, which announces to the node again the publishers the master lists and a
 subscriber stays unconnected to, once they have been missing at two looks in a row, and the
-same ones only once."""
+same ones only once; and grading's view of the action server."""
 import rosgraph
 
+from wall_follower.nodes.shared import case_graph
 from wall_follower.nodes.shared.connections import (
     GRAPH_POLL, MASTER_ID, ConnectionKeeper, action_server_registered, action_servers)
 
@@ -153,3 +154,11 @@ def test_no_server_within_the_timeout_is_false():
     graph = Graph(([], [], []))
     assert not registered(graph, timeout=1.0)
     assert abs(graph.asked - (1 + 1.0 / GRAPH_POLL)) <= 1
+
+
+def test_grading_sees_an_action_server_only_in_a_node_on_all_five_topics():
+    graph = case_graph.Graph('record_odom')
+    assert graph.action_server(SERVER)
+    # A status topic alone (a node that publishes it, say, without serving) is no server.
+    assert not graph.action_server((SERVER[0][:1], [], []))
+    assert not graph.action_server(([], [], []))

@@ -14,6 +14,7 @@ import rospy
 from std_srvs.srv import Empty
 
 from wall_follower.evaluation.grading.commands import non_finite_text
+from wall_follower.nodes.shared.connections import action_servers, master_graph
 from wall_follower.nodes.shared.course_monitor import node_alive
 
 # Nodes of the grading itself (the case's launch file and the simulation.launch it
@@ -36,13 +37,10 @@ class Graph(object):
 
     def __init__(self, action_ns):
         self._master = rosgraph.Master(rospy.get_name())
-        self._status = rospy.resolve_name(action_ns + '/status')
+        self._action_ns = rospy.resolve_name(action_ns)
 
     def state(self):
-        try:
-            return self._master.getSystemState()
-        except (rosgraph.MasterError, OSError):
-            return [], [], []
+        return master_graph(self._master.getSystemState)
 
     def find_wall_service(self, state):
         """The name of the advertised find_wall service (any namespace), or None."""
@@ -52,8 +50,8 @@ class Graph(object):
         return names[0] if names else None
 
     def action_server(self, state):
-        publishers, _, _ = state
-        return bool(dict(publishers).get(self._status))
+        """Whether one node serves the action: it is on all five of its topics."""
+        return bool(action_servers(self._action_ns, state))
 
     def solution_nodes(self, state):
         own = set(OWN_NODES) | {rospy.get_name()}

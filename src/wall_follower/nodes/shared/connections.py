@@ -55,7 +55,7 @@ def action_server_registered(action_ns, timeout, system_state=None, clock=time.m
         system_state = rosgraph.Master(rospy.get_name()).getSystemState
     deadline = clock() + timeout
     while not rospy.is_shutdown():
-        if action_servers(namespace, _graph(system_state)):
+        if action_servers(namespace, master_graph(system_state)):
             return True
         if clock() >= deadline:
             return False
@@ -74,8 +74,9 @@ def action_servers(namespace, state):
     return nodes
 
 
-def _graph(system_state):
-    """The master's graph, or an empty one while the master does not answer."""
+def master_graph(system_state):
+    """The master's graph from system_state() (its getSystemState()), or an empty one
+    while the master does not answer (starting, or gone at shutdown)."""
     try:
         return system_state()
     except (rosgraph.MasterException, OSError):
