@@ -132,8 +132,14 @@ def move_arm(target, limit):
     import rospy
     from wall_follower.evaluation.goal_client import GoalClient
     from wall_follower.msg import MoveArmAction, MoveArmGoal
+    from wall_follower.nodes.shared.connections import action_server_registered
 
     rospy.init_node('fresh_debian_move_arm', disable_signals=True)
+    # The client is made once the server is registered: made before, it can miss
+    # the server's result topic for good (see connections.py).
+    if not action_server_registered('move_arm', limit):
+        print('no move_arm action server registered after %.0f s' % limit)
+        return 1
     client = GoalClient('move_arm', MoveArmAction)
     if not client.wait_for_server(rospy.Duration(limit)):
         print('no move_arm action server after %.0f s' % limit)
