@@ -268,25 +268,6 @@ def test_a_left_turn_ends_on_the_wall_reached_while_the_next_one_is_still_far():
     assert controller.state == WALL_AHEAD
 
 
-def test_the_last_degrees_of_a_left_turn_are_planned_on_the_wall_now_on_the_right():
-    # 6 deg short of parallel to the new wall, which is no longer across the
-    # lane: the widened lane's edges still meet it, so the turn goes on. It
-    # was flown on the tight arc of inner_corner_radius, a crawl; planned on
-    # that wall it is the wide arc at cruise speed, which turns parallel
-    # 2 mm nearer, still outside inner_corner_distance.
-    controller = WallFollower(EXACT)
-    controller.state = WALL_AHEAD
-    _, command = update(right_wall(0.23), (0.0, 0.0, math.radians(-6.0)), controller=controller)
-    assert controller.state == WALL_AHEAD
-    assert command == pytest.approx((EXACT.cruise_speed, EXACT.max_turn_rate))
-    # Already at inner_corner_distance, the turn ends on the spot.
-    controller.state = WALL_AHEAD
-    _, command = update(right_wall(EXACT.inner_corner_distance), (0.0, 0.0, math.radians(-6.0)),
-                        controller=controller)
-    assert controller.state == WALL_AHEAD
-    assert command == pytest.approx((0.0, EXACT.max_turn_rate), abs=0.01)
-
-
 @pytest.mark.parametrize('turned', [0.1, 0.2, 0.3])
 def test_a_left_turn_for_a_step_at_the_lanes_edge_goes_on_until_it_is_clear_of_it(turned):
     # The wall steps 0.13 m nearer the way 0.25 m ahead. The step's corner

@@ -2,16 +2,14 @@
 
 The turn is flown at the full turn rate: wide at first, nearly pivoting
 past the corner, and wide again onto parallel (see left_turn.py). Its
-speed is re-planned at every scan from the wall it turns onto, so the
-turn is closed-loop, not timed: the wall ahead, and in its last degrees,
-once that wall has come round to the right while the lane's edges still
-meet it (which holds the turn on), the same wall on the right. Handed to
-FOLLOW, the rest is flown by FOLLOW's rule for heading into a wall: at
-cruise speed as far as closest_distance allows. While a wall ahead comes
-up, the robot rides a little nearer the old wall, by as much as the wide
-start will carry it off beyond wide_allowance; a turn begun without that
-room (after a short wall) flies short_turn instead: a shorter wide start
-and a tight arc rather than a pivot.
+speed is re-planned from the wall ahead at every scan, so the turn is
+closed-loop, not timed. Its wide end, once the new wall is on the right,
+is flown by FOLLOW's rule for heading into a wall: at cruise speed as far
+as closest_distance allows. While such a wall comes up, the robot rides a
+little nearer the old wall, by as much as the wide start will carry it off
+beyond wide_allowance; a turn begun without that room (after a short wall)
+flies short_turn instead: a shorter wide start and a tight arc rather than
+a pivot.
 """
 import math
 
@@ -136,15 +134,14 @@ class InnerCorner(Manoeuvre):
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
 
-        Closed loop on that wall (_turning_onto): the speed is set each update to the
+        Closed loop on the wall ahead: the speed is set each update to the
         radius still needed, so a late start slows the robot down instead of
         carrying it too close, and a wall too near is turned from on the spot.
         """
         p = self.params
         radius = p.inner_corner_radius
-        onto = self._turning_onto(obs)
-        if onto is not None:
-            distance, angle = onto
+        if obs.ahead is not None:
+            distance, angle = self._ahead_as_planned(obs)
             radius = self.turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0
@@ -174,20 +171,6 @@ class InnerCorner(Manoeuvre):
         if obs.ahead is None or not steep <= obs.ahead.angle <= math.pi - steep:
             return False  # none, or one nearly along the way (beside the lane)
         return obs.wall is None or not same_line(obs.ahead, obs.wall)
-
-    def _turning_onto(self, obs):
-        """(distance, angle) of the wall the turn is onto, as the turn is planned, or None.
-
-        The wall ahead; once it has come round to the right (no wall across
-        the lane), the wall on the right while the robot still heads into it.
-        Without that, the last degrees of a turn were flown on the tight arc
-        of inner_corner_radius, a crawl a few centimetres from parallel.
-        """
-        if obs.ahead is not None:
-            return self._ahead_as_planned(obs)
-        if along_the_way(obs.wall, self.params.rejoin_angle) and obs.wall.angle > 0.0:
-            return from_centre(obs.wall, self.params.laser_x)
-        return None
 
     def _ahead_as_planned(self, obs):
         """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
