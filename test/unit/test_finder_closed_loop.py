@@ -9,12 +9,12 @@ import os
 
 import pytest
 
+from generated_worlds import write_generated
 from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.grading.criteria import FIND_WALL_DISTANCE, FIND_WALL_HEADING
 from wall_follower.evaluation.scoring.course import CourseMap
-from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.sim.engine import Simulation
@@ -101,9 +101,8 @@ def test_a_second_call_from_where_the_first_ended_answers_at_once(course_map, st
 
 def generated(directory, seed, index):
     """The generator's world index of seed written into directory: (its path, its start)."""
-    world = world_generator.generate(seed, index)
-    return world_generator.write_world(world, str(directory), os.path.join(WORLDS, 'burger.inc'),
-                                       seed, index), world.start
+    path, world = write_generated(directory, seed, index)
+    return path, world.start
 
 
 def assert_found(path, start):

@@ -8,11 +8,11 @@ import os
 
 import yaml
 
+from generated_worlds import write_generated
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.scoring.course import BAND, CourseMap, RunScore
-from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
@@ -85,9 +85,7 @@ def assert_a_lap_in_band(score, least=0.97):
 
 def generated_world(directory, seed, index, start):
     """The generator's world index of seed, written into directory with its start moved to start."""
-    world = world_generator.generate(seed, index)._replace(start=start)
-    return world_generator.write_world(world, str(directory), os.path.join(WORLDS, 'burger.inc'),
-                                       seed, index)
+    return write_generated(directory, seed, index, start)[0]
 
 
 def test_a_pillar_beyond_an_outer_corner_does_not_turn_the_robot_off_the_wall(tmp_path):

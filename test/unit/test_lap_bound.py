@@ -6,10 +6,10 @@ import textwrap
 import numpy as np
 import pytest
 
+from generated_worlds import write_generated
 from wall_follower.evaluation.scoring import driven_bound, lap_bound
 from wall_follower.evaluation.scoring.geometry import cast_rays, solid_edges
 from wall_follower.params.driving import MAX_ANGULAR, MAX_LINEAR
-from wall_follower.evaluation.worlds import generator as world_generator
 from wall_follower.sim.worldfile import load_world
 
 # The room's inside, and a robot whose laser sits on its rotation centre, so
@@ -121,9 +121,7 @@ def test_the_middle_line_walks_past_an_inner_corner_of_saw_tooth_walls(tmp_path)
     # ahead (along the next wall) led straight off the nearer wall, and the
     # line pulled the point back to where it was: the walk stood there until
     # it gave up, and the world had no T*.
-    world = world_generator.write_world(
-        world_generator.generate(20, 15), str(tmp_path),
-        os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'burger.inc'), 20, 15)
+    world, _ = write_generated(tmp_path, 20, 15)
     walls = lap_bound.WallDistance(solid_edges(load_world(world)))
     middle = lap_bound.band_middle(walls, (0.88, 0.52))
     assert walls.nearest(middle)[0] == pytest.approx(0.25, abs=1e-6)
