@@ -154,6 +154,51 @@ def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():
     assert any(c == Command(-0.1, 0.0) for t, c in sent)
 
 
+def blind_run(script, until, blind_turn=-0.3):
+    """run() with a loop that turns in place at blind_turn while the way ahead is unseen."""
+    scans, commander = Scans(script), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
+                     blind_turn=blind_turn)
+    loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= until else None)
+    return [(t, c) for t, c in commander.sent]
+
+
+def every_tenth(msg, start, end):
+    """A scan script: msg every 0.1 s from start to end [s]."""
+    return [(round(t * 0.1, 3), msg) for t in range(int(round(start * 10)), int(round(end * 10)))]
+
+
+def test_with_a_blind_turn_the_robot_turns_in_place_while_nothing_is_seen_ahead():
+    sent = blind_run(every_tenth(BLIND_AHEAD, 0.1, 1.0), until=1.0)
+    answered = [c for t, c in sent if c != STOP]
+    assert answered and all(c == Command(0.0, -0.3) for c in answered)
+    assert Clock.warnings == ['no valid reading within 30 deg ahead; turning in place to look '
+                              'for the way']
+
+
+def test_a_blind_turn_stops_once_half_a_turn_has_shown_nothing_ahead():
+    # Half a turn at 0.3 rad/s takes 10.5 s.
+    sent = blind_run(every_tenth(BLIND_AHEAD, 0.1, 12.0), until=12.0)
+    assert all(c == Command(0.0, -0.3) for t, c in sent if 0.1 <= t < 10.4)
+    assert all(c == STOP for t, c in sent if t >= 10.7)
+    assert Clock.warnings[-1] == ('no valid reading within 30 deg ahead after turning 180 deg '
+                                  'to look for it; stopped')
+
+
+def test_a_view_ahead_ends_the_blind_turn_and_the_next_one_starts_afresh():
+    script = (every_tenth(BLIND_AHEAD, 0.1, 10.0) + every_tenth(GOOD, 10.0, 10.5)
+              + every_tenth(BLIND_AHEAD, 10.5, 12.0))
+    sent = blind_run(script, until=12.0)
+    assert any(c == Command(0.1, 0.2) for t, c in sent if 10.0 <= t < 10.5)
+    assert all(c == Command(0.0, -0.3) for t, c in sent if 10.5 <= t < 11.9)
+
+
+def test_a_blind_turn_leaves_other_commands_as_they_are():
+    sent = blind_run(every_tenth(GOOD, 0.1, 0.5) + every_tenth(DROPOUTS_AHEAD, 0.5, 1.0), until=1.0)
+    assert all(c == Command(0.1, 0.2) for t, c in sent if 0.1 <= t < 1.0)
+    assert Clock.warnings == []
+
+
 def test_with_patience_the_loop_gives_up_without_a_usable_scan():
     outcome, sent, _ = run([(0.1, DEAD)], until=10.0, patience=1.0)
     assert outcome == FINISHED_NO_INPUT
@@ -241,3 +286,20 @@ def test_a_loop_is_tuned_from_the_parameters_its_source_names(parameters, timeou
     assert (loop.input_timeout, loop.ahead_min_known, loop.ahead_half_width) == (
         timeout, min_known, 0.4)
     assert (loop.commander.max_linear, loop.commander.max_angular) == (0.1, 0.3)
+
+
+def test_a_retuned_blind_turn_is_the_turn_made_for_want_of_a_view_ahead():
+    scans, commander = Scans(every_tenth(BLIND_AHEAD, 0.1, 1.0)), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5)
+    values = {'rate': 1.0 / PERIOD, 'keepalive': 0.15, 'scan_timeout': 0.5,
+              'ahead_half_width': math.radians(30.0), 'ahead_min_known': 0.1,
+              'blind_turn': 0.25, 'max_linear': 0.1, 'max_angular': 0.3}
+
+    def answer(view, taken):
+        tune_drive_loop(loop, dict(values, blind_turn=0.0 if Clock.now > 0.5 else 0.25))
+        return Command(0.1, 0.2)
+
+    scans.parameters = LASER_INPUT
+    loop.run(answer, lambda: 'end' if Clock.now >= 1.0 else None)
+    assert all(c == Command(0.0, 0.25) for t, c in commander.sent if 0.1 <= t <= 0.5)
+    assert any(c == Command(0.0, 0.2) for t, c in commander.sent if 0.5 < t < 1.0)

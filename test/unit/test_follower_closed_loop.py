@@ -1,4 +1,5 @@
-"""One lap of room.world in pure Python: simulator -> ScanView -> controller -> clamp -> simulator.
+"""One lap of room.world in pure Python: simulator -> ScanView -> controller -> clamp -> the
+loop's hold on an unseen way ahead -> simulator.
 
 The same loop the node runs, minus ROS, scored from ground truth and the
 map as the benchmark scores it. A few seconds, so it runs with every test.
@@ -12,7 +13,10 @@ from generated_worlds import write_generated
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
+from wall_follower.control.unseen_ahead import BlindTurn, held_back, unseen_ahead
 from wall_follower.evaluation.scoring.course import BAND, CourseMap, RunScore
+from wall_follower.params.course.wall_following import BLIND_TURN
+from wall_follower.params.driving import AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN
 from wall_follower.sim.engine import Simulation
 from wall_follower.sim.worldfile import load_world
 
@@ -23,15 +27,17 @@ ROOM = os.path.join(WORLDS, 'room.world')
 WAFFLE_ROOM = os.path.join(ROOT, 'test', 'rostest', 'waffle_room.world')
 
 
-def lap(world_path, profile, seed=0, time_limit=120.0, params=None):
+def lap(world_path, profile, seed=0, time_limit=120.0, params=None, blind_turn=-BLIND_TURN):
     """Follow from the world's start pose until the lap closes or time_limit [simulated s];
     the run's RunScore and the controller's states.
 
-    params: the controller's FollowerParams (None: the defaults).
+    params: the controller's FollowerParams (None: the defaults). blind_turn: the node's
+    ~blind_turn (0: none).
     """
     simulation = Simulation(load_world(world_path), laser_profile=profile, seed=seed)
     score = RunScore(CourseMap(world_path))
     controller = WallFollower(params)
+    looking = BlindTurn(blind_turn) if blind_turn else None
     states = set()
     while simulation.time < time_limit and not score.lap.closed:
         robot = simulation.step().robots[0]
@@ -39,8 +45,11 @@ def lap(world_path, profile, seed=0, time_limit=120.0, params=None):
         score.add_pose(simulation.time, (truth.x, truth.y, truth.yaw))
         score.add_stall(robot.stalled)
         scan = robot.scan
-        command = clamp(controller.update(ScanView(
-            scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max)))
+        view = ScanView(scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min,
+                        scan.range_max)
+        command = clamp(held_back(controller.update(view),
+                                  unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN), looking,
+                                  simulation.time))
         score.add_command(*command)
         states.add(controller.state)
         simulation.set_command(0, *command)
@@ -175,3 +184,16 @@ def test_a_left_turn_is_not_held_on_by_the_end_of_a_wall_behind(tmp_path):
     figures = score.summary()
     assert figures['lap_closed'] and not figures['contact']
     assert 'SEARCH' not in states
+
+
+def test_facing_a_room_deeper_than_the_laser_reaches_the_robot_turns_to_see_its_way(tmp_path):
+    # Generated world 25 of seed 21, the LDS-01 laser, which reads 0.0 past
+    # 3.5 m: coming up out of a notch in the south wall, the robot faces the
+    # north wall 4 m away, and 6 of the 61 beams within 30 deg ahead read a
+    # hit. The loop would not drive into the rest, the follower asked to go
+    # straight on, and the robot stood at the notch's mouth for good. Turned
+    # toward its wall, it sees the east wall ahead. Started where find_wall
+    # leaves the robot, on the north wall.
+    world = generated_world(tmp_path, 21, 25, (0.999, 1.597, math.radians(179.8)))
+    score, _ = lap(world, 'lds01', time_limit=150.0)
+    assert_a_lap_in_band(score)

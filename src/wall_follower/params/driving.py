@@ -42,13 +42,21 @@ LASER_INPUT = LoopInput('scan_timeout', 'ahead_min_known')
 CAMERA_INPUT = LoopInput('image_timeout', None)
 
 
-def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
+def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None):
     """The Section of the DriveLoop's parameters (nodes/shared/drive_loop.py) of a node that reads
     the laser.
 
     scan_timeout: its default [s], which differs between nodes, and
-    scan_timeout_meaning what the node does when a scan is that old.
+    scan_timeout_meaning what the node does when a scan is that old. blind_turn: the default
+    of ~blind_turn [rad/s, positive left], for a node that knows which way to turn to bring
+    the way ahead into view (a wall follower: toward its wall); None declares no such
+    parameter, and the node turns as its command says.
     """
+    blind = () if blind_turn is None else (
+        P('blind_turn', blind_turn, 'while too few beams ahead read valid to drive forward '
+          '(a room deeper than the laser reaches), turn in place at this rate to bring the way '
+          'ahead into view, and stop if half a turn has not [rad/s, positive left]; 0: keep '
+          "the command's own turn", -MAX_ANGULAR, MAX_ANGULAR),)
     return Section('drive_loop', (
         RATE, KEEPALIVE,
         P(LASER_INPUT.timeout, scan_timeout, scan_timeout_meaning, 0.05, 10.0),
@@ -59,7 +67,7 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS):
           'that must read a hit or a proven no-return for the robot to drive forward (0: one '
           'beam will do); low enough for an LDS-01 that drops beams or sees nothing beyond its '
           'reach there', 0.0, 1.0),
-    ))
+    ) + blind)
 
 
 def camera_loop(image_timeout):

@@ -13,9 +13,10 @@ knows the way ahead; a laser's command is held back while fewer than
 `ahead_min_known` of the beams within `ahead_half_width` of straight ahead
 are valid readings (a hit or a proven no-return): a laser that sees
 nothing there, or a beam or two of the sector, may be blind, not looking
-at free space. A clock that jumps back (a simulator restarted, a bag
-looped) drops the reading held and lets the node reset what it timed on
-the old clock.
+at free space; with a `blind_turn`, the robot turns in place instead, to
+bring the way ahead into view (control.unseen_ahead.BlindTurn). A clock
+that jumps back (a simulator restarted, a bag looped) drops the reading
+held and lets the node reset what it timed on the old clock.
 
 A node whose commands change between readings (keyboard teleop) can ask
 for a steady beat instead: `tick` answers on a fixed ROS-time schedule
@@ -25,14 +26,15 @@ LDS-01 sends 5).
 drive_loop() builds a loop from a node's parameters (params.driving's
 sections) on a LatestScan or a LatestImage, whose `parameters` name the
 ones that set it (~scan_timeout and ~ahead_min_known for a laser,
-~image_timeout for a camera); tune_drive_loop() and take_retuned() put
-changed values in force.
+~image_timeout for a camera; ~blind_turn where a node declares it);
+tune_drive_loop() and take_retuned() put changed values in force.
 """
 import math
 
 import rospy
 
-from wall_follower.control.motion import STOP, Answer, Command
+from wall_follower.control.motion import STOP, Answer
+from wall_follower.control.unseen_ahead import BlindTurn, held_back, unseen_ahead
 from wall_follower.nodes.shared.velocity import VelocityCommander
 from wall_follower.params.driving import AHEAD_MIN_KNOWN
 
@@ -53,16 +55,19 @@ class DriveLoop(object):
     whose controller must answer with an Answer to drive forward). tick: None to answer
     each new reading once; else answer every tick ROS seconds, on a steady schedule, with
     the newest usable reading. ahead_missing: what the warning says is missing when an
-    Answer does not know the way ahead.
+    Answer does not know the way ahead. blind_turn: while forward motion is held back for
+    want of a view ahead, turn in place at this rate [rad/s, positive left] to look for it,
+    for at most control.unseen_ahead.BLIND_TURN_LIMIT; None or 0 keeps the command's turn.
     """
 
     def __init__(self, name, source, commander, rate, keepalive, input_timeout,
                  ahead_half_width=math.radians(30.0), ahead_min_known=AHEAD_MIN_KNOWN, tick=None,
-                 ahead_missing='nothing seen'):
+                 ahead_missing='nothing seen', blind_turn=None):
         self.name = name
         self.source = source
         self.commander = commander
-        self.tune(rate, keepalive, input_timeout, ahead_half_width, ahead_min_known)
+        self._blind_turn = None
+        self.tune(rate, keepalive, input_timeout, ahead_half_width, ahead_min_known, blind_turn)
         self.tick = tick
         self._ahead_missing = ahead_missing
         self._warned = (None, None)   # (text, ROS time) of the last warning
@@ -71,14 +76,21 @@ class DriveLoop(object):
         self._now = self._started = self._sent = self._due_at = None
         self._out_of_patience = False   # patience ran out on the pass before
 
-    def tune(self, rate, keepalive, input_timeout, ahead_half_width, ahead_min_known):
+    def tune(self, rate, keepalive, input_timeout, ahead_half_width, ahead_min_known,
+             blind_turn=None):
         """Take new settings (as in the constructor); call it between two readings, from
-        answer()."""
+        answer(). A changed blind_turn rate goes on with the turn under way."""
         self.period = 1.0 / rate
         self.keepalive = keepalive
         self.input_timeout = input_timeout
         self.ahead_half_width = ahead_half_width
         self.ahead_min_known = ahead_min_known
+        if not blind_turn:
+            self._blind_turn = None
+        elif self._blind_turn is None:
+            self._blind_turn = BlindTurn(blind_turn)
+        else:
+            self._blind_turn.rate = blind_turn
 
     def run(self, answer, finished=lambda: None, patience=None, on_clock_reset=None):
         """Drive until shutdown or finished() returns something other than None.
@@ -171,29 +183,30 @@ class DriveLoop(object):
         """The Command of answered (a Command or an Answer), with no forward motion into a
         sector ahead that the sensor does not show."""
         command, known = answered if isinstance(answered, Answer) else (answered, None)
-        if command.linear <= 0.0:
-            return command
-        problem = self._unseen_ahead(view, known)
-        if problem is None:
-            return command
-        self._warn(problem + '; not driving forward', now)
-        return Command(0.0, command.angular)
+        problem = self._unseen_ahead(view, known) if command.linear > 0.0 else None
+        safe = held_back(command, problem, self._blind_turn, now)
+        if problem is not None:
+            self._warn(problem + self._holding(safe, now), now)
+        return safe
+
+    def _holding(self, safe, now):
+        """What the loop does for want of a view ahead, as its warning ends."""
+        if self._blind_turn is None:
+            return '; not driving forward'
+        if safe == STOP:
+            return (' after turning %.0f deg to look for it; stopped'
+                    % math.degrees(self._blind_turn.turned(now)))
+        return '; turning in place to look for the way'
 
     def _unseen_ahead(self, view, known):
         """Why the way ahead is not known well enough to drive into (known: the Answer's
         word, None for a bare Command); None if it is."""
-        half_width = math.degrees(self.ahead_half_width)
-        if known is not None or self.ahead_min_known is None:
-            if known:
-                return None
-            return '%s within %.0f deg ahead' % (self._ahead_missing, half_width)
-        known, beams = view.known_share_in_sector(0.0, self.ahead_half_width)
-        if known == 0:
-            return 'no valid reading within %.0f deg ahead' % half_width
-        if known < self.ahead_min_known * beams:
-            return ('only %d of the %d beams within %.0f deg ahead read valid (%.0f%% needed)'
-                    % (known, beams, half_width, 100.0 * self.ahead_min_known))
-        return None
+        if known is None and self.ahead_min_known is not None:
+            return unseen_ahead(view, self.ahead_half_width, self.ahead_min_known)
+        if known:
+            return None
+        return '%s within %.0f deg ahead' % (self._ahead_missing,
+                                             math.degrees(self.ahead_half_width))
 
     def warn(self, text):
         """Log a warning, named as the loop's: at once when it is new, and again every
@@ -226,8 +239,8 @@ def drive_loop(name, values, source, tick=None, ahead_missing='nothing seen'):
 
 def tune_drive_loop(loop, values):
     """Put a driving node's loop and speed limits (rate, keepalive, its source's timeout and
-    share of beams, ahead_half_width, max_linear, max_angular) in force; in the loop's own
-    thread."""
+    share of beams, ahead_half_width, blind_turn, max_linear, max_angular) in force; in the
+    loop's own thread."""
     loop.tune(values['rate'], values['keepalive'], **_settings(loop.source, values))
     loop.commander.max_linear = values['max_linear']
     loop.commander.max_angular = values['max_angular']
@@ -247,4 +260,5 @@ def _settings(source, values):
     """The loop's settings that its source's kind names (params.driving.LoopInput)."""
     names = source.parameters
     return dict(input_timeout=values[names.timeout], ahead_half_width=values['ahead_half_width'],
-                ahead_min_known=values[names.min_known] if names.min_known else None)
+                ahead_min_known=values[names.min_known] if names.min_known else None,
+                blind_turn=values.get('blind_turn'))

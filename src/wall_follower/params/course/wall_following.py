@@ -6,8 +6,12 @@ import math
 
 from wall_follower.params import Parameter as P, Section, driving
 
+BLIND_TURN = 0.3
+"""How fast [rad/s] the follower turns toward its wall, on the right, while its laser shows
+nothing ahead: ~blind_turn's default is this turn to the right."""
+
 NODE = (
-    driving.loop(scan_timeout=0.5),
+    driving.loop(scan_timeout=0.5, blind_turn=-BLIND_TURN),
     driving.LIMITS,
     Section('node', (
         P('find_wall', True, 'call the find_wall service first; do not follow if it fails '

@@ -1,0 +1,88 @@
+"""Forward motion held back while the laser does not show the way ahead, and the turn that
+looks for it.
+
+A laser's scan shows the way ahead when enough of the beams within a sector
+either side of straight ahead read a hit or a proven no-return; a dropout
+(0.0, NaN) proves nothing, as the laser may be blind there. An LDS-01 also
+writes 0.0 beyond its reach (3.5 m), so a robot that faces a room deeper than
+that sees nothing ahead, and a node that only asked to go straight would
+stand there for good. A wall follower knows which side its wall is on: a
+BlindTurn turns it in place toward that side, where the wall is near, until
+the way ahead comes into view, and stops it if half a turn has not shown it.
+"""
+import math
+
+from wall_follower.control.motion import STOP, Command
+
+BLIND_TURN_LIMIT = math.pi
+"""How far [rad] a BlindTurn turns without the way ahead coming into view before it stops:
+half a turn toward the followed wall has pointed the sector ahead at that wall, so a laser
+that still shows nothing there is blind, not facing open space."""
+
+
+def unseen_ahead(view, half_width, min_known):
+    """Why a ScanView does not show the way ahead well enough to drive into; None if it does.
+
+    half_width: rad either side of straight ahead; min_known: the share of the beams there
+    that must read a hit or a proven no-return.
+    """
+    known, beams = view.known_share_in_sector(0.0, half_width)
+    degrees = math.degrees(half_width)
+    if known == 0:
+        return 'no valid reading within %.0f deg ahead' % degrees
+    if known < min_known * beams:
+        return ('only %d of the %d beams within %.0f deg ahead read valid (%.0f%% needed)'
+                % (known, beams, degrees, 100.0 * min_known))
+    return None
+
+
+def held_back(command, problem, blind_turn, now):
+    """What a loop sends for command when the way ahead is as problem says (unseen_ahead's
+    answer; None: in view), at ROS time now.
+
+    A command that does not drive forward goes as it is. Forward motion into an unseen way
+    goes without its forward part, or, with a BlindTurn, as that turn; a way in view ends
+    the turn under way.
+    """
+    if command.linear <= 0.0:
+        return command
+    if problem is None:
+        if blind_turn is not None:
+            blind_turn.seen()
+        return command
+    if blind_turn is None:
+        return Command(0.0, command.angular)
+    return blind_turn.turn(now)
+
+
+class BlindTurn(object):
+    """An in-place turn at `rate` [rad/s, positive left] while the way ahead is unseen.
+
+    turn(now) gives the command for each reading that shows nothing ahead
+    (now: its ROS time in s), seen() ends the turn when one shows the way. A
+    turn of more than `limit` [rad] without the way coming into view gives
+    STOP: the laser is taken to be blind there.
+    """
+
+    def __init__(self, rate, limit=BLIND_TURN_LIMIT):
+        self.rate = rate
+        self.limit = limit
+        self._since = None   # ROS time the turn began
+
+    def turn(self, now):
+        """The command at ROS time now while the way ahead is unseen: the turn, or STOP once
+        it has turned `limit` (a clock that moved back starts the turn afresh)."""
+        if self._since is None or now < self._since:
+            self._since = now
+        return STOP if self.turned(now) >= self.limit else Command(0.0, self.rate)
+
+    def turned(self, now):
+        """How far [rad] the turn has gone by ROS time now: 0 when none is under way, and no
+        farther than `limit`, where it stops."""
+        if self._since is None:
+            return 0.0
+        return min(self.limit, abs(self.rate) * (now - self._since))
+
+    def seen(self):
+        """The way ahead is in view: the next unseen stretch starts a new turn."""
+        self._since = None

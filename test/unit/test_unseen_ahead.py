@@ -1,0 +1,68 @@
+"""The hold on forward motion into an unseen way ahead, and the turn in place that looks for it."""
+import math
+
+import pytest
+
+from wall_follower.control.motion import STOP, Command
+from wall_follower.control.sensing.scan import ScanView
+from wall_follower.control.unseen_ahead import (BLIND_TURN_LIMIT, BlindTurn, held_back,
+                                                unseen_ahead)
+
+FORWARD = Command(0.19, -0.1)
+UNSEEN = 'no valid reading within 30 deg ahead'
+
+
+def view(ranges):
+    """A 360-beam LDS-01 scan, beam 0 ahead, counter-clockwise."""
+    return ScanView(ranges, 0.0, 2.0 * math.pi / len(ranges), 0.12, 3.5)
+
+
+def test_the_way_ahead_is_seen_when_a_tenth_of_its_beams_read_valid():
+    # 61 beams lie within 30 deg ahead: beams 330..359 and 0..30.
+    seven = [1.0] * 7 + [0.0] * 24 + [1.0] * 299 + [0.0] * 30
+    six = [1.0] * 6 + [0.0] * 25 + [1.0] * 299 + [0.0] * 30
+    assert unseen_ahead(view(seven), math.radians(30.0), 0.1) is None
+    assert unseen_ahead(view(six), math.radians(30.0), 0.1) == (
+        'only 6 of the 61 beams within 30 deg ahead read valid (10% needed)')
+    assert unseen_ahead(view([0.0] * 31 + [1.0] * 299 + [0.0] * 30),
+                        math.radians(30.0), 0.1) == UNSEEN
+
+
+def test_without_a_blind_turn_forward_motion_into_the_unseen_is_taken_out():
+    assert held_back(FORWARD, UNSEEN, None, 0.0) == Command(0.0, -0.1)
+    assert held_back(FORWARD, None, None, 0.0) == FORWARD
+
+
+@pytest.mark.parametrize('command', [Command(0.0, 0.4), Command(-0.1, 0.0)])
+def test_a_command_that_does_not_drive_forward_goes_as_it_is(command):
+    turn = BlindTurn(-0.3)
+    assert held_back(command, UNSEEN, turn, 0.0) == command
+    assert turn.turned(5.0) == 0.0
+
+
+def test_a_blind_turn_turns_in_place_until_it_has_turned_its_limit():
+    turn = BlindTurn(-0.3)
+    limit_time = BLIND_TURN_LIMIT / 0.3
+    assert held_back(FORWARD, UNSEEN, turn, 2.0) == Command(0.0, -0.3)
+    assert held_back(FORWARD, UNSEEN, turn, 2.0 + limit_time - 0.1) == Command(0.0, -0.3)
+    assert turn.turned(2.0 + limit_time - 0.1) == pytest.approx(BLIND_TURN_LIMIT - 0.03)
+    assert held_back(FORWARD, UNSEEN, turn, 2.0 + limit_time) == STOP
+
+
+def test_a_way_in_view_ends_the_turn_and_the_next_starts_afresh():
+    turn = BlindTurn(0.3, limit=1.0)
+    held_back(FORWARD, UNSEEN, turn, 0.0)
+    assert held_back(FORWARD, UNSEEN, turn, 3.0) == Command(0.0, 0.3)
+    assert held_back(FORWARD, None, turn, 3.1) == FORWARD
+    assert turn.turned(3.2) == 0.0
+    assert held_back(FORWARD, UNSEEN, turn, 4.0) == Command(0.0, 0.3)
+    assert held_back(FORWARD, UNSEEN, turn, 7.0) == Command(0.0, 0.3)
+    assert held_back(FORWARD, UNSEEN, turn, 7.4) == STOP
+
+
+def test_a_clock_that_moved_back_starts_the_turn_afresh():
+    turn = BlindTurn(-0.3, limit=1.0)
+    turn.turn(10.0)
+    assert turn.turn(12.0) == Command(0.0, -0.3)
+    assert turn.turn(1.0) == Command(0.0, -0.3)
+    assert turn.turned(2.0) == pytest.approx(0.3)
