@@ -47,6 +47,30 @@ def test_a_scan_goes_stale_by_its_arrival_whatever_the_laser_clock(clock):
     assert reading.problem == 'no scan on /scan for 0.5 s'
 
 
+def test_on_simulated_time_a_scan_that_came_while_the_clock_lagged_is_aged_from_its_stamp(
+        clock, monkeypatch):
+    # A node starved of CPU: its /clock messages queued while scans still came.
+    # Dated by its clock, the scan of 6.8 s came at 6.3 s, and looked 0.6 s old
+    # once the clock caught up: a driving node stood for a step in lockstep.
+    monkeypatch.setattr(rospy.rostime, 'is_wallclock', lambda: False)
+    scan = LatestScan()
+    clock.now = 6.3
+    scan._on_scan(scan_taken_at(6.8))
+    clock.now = 6.9
+    assert scan.latest(0.5).taken == pytest.approx(6.8)
+    clock.now = 7.4
+    assert scan.latest(0.5).problem == 'no scan on /scan for 0.5 s'
+
+
+def test_on_wall_time_a_scan_stamped_ahead_goes_stale_by_its_arrival(clock):
+    # A laser host whose clock runs 0.5 s ahead: its stamp proves nothing.
+    scan = LatestScan()
+    clock.now = 6.3
+    scan._on_scan(scan_taken_at(6.8))
+    clock.now = 6.9
+    assert scan.latest(0.5).problem == 'no scan on /scan for 0.5 s'
+
+
 def test_an_unusable_scan_is_held_with_what_is_wrong(clock):
     scan = LatestScan()
     msg = scan_taken_at(3.0)

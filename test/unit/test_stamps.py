@@ -1,7 +1,7 @@
 """control.stamps: which stamps lie too far ahead of a node's clock, and the words that say so."""
 import pytest
 
-from wall_follower.control.stamps import AHEAD_LIMIT, ahead_problem, outside_problem
+from wall_follower.control.stamps import AHEAD_LIMIT, ahead_problem, arrival_time, outside_problem
 
 NOW = 1795878000.0               # a clock of 2026
 YEAR_2100 = 4102444800.0         # 2100-01-01, as a header's seconds
@@ -51,3 +51,18 @@ def test_the_words_stay_the_same_while_the_stamps_stay_as_far_ahead():
 def test_a_stamp_outside_a_span_either_way_is_named_by_the_span(stamp, words):
     problem = outside_problem(stamp, 1000.0, 10.0)
     assert problem is None if words is None else words in problem
+
+
+def test_on_simulated_time_a_message_arrives_no_earlier_than_it_was_taken():
+    # The node's clock lags the world's: a scan of 6.8 s came at 6.3 s by it.
+    assert arrival_time(6.3, 6.8, simulated=True) == 6.8
+    assert arrival_time(6.9, 6.8, simulated=True) == 6.9
+
+
+@pytest.mark.parametrize('now,stamp,simulated', [
+    (6.3, 6.8, False),   # wall time: the stamp is another machine's clock
+    (6.3, 0.0, True),    # no stamp
+    (0.0, 6.8, True),    # no clock yet
+])
+def test_otherwise_a_message_arrives_when_this_nodes_clock_says(now, stamp, simulated):
+    assert arrival_time(now, stamp, simulated) == now

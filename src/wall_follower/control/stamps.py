@@ -37,6 +37,23 @@ _DAY = 24 * 3600.0
 _YEAR = 365.25 * _DAY
 
 
+def arrival_time(now, stamp, simulated):
+    """When a message that came at `now` by this node's clock is taken to have arrived, for
+    its age (all in s): `now`, or on simulated time no earlier than its `stamp`.
+
+    On simulated time a stamp is the world's time, read off the same clock as the node's
+    own. A node starved of CPU can have its /clock messages queued while messages on other
+    topics still come: it dates them at a time before they were taken, and when its clock
+    catches up, in a burst, they look that much older; a scan half a second "old" that way
+    stopped a driving node for a step in lockstep simulation. On wall time a stamp is some
+    machine's clock, perhaps one running ahead, and proves nothing of freshness. A zero
+    stamp or clock (not set; simulated time before the first /clock) leaves `now`.
+    """
+    if not simulated or stamp == 0.0 or now == 0.0:
+        return now
+    return max(now, stamp)
+
+
 def ahead_problem(stamp, now):
     """Why a message stamped `stamp` cannot be used at `now` (both in s), in words
     ("it is stamped over 73 years ahead of this node's clock"); None when it can.

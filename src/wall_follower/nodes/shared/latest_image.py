@@ -19,7 +19,7 @@ from sensor_msgs.msg import CompressedImage, Image
 
 from wall_follower.control.stamps import ahead_problem
 from wall_follower.nodes.shared.connections import keep_connected
-from wall_follower.nodes.shared.latest_scan import Reading
+from wall_follower.nodes.shared.latest_scan import Reading, arrived
 from wall_follower.params.driving import CAMERA_INPUT
 from wall_follower.vision.image_check import decode_compressed, raw_image_problem
 
@@ -58,9 +58,10 @@ def image_topics(compressed):
 class LatestImage(object):
     """Keeps the newest frame, decoded and checked, and knows when it has gone stale.
 
-    Age is counted in ROS time from its arrival, as LatestScan counts a
-    scan's; the time it was taken is its header stamp (its arrival if the
-    stamp is zero). compressed: read CompressedImage (image_topics).
+    Age is counted in ROS time from its arrival (latest_scan.arrived), as
+    LatestScan counts a scan's; the time it was taken is its header stamp
+    (its arrival if the stamp is zero). compressed: read CompressedImage
+    (image_topics).
     """
 
     parameters = CAMERA_INPUT   # the node's parameters that set a DriveLoop on it
@@ -77,7 +78,7 @@ class LatestImage(object):
         return self._sub.resolved_name
 
     def _on_image(self, msg):
-        arrival = rospy.Time.now()
+        arrival = arrived(msg.header.stamp)
         stamp = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
         image, problem = self._read(msg)
         with self._arrived:

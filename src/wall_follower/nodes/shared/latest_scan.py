@@ -6,7 +6,7 @@ import rospy
 from sensor_msgs.msg import LaserScan
 
 from wall_follower.control.sensing.scan_check import check_scan
-from wall_follower.control.stamps import ahead_problem
+from wall_follower.control.stamps import ahead_problem, arrival_time
 from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.params.driving import LASER_INPUT
 
@@ -15,14 +15,21 @@ Reading = namedtuple('Reading', ['check', 'view', 'taken', 'problem'])
 usable scan's view and time taken [s] or, both None, what is wrong."""
 
 
+def arrived(stamp):
+    """The ROS time a message stamped `stamp` (rospy.Time) arrives at, now, for its age:
+    control.stamps.arrival_time on this node's clock."""
+    return rospy.Time.from_sec(arrival_time(rospy.Time.now().to_sec(), stamp.to_sec(),
+                                            not rospy.rostime.is_wallclock()))
+
+
 class LatestScan(object):
     """Keeps the newest scan, checked by check_scan, and knows when it has gone stale.
 
     Age is measured in ROS time from the scan's arrival, so it follows
     simulated time in simulation and does not depend on the laser host's
-    clock. The time a scan was taken is its header stamp: the arrival
-    time would race the /clock message of the same simulated step, and
-    jitter by a step.
+    clock (arrived(): on simulated time, no earlier than its stamp). The
+    time a scan was taken is its header stamp: the arrival time would race
+    the /clock message of the same simulated step, and jitter by a step.
     """
 
     parameters = LASER_INPUT   # the node's parameters that set a DriveLoop on it
@@ -34,7 +41,7 @@ class LatestScan(object):
         keep_connected([self._sub])
 
     def _on_scan(self, msg):
-        arrival = rospy.Time.now()
+        arrival = arrived(msg.header.stamp)
         taken = msg.header.stamp if not msg.header.stamp.is_zero() else arrival
         with self._arrived:
             self._latest = (check_scan(msg), arrival, taken)
