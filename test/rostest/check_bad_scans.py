@@ -3,11 +3,12 @@
 
 wall_following (no find_wall, no record_odom) is fed a wall on its right
 until it drives, then each kind of unusable scan: it must stop (for a scan
-blind ahead: stop going forward), log a warning naming what is wrong, send
-nothing else while those scans last, and drive again once good scans come
-back. find_wall, called while the laser sends only 0.0, must answer false
-without moving. Runs in wall time; every wait is bounded and ends as soon
-as what it waits for has happened.
+blind ahead: stop going forward, and turn in place toward its wall at
+~blind_turn), log a warning naming what is wrong, send nothing else while
+those scans last, and drive again once good scans come back. find_wall,
+called while the laser sends only 0.0, must answer false without moving.
+Runs in wall time; every wait is bounded and ends as soon as what it waits
+for has happened.
 """
 import sys
 import threading
@@ -21,6 +22,7 @@ from rosout_log import RosoutLog
 from sensor_msgs.msg import LaserScan
 from synthetic_scans import unusable_scans, wall_on_the_right
 
+from wall_follower.params.course.wall_following import BLIND_TURN
 from wall_follower.srv import FindWall
 from waiting import assert_soon
 
@@ -42,6 +44,8 @@ NAMED = {
     'one valid beam': 'only 1 of its 360 readings is usable (359 NaN)',
     'one valid beam ahead': 'beams within 30 deg ahead read valid (10% needed)',
 }
+# The kinds that leave the way ahead unseen, where the follower turns toward its wall.
+BLIND_AHEAD = ('nothing valid ahead', 'one valid beam ahead')
 
 
 class Feed(object):
@@ -104,6 +108,10 @@ class BadScans(unittest.TestCase):
                             'more commands on "%s"' % kind)
                 self.assertEqual([v for v, _ in feed.since(first_stop)[:BAD_COMMANDS]],
                                  [0.0] * BAD_COMMANDS, 'drove forward on "%s"' % kind)
+                if kind in BLIND_AHEAD:
+                    self.assertEqual([w for _, w in feed.since(first_stop)[:BAD_COMMANDS]],
+                                     [-BLIND_TURN] * BAD_COMMANDS,
+                                     'did not turn toward the wall on "%s"' % kind)
                 assert_soon(self, WAIT_LIMIT, lambda: self.log.said('/wall_following', NAMED[kind]),
                             'a warning naming "%s"' % NAMED[kind])
         feed.scan = wall_on_the_right()
