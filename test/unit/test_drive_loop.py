@@ -193,6 +193,17 @@ def test_a_view_ahead_ends_the_blind_turn_and_the_next_one_starts_afresh():
     assert all(c == Command(0.0, -0.3) for t, c in sent if 10.5 <= t < 11.9)
 
 
+def test_a_command_turning_faster_than_the_blind_turn_keeps_its_own_turn():
+    scans, commander = Scans(every_tenth(BLIND_AHEAD, 0.1, 0.5)), Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
+                     blind_turn=-0.3)
+    loop.run(lambda view, taken: Command(0.1, 0.49),
+             lambda: 'end' if Clock.now >= 0.5 else None)
+    answered = [c for t, c in commander.sent if c != STOP]
+    assert answered and all(c == Command(0.0, 0.49) for c in answered)
+    assert Clock.warnings == ['no valid reading within 30 deg ahead; not driving forward']
+
+
 def test_a_blind_turn_leaves_other_commands_as_they_are():
     sent = blind_run(every_tenth(GOOD, 0.1, 0.5) + every_tenth(DROPOUTS_AHEAD, 0.5, 1.0), until=1.0)
     assert all(c == Command(0.1, 0.2) for t, c in sent if 0.1 <= t < 1.0)

@@ -33,6 +33,16 @@ def test_without_a_blind_turn_forward_motion_into_the_unseen_is_taken_out():
     assert held_back(FORWARD, None, None, 0.0) == FORWARD
 
 
+def test_a_command_that_turns_faster_than_the_blind_turn_turns_in_place_at_its_own_rate():
+    # A left turn onto a wall ahead that the laser does not show (a dark wall
+    # an LDS-01 reads as 0.0): it goes on in place, not toward the wall on the
+    # right, which would not bring the wall ahead into view.
+    turn = BlindTurn(-0.3)
+    assert held_back(Command(0.19, 0.49), UNSEEN, turn, 0.0) == Command(0.0, 0.49)
+    assert held_back(Command(0.19, -0.3), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+    assert held_back(Command(0.19, 0.29), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+
+
 @pytest.mark.parametrize('command', [Command(0.0, 0.4), Command(-0.1, 0.0)])
 def test_a_command_that_does_not_drive_forward_goes_as_it_is(command):
     turn = BlindTurn(-0.3)

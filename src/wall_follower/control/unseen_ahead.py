@@ -41,7 +41,10 @@ def held_back(command, problem, blind_turn, now):
     answer; None: in view), at ROS time now.
 
     A command that does not drive forward goes as it is. Forward motion into an unseen way
-    goes without its forward part, or, with a BlindTurn, as that turn; a way in view ends
+    goes without its forward part: the command's own turn, in place, or, with a BlindTurn,
+    that turn while the command turns slower (its_own_turn): a node that only asked to go
+    on would stand for good, one that turns knows where it is going (a left turn onto a
+    dark wall ahead, which an LDS-01 reads as 0.0, goes on in place). A way in view ends
     the turn under way.
     """
     if command.linear <= 0.0:
@@ -50,9 +53,15 @@ def held_back(command, problem, blind_turn, now):
         if blind_turn is not None:
             blind_turn.seen()
         return command
-    if blind_turn is None:
+    if its_own_turn(command, blind_turn):
         return Command(0.0, command.angular)
     return blind_turn.turn(now)
+
+
+def its_own_turn(command, blind_turn):
+    """Whether a command held back for want of a view ahead turns in place at its own rate:
+    with no BlindTurn, or one no faster than the command's turn."""
+    return blind_turn is None or abs(command.angular) >= abs(blind_turn.rate)
 
 
 class BlindTurn(object):

@@ -34,7 +34,7 @@ import math
 import rospy
 
 from wall_follower.control.motion import STOP, Answer
-from wall_follower.control.unseen_ahead import BlindTurn, held_back, unseen_ahead
+from wall_follower.control.unseen_ahead import BlindTurn, held_back, its_own_turn, unseen_ahead
 from wall_follower.nodes.shared.velocity import VelocityCommander
 from wall_follower.params.driving import AHEAD_MIN_KNOWN
 
@@ -57,7 +57,8 @@ class DriveLoop(object):
     the newest usable reading. ahead_missing: what the warning says is missing when an
     Answer does not know the way ahead. blind_turn: while forward motion is held back for
     want of a view ahead, turn in place at this rate [rad/s, positive left] to look for it,
-    for at most control.unseen_ahead.BLIND_TURN_LIMIT; None or 0 keeps the command's turn.
+    for at most control.unseen_ahead.BLIND_TURN_LIMIT, unless the command turns faster
+    (control.unseen_ahead.held_back); None or 0 keeps the command's turn.
     """
 
     def __init__(self, name, source, commander, rate, keepalive, input_timeout,
@@ -186,12 +187,12 @@ class DriveLoop(object):
         problem = self._unseen_ahead(view, known) if command.linear > 0.0 else None
         safe = held_back(command, problem, self._blind_turn, now)
         if problem is not None:
-            self._warn(problem + self._holding(safe, now), now)
+            self._warn(problem + self._holding(command, safe, now), now)
         return safe
 
-    def _holding(self, safe, now):
+    def _holding(self, command, safe, now):
         """What the loop does for want of a view ahead, as its warning ends."""
-        if self._blind_turn is None:
+        if its_own_turn(command, self._blind_turn):
             return '; not driving forward'
         if safe == STOP:
             return (' after turning %.0f deg to look for it; stopped'
