@@ -154,13 +154,14 @@ def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():
     assert any(c == Command(-0.1, 0.0) for t, c in sent)
 
 
-def blind_run(script, until, blind_turn=-0.3):
-    """run() with a loop that turns in place at blind_turn while the way ahead is unseen."""
+def blind_run(script, until, answer=lambda view, taken: Command(0.1, 0.2)):
+    """run() with a loop that turns in place at -0.3 rad/s while the way ahead is unseen;
+    the commands sent."""
     scans, commander = Scans(script), Commander()
     loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
-                     blind_turn=blind_turn)
-    loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= until else None)
-    return [(t, c) for t, c in commander.sent]
+                     blind_turn=-0.3)
+    loop.run(answer, lambda: 'end' if Clock.now >= until else None)
+    return commander.sent
 
 
 def every_tenth(msg, start, end):
@@ -194,12 +195,9 @@ def test_a_view_ahead_ends_the_blind_turn_and_the_next_one_starts_afresh():
 
 
 def test_a_command_turning_faster_than_the_blind_turn_keeps_its_own_turn():
-    scans, commander = Scans(every_tenth(BLIND_AHEAD, 0.1, 0.5)), Commander()
-    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5,
-                     blind_turn=-0.3)
-    loop.run(lambda view, taken: Command(0.1, 0.49),
-             lambda: 'end' if Clock.now >= 0.5 else None)
-    answered = [c for t, c in commander.sent if c != STOP]
+    sent = blind_run(every_tenth(BLIND_AHEAD, 0.1, 0.5), until=0.5,
+                     answer=lambda view, taken: Command(0.1, 0.49))
+    answered = [c for t, c in sent if c != STOP]
     assert answered and all(c == Command(0.0, 0.49) for c in answered)
     assert Clock.warnings == ['no valid reading within 30 deg ahead; not driving forward']
 
