@@ -1,5 +1,5 @@
-"""One lap of room.world in pure Python: simulator -> ScanView -> controller -> clamp -> the
-loop's hold on an unseen way ahead -> simulator.
+"""One lap of room.world in pure Python: simulator -> ScanView -> controller -> the loop's
+hold on an unseen way ahead -> clamp -> simulator.
 
 The same loop the node runs, minus ROS, scored from ground truth and the
 map as the benchmark scores it. A few seconds, so it runs with every test.
