@@ -130,13 +130,13 @@ def driven(metres, limit):
 def move_arm(target, limit):
     """Send move_arm a goal to the SRDF state `target`; 0 once it succeeded."""
     import rospy
+    from wall_follower.action_registration import action_server_registered
     from wall_follower.evaluation.goal_client import GoalClient
     from wall_follower.msg import MoveArmAction, MoveArmGoal
-    from wall_follower.nodes.shared.connections import action_server_registered
 
     rospy.init_node('fresh_debian_move_arm', disable_signals=True)
     # The client is made once the server is registered: made before, it can miss
-    # the server's result topic for good (see connections.py).
+    # the server's result topic for good (see action_registration.py).
     if not action_server_registered('move_arm', limit):
         print('no move_arm action server registered after %.0f s' % limit)
         return 1

@@ -26,11 +26,11 @@ from geometry_msgs.msg import PointStamped
 
 from arm_watch import WALL_LIMIT, ArmWatch
 from waiting import wait_until
+from wall_follower.action_registration import action_server_registered
 from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import read_acceleration_limits
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmActionFeedback, MoveArmGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 
 POSITION_TOLERANCE = 0.002   # m
 RESULT_LIMIT = 60.0   # wall s

@@ -18,10 +18,10 @@ from trajectory_msgs.msg import JointTrajectory
 
 from arm_watch import WALL_LIMIT
 from waiting import wait_until
+from wall_follower.action_registration import action_server_registered
 from wall_follower.arm.model import read_srdf, read_urdf
 from wall_follower.evaluation.goal_client import GoalClient
 from wall_follower.msg import MoveArmAction, MoveArmGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 
 # Wall seconds the late controller waits, after the goal is active, before it subscribes:
 # long enough that a trajectory published without waiting for it has surely gone.

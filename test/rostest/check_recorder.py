@@ -17,9 +17,9 @@ from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.evaluation.scoring.course import stretches_on_trail, taken_every
 from wall_follower.msg import OdomRecordAction, OdomRecordActionGoal, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.messages import pose_of
 
 from waiting import wait_until

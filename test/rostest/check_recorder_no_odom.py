@@ -8,8 +8,8 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 
 
 class NoOdometry(unittest.TestCase):

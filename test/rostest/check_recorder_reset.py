@@ -21,9 +21,9 @@ from actionlib_msgs.msg import GoalStatus
 from nav_msgs.msg import Odometry
 from std_srvs.srv import Empty
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.control.motion import MAX_LINEAR
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.messages import pose_of
 
 from waiting import wait_until

@@ -22,8 +22,8 @@ import rostest
 from nav_msgs.msg import Odometry
 from rosout_log import RosoutLog
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 
 from waiting import wait_until
 

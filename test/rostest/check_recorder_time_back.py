@@ -23,8 +23,8 @@ import rostest
 from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from rosgraph_msgs.msg import Log
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.waiting import wait_in_wall_time
 
 from odometry_world import SPEED, STEP, OdometryWorld

@@ -2,8 +2,8 @@
 """rostest: a scan subscription that rospy never connected is connected again.
 
 rospy loses the master's news of a publisher when it comes while a
-subscriber of its topic is registering (nodes/shared/connections.py says
-how). The race needs a loaded machine; its outcome is made here instead:
+subscriber of its topic is registering (wall_follower/action_registration.py
+says how). The race needs a loaded machine; its outcome is made here instead:
 the news of the scan's publisher is dropped before rospy queues it. The
 master then lists the publisher, and the subscription has no connection.
 LatestScan's ConnectionKeeper must connect it, and scans must come through.

@@ -1,12 +1,9 @@
-"""Connections rospy can miss: an action server awaited on the master's graph; and
-ConnectionKeeper, which announces to the node again the publishers the master lists and a
+"""ConnectionKeeper, which announces to the node again the publishers the master lists and a
 subscriber stays unconnected to, once they have been missing at two looks in a row, and the
-same ones only once; and grading's view of the action server."""
+same ones only once."""
 import rosgraph
 
-from wall_follower.nodes.shared import case_graph
-from wall_follower.nodes.shared.connections import (
-    GRAPH_POLL, MASTER_ID, ConnectionKeeper, action_server_registered, action_servers)
+from wall_follower.nodes.shared.connections import MASTER_ID, ConnectionKeeper
 
 TOPIC = '/scan'
 
@@ -100,65 +97,3 @@ def test_publishers_that_cannot_be_connected_are_announced_once():
     watch.check()
     watch.check()
     assert len(node.updates) == 2
-
-
-SERVER = [('/record_odom/status', ['/recorder']), ('/record_odom/result', ['/recorder']),
-          ('/record_odom/feedback', ['/recorder'])], \
-         [('/record_odom/goal', ['/recorder']), ('/record_odom/cancel', ['/recorder'])], []
-
-
-class Graph(object):
-    """A master whose graph is each of `states` in turn, then the last for good."""
-
-    def __init__(self, *states):
-        self.states = list(states)
-        self.asked = 0
-
-    def __call__(self):
-        self.asked += 1
-        state = self.states[min(self.asked, len(self.states)) - 1]
-        if isinstance(state, Exception):
-            raise state
-        return state
-
-
-class FakeTime(object):
-    def __init__(self):
-        self.now = 0.0
-
-    def sleep(self, seconds):
-        self.now += seconds
-
-
-def registered(graph, timeout=10.0):
-    fake = FakeTime()
-    return action_server_registered('record_odom', timeout, graph, lambda: fake.now,
-                                    fake.sleep)
-
-
-def test_a_server_is_registered_once_one_node_has_all_five_topics():
-    publishing_only = SERVER[0], [], []
-    graph = Graph(([], [], []), OSError('no master yet'), publishing_only, SERVER)
-    assert registered(graph)
-    assert graph.asked == 4
-
-
-def test_five_topics_shared_by_two_nodes_are_no_server():
-    publishers, subscribers, services = SERVER
-    split = publishers, [(topic, ['/client']) for topic, _ in subscribers], services
-    assert action_servers('/record_odom', split) == set()
-    assert action_servers('/record_odom', SERVER) == {'/recorder'}
-
-
-def test_no_server_within_the_timeout_is_false():
-    graph = Graph(([], [], []))
-    assert not registered(graph, timeout=1.0)
-    assert abs(graph.asked - (1 + 1.0 / GRAPH_POLL)) <= 1
-
-
-def test_grading_sees_an_action_server_only_in_a_node_on_all_five_topics():
-    graph = case_graph.Graph('record_odom')
-    assert graph.action_server(SERVER)
-    # A status topic alone (a node that publishes it, say, without serving) is no server.
-    assert not graph.action_server((SERVER[0][:1], [], []))
-    assert not graph.action_server(([], [], []))

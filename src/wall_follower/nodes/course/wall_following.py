@@ -17,10 +17,10 @@ from actionlib.action_client import CommState
 import rospy
 from actionlib_msgs.msg import GoalStatus
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.cfg import WallFollowingConfig
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.msg import OdomRecordAction, OdomRecordGoal
-from wall_follower.nodes.shared.connections import action_server_registered
 from wall_follower.nodes.shared.course_markers import CourseMarkers
 from wall_follower.nodes.shared.drive_loop import drive_loop, take_retuned
 from wall_follower.nodes.shared.laser_mount import laser_x

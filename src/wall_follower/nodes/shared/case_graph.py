@@ -13,8 +13,8 @@ import rosgraph
 import rospy
 from std_srvs.srv import Empty
 
+from wall_follower.action_registration import action_servers, master_graph
 from wall_follower.evaluation.grading.commands import non_finite_text
-from wall_follower.nodes.shared.connections import action_servers, master_graph
 from wall_follower.nodes.shared.course_monitor import node_alive
 
 # Nodes of the grading itself (the case's launch file and the simulation.launch it

@@ -1,86 +1,28 @@
-"""Connections that rospy can miss for good, and how the nodes make sure of them.
+"""A node's inputs kept connected to every publisher the master lists.
 
-rospy can lose a publisher. A subscriber that registers just before a
-publisher of its topic gets the empty list of publishers its registration
-returned and the master's news of the new publisher; when the empty list
-is queued after the news (the registration was slow, on a loaded
-machine), rospy keeps only that later, stale update and never connects.
-The master lists the publisher; the subscriber hears nothing: a driving
-node stops for want of a scan, a grading monitor misses a run, an action
-client waits for its server for ever.
-
-Two answers: an action client is made only once its server is registered
-(action_server_registered), so that the registration of its subscriptions
-already lists the server; and a node's inputs are kept connected
-(keep_connected): the master's list of a topic's publishers is told to the
-node again, as the master itself does (the slave API's publisherUpdate),
-and rospy connects to those it is not connected to.
+rospy can lose a publisher for good: a subscriber that registers just
+before a publisher of its topic can keep only the stale news that there is
+none (wall_follower/action_registration.py tells how). The master lists the
+publisher; the subscriber hears nothing: a driving node stops for want of
+a scan, a grading monitor misses a run. An action client is made only once
+its server is registered (action_registration); a node's other inputs are
+kept connected here (keep_connected): the master's list of a topic's
+publishers is told to the node again, as the master itself does (the
+slave API's publisherUpdate), and rospy connects to those it is not
+connected to.
 """
 import threading
-import time
 import xmlrpc.client
 
 import rosgraph
 import rospy
 
-# Wall seconds between two looks at the master while an action server is awaited.
-GRAPH_POLL = 0.05
-# The topics an action server publishes, and those it subscribes to, under its namespace.
-SERVER_PUBLISHES = ('status', 'result', 'feedback')
-SERVER_SUBSCRIBES = ('goal', 'cancel')
 # Wall seconds between two looks at the master. A topic short of connections at
 # two looks in a row is announced again: a connection is made in milliseconds, so
 # one still missing then was lost, not on its way.
 PERIOD = 2.0
 # The caller id of an announcement: the master's own.
 MASTER_ID = '/master'
-
-
-def action_server_registered(action_ns, timeout, system_state=None, clock=time.monotonic,
-                             sleep=time.sleep):
-    """Whether one node is registered with the master as the server of action_ns, on all
-    five of its topics, within timeout wall seconds.
-
-    Create an action client only once this holds: subscribed then, the
-    client finds the server in its registrations' answers, and no news of
-    it can be lost (see above). A client started together with its server
-    (a launch file, a rostest) otherwise waits for it for ever, on a loaded
-    machine now and then.
-
-    system_state: a call giving the master's getSystemState(); by default
-    the master's own, asked as this node.
-    """
-    namespace = rospy.resolve_name(action_ns)
-    if system_state is None:
-        system_state = rosgraph.Master(rospy.get_name()).getSystemState
-    deadline = clock() + timeout
-    while not rospy.is_shutdown():
-        if action_servers(namespace, master_graph(system_state)):
-            return True
-        if clock() >= deadline:
-            return False
-        sleep(GRAPH_POLL)
-    return False
-
-
-def action_servers(namespace, state):
-    """The nodes that a master's getSystemState() lists as servers of the action namespace."""
-    publishers, subscribers = dict(state[0]), dict(state[1])
-    nodes = None
-    for topics, registered in ((SERVER_PUBLISHES, publishers), (SERVER_SUBSCRIBES, subscribers)):
-        for topic in topics:
-            on_topic = set(registered.get(namespace + '/' + topic, ()))
-            nodes = on_topic if nodes is None else nodes & on_topic
-    return nodes
-
-
-def master_graph(system_state):
-    """The master's graph from system_state() (its getSystemState()), or an empty one
-    while the master does not answer (starting, or gone at shutdown)."""
-    try:
-        return system_state()
-    except (rosgraph.MasterException, OSError):
-        return [], [], []
 
 
 def short_of_publishers(subscribers, state):
