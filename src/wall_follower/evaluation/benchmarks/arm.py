@@ -25,6 +25,7 @@ import yaml
 from geometry_msgs.msg import PointStamped
 from sensor_msgs.msg import JointState
 
+from wall_follower.action_registration import action_server_registered
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.kinematics import tool_position
 from wall_follower.arm.model import (read_acceleration_limits, read_srdf, read_urdf,
@@ -99,17 +100,35 @@ def execution_trials(count, seed, speedup, timeout):
             os.unlink(log.name)
 
 
+def move_arm_client(timeout, system_state=None, clock=time.monotonic, sleep=time.sleep,
+                    make_client=GoalClient):
+    """A GoalClient of move_arm once its server is there, within timeout wall seconds; None
+    if it is not.
+
+    The client is made only once the server is registered with the master, as the nodes
+    make theirs: made before, it can miss the server for good (action_registration says
+    why). system_state, clock and sleep as action_server_registered takes them;
+    make_client(name, action): the client.
+    """
+    deadline = clock() + timeout
+    if not action_server_registered('move_arm', timeout, system_state, clock, sleep):
+        return None
+    client = make_client('move_arm', MoveArmAction)
+    while not client.wait_for_server(rospy.Duration(1.0)):
+        if clock() > deadline:
+            return None
+    return client
+
+
 def _execute(model, checker, velocity, acceleration, rng, count, timeout):
     rospy.init_node('benchmark_arm', anonymous=True, disable_signals=True)
     states = []
     rospy.Subscriber('joint_states', JointState, lambda msg: states.append(
         (msg.header.stamp.to_sec(), np.array(msg.position), np.array(msg.velocity))),
         queue_size=1000)
-    client = GoalClient('move_arm', MoveArmAction)
-    deadline = time.time() + timeout
-    while not client.wait_for_server(rospy.Duration(1.0)):
-        if time.time() > deadline:
-            return []
+    client = move_arm_client(timeout)
+    if client is None:
+        return []
     trials = []
     for _ in range(count):
         point = tool_position(model, clear_positions(model, checker, rng))
