@@ -474,6 +474,22 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
     assert command.angular < -0.3 and command.linear > 0.05
 
 
+def lipped_corner(lip, end_x=0.3, right=0.25):
+    """convex_corner(end_x) whose next wall's top stands lip out of the wall, toward the robot."""
+    top = -right + lip
+    return [((-5.0, -right), (end_x, -right)), ((end_x - 0.02, top), (end_x, top)),
+            ((end_x, top), (end_x, -5.0))]
+
+
+def test_the_end_of_a_wall_standing_out_toward_the_robot_is_steered_clear_of():
+    # The next wall's top stands 6 cm out of the wall that ends: held at
+    # target_distance from the wall's line, the robot would pass it 0.19 m off.
+    _, flush = update(lipped_corner(0.0))
+    controller, lipped = update(lipped_corner(0.06))
+    assert controller.state == FOLLOW
+    assert abs(flush.angular) < 0.01 and lipped.angular > 0.3
+
+
 @pytest.mark.parametrize('outer_turn_lead', [0.0, 0.06])
 def test_the_turn_round_a_walls_end_starts_outer_turn_lead_early(outer_turn_lead):
     params = FollowerParams(range_bias=0.0, laser_x=0.0, outer_turn_lead=outer_turn_lead)

@@ -124,6 +124,20 @@ def test_round_a_sharp_corner_the_wide_end_waits_for_the_next_wall(tmp_path):
     assert farthest <= BAND[1], farthest
 
 
+def test_the_end_of_a_wall_standing_out_of_its_line_is_passed_in_band(tmp_path):
+    # Generated world 3 of seed 21, the Gazebo laser: a wall slanted 34 deg
+    # to the grid ends where a wall running south meets it, whose top
+    # stands 6 cm out of the slanted wall's line, toward the robot. Held at
+    # target_distance from the line, the robot came round that end 0.18 m
+    # from it, 1.8 s out of the band (95.6 % of the lap). Started on the
+    # slanted wall, 0.25 m from its line, 0.55 m short of its end.
+    world = generated_world(tmp_path, 21, 3, (-2.161, -0.042, math.radians(-33.7)))
+    score, states = lap(world, 'gazebo', time_limit=6.0)
+    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert 'OUTER_CORNER' in states
+    assert nearest >= BAND[0], nearest
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

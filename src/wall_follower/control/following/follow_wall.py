@@ -2,7 +2,10 @@
 
 The course's rule is bang-bang on one ray; a PD law on a wall fitted
 through many beams holds the band without its zig-zag. Heading into the
-wall, the robot slows to the arc that still turns parallel in time.
+wall, the robot slows to the arc that still turns parallel in time. What
+stands out of the wall toward the robot just ahead (the face of the wall
+it meets at its end) is held at target_distance too, unless a wall lies
+across the way, which the left turn onto it is planned for.
 """
 import math
 
@@ -40,8 +43,9 @@ class FollowWall(Manoeuvre):
         # The wide start of a left turn carries the robot off this wall:
         # riding that much nearer before it keeps the turn's middle in band.
         dip = self.inner_corner.dip(obs)
+        proud = 0.0 if self.inner_corner.blocking(obs) else obs.proud
         gain = p.settle_gain if self.settling > 0.0 else 1.0
-        turn = steer(p, distance, angle, p.target_distance - dip, gain)
+        turn = steer(p, distance - proud, angle, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns

@@ -5,7 +5,7 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
+from wall_follower.control.sensing.wall_fit import along_the_way, proud_of, right_wall, wall_through
 from wall_follower.rotation import wrap_angle
 
 
@@ -18,7 +18,9 @@ class Observation(object):
     the wall is still seen (-inf without a wall). wall_tip: (x, y) of the
     farthest hit ahead it runs on to, past a saw-tooth that the line
     misses (wall_fit.wall_runs_to), where a turn round its end would
-    begin; wall_runs its x (-inf without a wall). right: every hit on the
+    begin; wall_runs its x (-inf without a wall). proud: how far the hits
+    ahead in the wall's sector stand out of it toward the robot
+    (wall_fit.proud_of; 0 without a wall). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
     clear_margin each side. ahead: the straight wall across that lane (a
@@ -40,6 +42,7 @@ class Observation(object):
         self.wall, self.wall_end, self.wall_tip = right_wall(sector, params)
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.wall_runs = self.wall_tip[0] if self.wall_tip is not None else -math.inf
+        self.proud = proud_of(self.wall, sector, params)
         self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
         across = np.abs(front[:, 1])

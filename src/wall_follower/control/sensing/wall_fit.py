@@ -39,6 +39,24 @@ def right_wall(points, params):
     return wall, end, wall_runs_to(line, offsets, end, points, params)
 
 
+def proud_of(wall, points, params):
+    """How far the hits ahead stand out of wall toward the robot, past wall_inlier_distance.
+
+    The end of a wall can stick out of its line (the face of the wall it
+    meets, a door frame): the line holds the robot at target_distance
+    from the wall, and the robot passes the end nearer than that. The
+    second farthest hit counts, so that one stray beam cannot move the
+    robot. 0 without a wall or without such hits.
+    """
+    if wall is None:
+        return 0.0
+    ahead = points[points[:, 0] > 0.0]
+    toward = -Line(wall.distance, wall.angle + RIGHT).offsets(ahead)
+    if toward.size < 2:
+        return 0.0
+    return max(0.0, float(np.partition(toward, -2)[-2]) - params.wall_inlier_distance)
+
+
 def wall_runs_to(line, offsets, end, points, params):
     """The farthest of points ahead that the wall along line (in the laser's frame; offsets:
     the points' from it) runs on to from end, its farthest inlier ahead.
