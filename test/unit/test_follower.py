@@ -624,15 +624,20 @@ def test_an_outer_corner_lands_nearer_a_short_side_that_ends_at_a_wall_across():
     assert landings[0.6] < landings[3.0] - 0.005
 
 
-@pytest.mark.parametrize('angle_deg, pinned', [(0.0, True), (-20.0, True), (-60.0, False),
-                                               (40.0, False)])
-def test_an_arc_is_pinned_only_to_a_wall_along_the_way(angle_deg, pinned):
+@pytest.mark.parametrize('angle_deg, proud, pinned', [
+    (0.0, 0.0, True), (-20.0, 0.0, True), (-60.0, 0.0, False), (40.0, 0.0, False),
+    (0.0, EXACT.corner_gate, True), (0.0, EXACT.corner_gate + 0.01, False)])
+def test_an_arc_is_pinned_only_to_a_wall_along_the_way_that_ends_in_its_corner(
+        angle_deg, proud, pinned):
     # Mid-turn onto a box's short side, the wall fitted on the right can be
     # the one the turn left behind, 60 degrees off: its end is not the
     # corner that came up, so the robot circles the nearest hit instead.
+    # Nor is the end of a wall that meets the face of a step up, standing
+    # out toward the robot: that end is the face's foot.
     seen = Observation.__new__(Observation)
     seen.wall = Line(0.25, math.radians(angle_deg))
     seen.wall_end = seen.wall_tip = np.array((0.1, -0.25))
+    seen.proud = proud
     assert (WallFollower(EXACT).outer_corner._corner_arc(seen) is not None) == pinned
 
 

@@ -138,6 +138,20 @@ def test_the_end_of_a_wall_standing_out_of_its_line_is_passed_in_band(tmp_path):
     assert nearest >= BAND[0], nearest
 
 
+def test_round_the_top_of_a_step_up_the_robot_lands_in_band_on_the_wall_beyond(tmp_path):
+    # Generated world 21 of seed 20, the Gazebo laser: the south wall steps
+    # 0.16 m north. The left turn onto the step's face ended on the wall it
+    # left, which runs on to the face's foot; the turn round the end of that
+    # wall circled the foot and landed the robot 0.17 m from the wall beyond
+    # the step, 1.9 s out of the band. Started on the south wall, 0.25 m
+    # from it, 0.7 m short of the step.
+    world = generated_world(tmp_path, 20, 21, (1.0, -1.47, 0.0))
+    score, states = lap(world, 'gazebo', time_limit=7.0)
+    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert 'OUTER_CORNER' in states
+    assert nearest >= BAND[0], nearest
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

@@ -137,9 +137,13 @@ class OuterCorner(Manoeuvre):
         fitted far off parallel (beyond rejoin_angle) is not the one
         that ended either: mid-turn onto a box's short side, it is the wall
         the turn left behind, and an arc pinned to its end would circle a
-        point nowhere near the corner.
+        point nowhere near the corner. Nor is a wall whose end meets hits
+        standing out of it toward the robot by more than corner_gate (the
+        face of a step up, turned onto): its end is the foot of that face,
+        the corner to round is the face's top.
         """
-        if not along_the_way(obs.wall, self.params.rejoin_angle):
+        if not along_the_way(obs.wall, self.params.rejoin_angle) or \
+                obs.proud > self.params.corner_gate:
             return None
         angle = obs.wall.angle
         return CornerArc(obs.wall_tip, (math.cos(angle), math.sin(angle)), self.turn.center,
