@@ -653,6 +653,18 @@ def test_only_a_corner_met_while_following_the_wall_starts_wide(before, starting
     assert (command.linear == pytest.approx(EXACT.cruise_speed)) == starting_wide
 
 
+@pytest.mark.parametrize('lip, starting_wide', [(0.0, True), (0.06, False)])
+def test_a_corner_whose_tip_stands_out_toward_the_robot_does_not_start_wide(lip, starting_wide):
+    # The wide start is planned for a tip on the wall's line; one standing
+    # out lies nearer, and the wide start would carry the robot past it
+    # out of the band: the arc round it is flown from the start.
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    controller, _ = update(lipped_corner(lip, end_x=0.05), controller=controller)
+    assert controller.state == OUTER_CORNER and controller.outer_corner.arc is not None
+    assert controller.outer_corner.starting_wide == starting_wide
+
+
 def test_a_box_on_the_wall_is_driven_round_and_the_wall_rejoined():
     """Inner corner onto the box's short side, whose end comes up mid-turn, two outer
     corners round the box, the inner corner back onto the wall: in band all the way."""

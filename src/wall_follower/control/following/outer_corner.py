@@ -30,7 +30,9 @@ class OuterCorner(Manoeuvre):
     turn: the OuterTurn as configured. arc: the CornerArc being driven
     round, or None while circling the nearest hit instead. starting_wide:
     whether the turn is still in its wide start (only a turn begun from
-    following the wall has one, and once over it does not come back).
+    following the wall has one, and once over it does not come back; nor
+    has a turn round a tip standing out of the wall toward the robot,
+    which lies nearer than the wide start is planned for).
     ending_wide: whether it has begun its wide end (which, once begun, goes
     on: the tip's position jitters by a grid cell from scan to scan).
     inner_corner: the left turn, whose approach dip a wall across the way
@@ -59,7 +61,7 @@ class OuterCorner(Manoeuvre):
 
     def begin(self, obs, previous):
         self.arc = self._corner_arc(obs)
-        self.starting_wide = previous == FOLLOW
+        self.starting_wide = previous == FOLLOW and not obs.proud
         self.ending_wide = False
         self._track_wide(obs)
 
