@@ -1,5 +1,6 @@
 """wall_fit: how far a wall on the right runs on past its fitted line's hits (wall_runs_to),
-and how far the hits ahead stand out of it toward the robot (proud_of)."""
+how far the hits ahead stand out of it toward the robot (proud_of), which right_wall
+tells with the wall."""
 import math
 
 import numpy as np
@@ -8,14 +9,12 @@ import pytest
 from wall_follower.control.following.follower import FollowerParams
 from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import proud_of, wall_runs_to
+from wall_follower.control.sensing.wall_fit import proud_of, right_wall, wall_runs_to
 
 PARAMS = FollowerParams()
 # A wall parallel on the right, 0.25 m from the laser.
 WALL = Line(0.25, RIGHT)
 END = np.array((0.2, -0.25))
-# The same wall as the follower measures it (angle from the right).
-FOLLOWED = Line(0.25, 0.0)
 
 
 def runs_to(points):
@@ -59,6 +58,11 @@ def test_a_gap_wider_than_the_continue_gap_ends_it():
     assert runs_to(beyond) == pytest.approx(END)
 
 
+def proud(points):
+    """How far points stand out of WALL toward the robot."""
+    return proud_of(WALL.offsets(points), points, PARAMS)
+
+
 def along_the_wall():
     """WALL's hits from 0.3 m behind the laser to END."""
     return hits((-0.3, -0.25), 0.0, 0.5)
@@ -68,8 +72,8 @@ def test_the_face_of_a_wall_met_at_the_end_stands_out_by_its_depth_past_the_inli
     # The wall the followed one meets sticks 6 cm out of its line at its end;
     # its second farthest hit, 5 mm short of that, counts.
     face = hits(END, 90.0, 0.06, step=0.005)
-    proud = proud_of(FOLLOWED, np.vstack((along_the_wall(), face)), PARAMS)
-    assert proud == pytest.approx(0.055 - PARAMS.wall_inlier_distance)
+    assert proud(np.vstack((along_the_wall(), face))) == pytest.approx(
+        0.055 - PARAMS.wall_inlier_distance)
 
 
 @pytest.mark.parametrize('beside', [
@@ -79,8 +83,11 @@ def test_the_face_of_a_wall_met_at_the_end_stands_out_by_its_depth_past_the_inli
 ], ids=['saw-tooth', 'stray beam', 'behind'])
 def test_hits_within_a_cell_of_the_line_one_stray_beam_or_a_stub_behind_stand_out_by_nothing(
         beside):
-    assert proud_of(FOLLOWED, np.vstack((along_the_wall(), beside)), PARAMS) == 0.0
+    assert proud(np.vstack((along_the_wall(), beside))) == 0.0
 
 
 def test_without_a_wall_nothing_stands_out():
-    assert proud_of(None, hits(END, 90.0, 0.06), PARAMS) == 0.0
+    # A wall farther than wall_lost_distance is none to follow.
+    far = hits((-0.5, -PARAMS.wall_lost_distance - 0.1), 0.0, 1.0)
+    wall, _, _, proud_of_it = right_wall(far, PARAMS)
+    assert wall is None and proud_of_it == 0.0

@@ -5,7 +5,7 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, proud_of, right_wall, wall_through
+from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
 from wall_follower.rotation import wrap_angle
 
 
@@ -39,10 +39,9 @@ class Observation(object):
         off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
         sector = hits[(off_right <= params.wall_sector) & near]
-        self.wall, self.wall_end, self.wall_tip = right_wall(sector, params)
+        self.wall, self.wall_end, self.wall_tip, self.proud = right_wall(sector, params)
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.wall_runs = self.wall_tip[0] if self.wall_tip is not None else -math.inf
-        self.proud = proud_of(self.wall, sector, params)
         self.right = hits[off_right <= math.pi / 2]
         front = hits[hits[:, 0] > 0.0]
         across = np.abs(front[:, 1])

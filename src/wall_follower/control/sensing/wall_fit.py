@@ -22,7 +22,8 @@ from wall_follower.rotation import wrap_angle
 
 def right_wall(points, params):
     """(the Line, (x, y) of its farthest hit ahead, (x, y) of the farthest hit ahead it runs
-    on to (wall_runs_to)) of the wall on the right, or None, None, None.
+    on to (wall_runs_to), how far the hits ahead stand out of it toward the robot
+    (proud_of)) of the wall on the right, or None, None, None, 0.
 
     Seeded by the hits straight to the right only, so that the other leg of
     a corner, or an obstacle, in the wider sector is not averaged into it.
@@ -31,27 +32,26 @@ def right_wall(points, params):
     seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
     wall = wall_through(seed, points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
-        return None, None, None
+        return None, None, None, 0.0
     line = Line(wall.distance, wall.angle + RIGHT)
     offsets = line.offsets(points)
     inliers = points[np.abs(offsets) < params.wall_inlier_distance]
     end = inliers[np.argmax(inliers[:, 0])]
-    return wall, end, wall_runs_to(line, offsets, end, points, params)
+    return (wall, end, wall_runs_to(line, offsets, end, points, params),
+            proud_of(offsets, points, params))
 
 
-def proud_of(wall, points, params):
-    """How far the hits ahead stand out of wall toward the robot, past wall_inlier_distance.
+def proud_of(offsets, points, params):
+    """How far the points ahead stand out of a wall toward the robot (offsets: theirs from
+    the wall's line), past wall_inlier_distance.
 
     The end of a wall can stick out of its line (the face of the wall it
     meets, a door frame): the line holds the robot at target_distance
     from the wall, and the robot passes the end nearer than that. The
     second farthest hit counts, so that one stray beam cannot move the
-    robot. 0 without a wall or without such hits.
+    robot. 0 without such hits.
     """
-    if wall is None:
-        return 0.0
-    ahead = points[points[:, 0] > 0.0]
-    toward = -Line(wall.distance, wall.angle + RIGHT).offsets(ahead)
+    toward = -offsets[points[:, 0] > 0.0]
     if toward.size < 2:
         return 0.0
     return max(0.0, float(np.partition(toward, -2)[-2]) - params.wall_inlier_distance)
