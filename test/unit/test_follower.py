@@ -538,6 +538,26 @@ def test_a_wide_end_begins_where_it_lands_at_the_target_distance():
     assert command == pytest.approx((EXACT.cruise_speed, -EXACT.max_turn_rate))
 
 
+@pytest.mark.parametrize('tip_distance, slows', [(0.22, False), (0.28, True)])
+def test_a_robot_carried_outside_the_arc_round_a_tip_slows_to_turn_back_onto_it(
+        tip_distance, slows):
+    # The arc is flown at the full turn rate, with no turn left for the PD
+    # law: a robot 6 cm outside it (a wide end cut short round a sharp tip)
+    # drifted on outward. It slows down instead, but not for a robot within
+    # outer_wide_tolerance of the arc, as far as a grid cell moves the tip.
+    controller, pose = rounding(tip_distance, 45.0)
+    outside = controller.outer_corner.arc.offset()[0] - EXACT.outer_corner_radius
+    assert (outside > EXACT.outer_wide_tolerance + 0.02) == slows
+    assert (outside < EXACT.outer_wide_tolerance) != slows
+    _, command = update(convex_corner(0.0), pose, controller=controller)
+    arc_speed = EXACT.outer_corner_radius * EXACT.max_turn_rate
+    assert command.angular == pytest.approx(-EXACT.max_turn_rate)
+    if slows:
+        assert command.linear < 0.5 * arc_speed
+    else:
+        assert command.linear == pytest.approx(arc_speed)
+
+
 @pytest.mark.parametrize('period', [0.1, 0.2])
 def test_the_arc_round_a_corner_turns_with_the_robot_for_the_time_between_scans(period):
     # The rounded-off corner's centre is fixed in the world: between two

@@ -125,6 +125,22 @@ def test_round_a_sharp_corner_the_wide_end_waits_for_the_next_wall(tmp_path):
     assert farthest <= BAND[1], farthest
 
 
+def test_round_a_sharp_tip_a_robot_carried_off_its_arc_turns_back_onto_it(tmp_path):
+    # Generated world 38 of seed 22: a slanted wall ends in the tip of a
+    # spike whose other side leaves it some 150 degrees of right turn on.
+    # The turn's wide end, begun as for a square corner before that side
+    # was seen, carried the robot 6 cm outside the arc round the tip; the
+    # arc, flown at the full turn rate, had none left to turn back, and the
+    # robot came round the tip 0.33 m from it. Started on the slanted wall,
+    # 0.24 m from it, 0.5 m short of the tip.
+    world = generated_world(tmp_path, 22, 38, (-0.85, 1.14, math.radians(-138.0)))
+    # Round the tip and up the spike's far side, short of the notch at its foot.
+    score, states = lap(world, 'stage', time_limit=7.3)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert 'OUTER_CORNER' in states
+    assert farthest <= BAND[1], farthest
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

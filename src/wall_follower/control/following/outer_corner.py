@@ -82,6 +82,15 @@ class OuterCorner(Manoeuvre):
         return obs.rejoined(exit_angle, p.rejoin_ahead)
 
     def command(self, obs):
+        """Fly the wide arcs at cruise speed, else hold the arc round the tip (or the nearest hit).
+
+        The arc round the tip is flown at the full turn rate, which leaves no
+        turn to spare for the PD law: a robot carried outside it (by a wide
+        end begun before the next wall was seen and then cut short, round a
+        sharp tip) would drift on outward. Farther outside than
+        outer_wide_tolerance, it slows down so that the turn rate allowed
+        turns it as sharply as the law asks, and comes back onto the arc.
+        """
         p = self.params
         if self.arc is not None:
             if self.starting_wide or self.ending_wide:
@@ -95,6 +104,8 @@ class OuterCorner(Manoeuvre):
         # The arc's curvature as a feed-forward, and the PD law on its
         # centre as if that were a wall tangent to the arc.
         turn = -speed / radius + steer(p, distance, float(wrap_angle(bearing - RIGHT)), radius)
+        if abs(turn) > p.max_turn_rate and distance > radius + p.outer_wide_tolerance:
+            speed *= p.max_turn_rate / abs(turn)
         return Command(speed, turn)
 
     def _track_wide(self, obs):
