@@ -141,6 +141,21 @@ def test_round_a_sharp_tip_a_robot_carried_off_its_arc_turns_back_onto_it(tmp_pa
     assert farthest <= BAND[1], farthest
 
 
+def test_the_wall_past_an_obtuse_inner_corner_is_not_taken_for_a_face_to_keep_clear_of(
+        tmp_path):
+    # Generated world 15 of seed 22: a slanted wall meets the north wall at
+    # an obtuse inner corner, some 50 deg of left turn. Heading 20 deg away
+    # from the slanted wall, 0.2 m from it, the robot took the north wall's
+    # hits ahead for a face standing out of the slanted wall's line, which
+    # ran far out to the right ahead, and steered away from them, off the
+    # slanted wall: 0.48 m from it.
+    world = generated_world(tmp_path, 22, 15, (0.89, 1.16, math.radians(152.0)))
+    # Up the slanted wall and round the corner onto the north wall.
+    score, _ = lap(world, 'gazebo', time_limit=5.0)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert farthest <= BAND[1], farthest
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

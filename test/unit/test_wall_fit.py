@@ -58,9 +58,9 @@ def test_a_gap_wider_than_the_continue_gap_ends_it():
     assert runs_to(beyond) == pytest.approx(END)
 
 
-def proud(points):
-    """How far points stand out of WALL toward the robot."""
-    return proud_of(WALL.offsets(points), points, PARAMS)
+def proud(points, wall=WALL):
+    """How far points stand out of wall toward the robot."""
+    return proud_of(wall.offsets(points), points, wall.distance, PARAMS)
 
 
 def along_the_wall():
@@ -84,6 +84,19 @@ def test_the_face_of_a_wall_met_at_the_end_stands_out_by_its_depth_past_the_inli
 def test_hits_within_a_cell_of_the_line_one_stray_beam_or_a_stub_behind_stand_out_by_nothing(
         beside):
     assert proud(np.vstack((along_the_wall(), beside))) == 0.0
+
+
+def test_the_next_wall_beyond_a_wall_turned_away_does_not_stand_out():
+    # A wall turned 40 deg away behind the right: its line runs far out to
+    # the right ahead, and the next wall, 0.35 m to the right (across the
+    # end of an obtuse inner corner), lies up to 0.24 m inside that line,
+    # but no nearer than the wall: nothing to keep clear of. A face nearer
+    # than the wall still stands out.
+    away = Line(0.25, RIGHT - math.radians(40.0))
+    next_wall = hits((0.1, -0.35), 0.0, 0.3)
+    assert np.max(-away.offsets(next_wall)) > 0.2
+    assert proud(next_wall, away) == 0.0
+    assert proud(hits((0.1, -0.19), 0.0, 0.1), away) > 0.1
 
 
 def test_without_a_wall_nothing_stands_out():

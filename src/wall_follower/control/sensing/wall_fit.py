@@ -38,20 +38,27 @@ def right_wall(points, params):
     inliers = points[np.abs(offsets) < params.wall_inlier_distance]
     end = inliers[np.argmax(inliers[:, 0])]
     return (wall, end, wall_runs_to(line, offsets, end, points, params),
-            proud_of(offsets, points, params))
+            proud_of(offsets, points, wall.distance, params))
 
 
-def proud_of(offsets, points, params):
+def proud_of(offsets, points, distance, params):
     """How far the points ahead stand out of a wall toward the robot (offsets: theirs from
-    the wall's line), past wall_inlier_distance.
+    the wall's line; distance: the wall's), past wall_inlier_distance.
 
     The end of a wall can stick out of its line (the face of the wall it
     meets, a door frame): the line holds the robot at target_distance
-    from the wall, and the robot passes the end nearer than that. The
+    from the wall, and the robot passes the end nearer than that. Only
+    points that also lie nearer the robot's side than the wall count, as
+    far as a heading up to wall_continue_angle off the wall can tell: a
+    wall turned farther away behind the right has its line run far out to
+    the right ahead, and the next wall (across the end of an obtuse inner
+    corner, say) stands out of that line without being any nearer. The
     second farthest hit counts, so that one stray beam cannot move the
     robot. 0 without such hits.
     """
-    toward = -offsets[points[:, 0] > 0.0]
+    ahead = points[:, 0] > 0.0
+    nearer_than_wall = distance + points[:, 1] + points[:, 0] * math.tan(params.wall_continue_angle)
+    toward = -offsets[ahead & (nearer_than_wall > params.wall_inlier_distance)]
     if toward.size < 2:
         return 0.0
     return max(0.0, float(np.partition(toward, -2)[-2]) - params.wall_inlier_distance)
