@@ -246,14 +246,16 @@ class Run(object):
                 rospy.set_param('/signals/%s/%s' % (name, key), value)
         self.terminal, child_end = pty.openpty()   # teleop_key reads a keyboard
         self.errors = tempfile.TemporaryFile()
+        self.path = roslib.packages.find_node('wall_follower', script)[0]
         self.process = subprocess.Popen(
-            roslib.packages.find_node('wall_follower', script)[:1] + arguments +
+            [self.path] + arguments +
             ['__name:=' + name, '__ns:=/signals/' + name, 'scan:=/signals/scan',
              'odom:=/signals/odom'],
             stdin=child_end, stdout=subprocess.DEVNULL, stderr=self.errors,
             preexec_fn=lambda: signal.signal(signal.SIGINT, inherited))
         os.close(child_end)
         self.name, self.inherited = '/signals/%s/%s' % (name, name), inherited
+        self.execed = False   # seen running the script, not this process's fork
         self.reached = {}   # stage -> wall time it was first seen reached
         self.answering = False   # seen answering SIGINT by its default action
         self.looked_up = None    # wall time of the last question to the master
@@ -286,13 +288,21 @@ class Run(object):
         restored); what comes before (the exec, seconds on a loaded machine) is no part of
         the package. A handler: SIGINT caught once it had been seen at its default action
         (a Python started with SIGINT default holds a handler of its own until the
-        script's first line). Registered: the master knows it."""
+        script's first line). Registered: the master knows it.
+
+        Nothing counts before Python has started: until the exec the child is this
+        process's fork (SIGPIPE ignored as here), and from the exec until Python ignores
+        SIGPIPE, and installs its own SIGINT handler with it, SIGINT is at its default
+        action as after the script's first line. Taken for that line, a signal sent then
+        reached a starting interpreter, whose KeyboardInterrupt an import swallowed."""
         masks = signal_masks(self.process.pid)
-        if masks is None:
+        if masks is None or not self._running_the_script():
             return
         ignored, caught = masks
         if 'started' not in self.reached and has(ignored, signal.SIGPIPE):
             self.reached['started'] = now
+        if 'started' not in self.reached:
+            return
         if not has(ignored, signal.SIGINT) and not has(caught, signal.SIGINT):
             self.answering = True
         elif self.answering and has(caught, signal.SIGINT):
@@ -300,6 +310,17 @@ class Run(object):
         if 'registered' not in self.reached and self.stage == 'registered' and \
                 self._may_look_up(now) and registered(self.name):
             self.reached['registered'] = now
+
+    def _running_the_script(self):
+        """Whether the child has been seen running the node's script (its command line names
+        it), not this process's fork."""
+        if not self.execed:
+            try:
+                with open('/proc/%d/cmdline' % self.process.pid, 'rb') as cmdline:
+                    self.execed = self.path.encode() in cmdline.read().split(b'\0')
+            except OSError:
+                pass
+        return self.execed
 
     def _may_look_up(self, now):
         """At most one question to the master per LOOKUP_PERIOD for this node."""
