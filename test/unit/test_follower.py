@@ -519,15 +519,18 @@ def rounding(tip_distance, turned_deg, ending_wide=False):
 
 
 def test_a_wide_end_once_begun_goes_on():
-    # Here the wide end would land a little far from the next wall ...
+    # Round the end of a free-standing wall no next wall is fitted, and the
+    # turn is taken for a square one. Here the wide end would land a little
+    # far from the next wall ...
+    wall_end = right_wall(0.25, end=0.0)
     controller, pose = rounding(0.25, 60.0)
-    _, command = update(convex_corner(0.0), pose, controller=controller)
+    _, command = update(wall_end, pose, controller=controller)
     assert not controller.outer_corner.ending_wide
     assert command.linear < 0.9 * EXACT.cruise_speed
     # ... but the tip is seen only to a grid cell or so, and a wide end
     # begun a scan before goes on rather than tighten again.
     controller, pose = rounding(0.25, 60.0, ending_wide=True)
-    _, command = update(convex_corner(0.0), pose, controller=controller)
+    _, command = update(wall_end, pose, controller=controller)
     assert command == pytest.approx((EXACT.cruise_speed, -EXACT.max_turn_rate))
 
 

@@ -156,6 +156,22 @@ def test_the_wall_past_an_obtuse_inner_corner_is_not_taken_for_a_face_to_keep_cl
     assert farthest <= BAND[1], farthest
 
 
+def test_round_an_obtuse_corner_the_wide_end_is_judged_on_the_wall_beyond_the_tip(tmp_path):
+    # Generated world 5 of seed 25: the lower side of a V notch meets the
+    # straight wall below it at a tip, some 60 deg of right turn. The wall
+    # fitted on the right stayed the notch's side until the robot had
+    # turned past parallel to the straight wall, and the turn, taken for a
+    # square one meanwhile, began its wide end too late: the robot came
+    # round 0.19 m from the straight wall, 1.9 s out of the band in the
+    # lap. Started on the notch's side, just past its foot.
+    world = generated_world(tmp_path, 25, 5, (-2.22, 0.32, math.radians(-46.0)))
+    # Round the tip and down the straight wall.
+    score, states = lap(world, 'stage', time_limit=5.0)
+    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert 'OUTER_CORNER' in states
+    assert nearest >= BAND[0], nearest
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

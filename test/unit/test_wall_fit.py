@@ -9,7 +9,7 @@ import pytest
 from wall_follower.control.following.follower import FollowerParams
 from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import proud_of, right_wall, wall_runs_to
+from wall_follower.control.sensing.wall_fit import proud_of, right_wall, wall_beyond, wall_runs_to
 
 PARAMS = FollowerParams()
 # A wall parallel on the right, 0.25 m from the laser.
@@ -104,3 +104,24 @@ def test_without_a_wall_nothing_stands_out():
     far = hits((-0.5, -PARAMS.wall_lost_distance - 0.1), 0.0, 1.0)
     wall, _, _, proud_of_it = right_wall(far, PARAMS)
     assert wall is None and proud_of_it == 0.0
+
+
+@pytest.mark.parametrize('turn_deg', [30.0, 45.0, 62.0])
+def test_the_next_wall_beyond_a_walls_end_is_fitted_from_its_tip_on(turn_deg):
+    # A wall 0.25 m to the right ends 5 cm ahead; the next wall leaves its
+    # tip turn_deg to the right. Fitted as the follower fits the wall on the
+    # right, the robot heads away from it by that angle.
+    tip = np.array((0.05, -0.25))
+    turn = math.radians(turn_deg)
+    points = np.vstack((hits((-0.3, -0.25), 0.0, 0.35), hits(tip, -turn_deg, 0.5)))
+    wall = wall_beyond(points, tip, (1.0, 0.0), PARAMS)
+    assert wall.angle == pytest.approx(-turn, abs=math.radians(2.0))
+    assert wall.distance == pytest.approx(math.cos(turn) * 0.25 - math.sin(turn) * 0.05,
+                                          abs=0.01)
+
+
+def test_a_wall_beyond_that_does_not_meet_the_tip_is_no_next_wall():
+    # A wall 0.3 m beyond WALL's line, past a gap: not the one that ends
+    # at the tip (a room's far wall seen past a pillar's side, say).
+    farther = hits(END + np.array((0.0, -0.3)), 0.0, 0.5)
+    assert wall_beyond(np.vstack((along_the_wall(), farther)), END, (1.0, 0.0), PARAMS) is None

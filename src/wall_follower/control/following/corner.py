@@ -62,6 +62,11 @@ class CornerArc(object):
         self._to_center = rotate.dot(self._to_center)
         self._along = rotate.dot(self._along)
 
+    @property
+    def along(self):
+        """The direction of travel along the wall that ended, as (x, y)."""
+        return self._along
+
     def past_tip(self):
         """How far the rotation centre is past the tip, along the wall that ended.
 

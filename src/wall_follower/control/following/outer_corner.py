@@ -16,7 +16,7 @@ from wall_follower.control.following.follow_wall import steer
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, from_centre
+from wall_follower.control.sensing.wall_fit import along_the_way, from_centre, wall_beyond
 from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the
@@ -132,14 +132,19 @@ class OuterCorner(Manoeuvre):
         Until then the corner is taken for a square one. Not every corner
         is: round the tip of a wall that meets the next at a sharp angle,
         the wide end begun where a square corner's would have begun carries
-        the robot far off the next wall. The wall that ended lies across the
+        the robot far off the next wall, and round an obtuse one (45 or 60
+        degrees of turn) it begins too late, and the robot turns on past
+        parallel into the next wall. The wall that ended lies across the
         heading as far as the robot has turned; the next one, not yet
-        reached, lies the other way (the robot heads away from it).
+        reached, lies the other way (the robot heads away from it). It is
+        the wall fitted on the right once the robot has turned most of the
+        way, and before that the wall fitted beyond the tip (wall_beyond).
         """
-        wall = obs.wall
-        if wall is None or wall.angle >= min(0.0, self.arc.turned() - OTHER_WALL_ANGLE):
-            return None
-        return wall
+        heading_away = min(0.0, self.arc.turned() - OTHER_WALL_ANGLE)
+        for wall in (obs.wall, wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)):
+            if wall is not None and wall.angle < heading_away:
+                return wall
+        return None
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.

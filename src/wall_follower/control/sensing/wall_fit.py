@@ -92,6 +92,28 @@ def wall_runs_to(line, offsets, end, points, params):
     return end
 
 
+def wall_beyond(points, tip, along, params):
+    """The Line (angle from the right) of the straight wall through the points beyond the
+    end of a wall, from its tip on, or None.
+
+    tip: (x, y) of that wall's end; along: its direction of travel. Round
+    an outer corner the wall fitted on the right stays the one that ended
+    until the robot has turned most of the way: the hits straight to the
+    right that seed it are that wall's, and its saw-tooth outnumbers the
+    next one's. The next wall already shows among the hits farther than
+    wall_inlier_distance beyond the ended wall's line, and it meets that
+    wall at the tip: its line passes within corner_gate of it.
+    """
+    along = np.asarray(along, dtype=float) / math.hypot(*along)
+    toward = np.array((-along[1], along[0]))
+    beyond = points[(points - tip).dot(toward) < -params.wall_inlier_distance]
+    wall = wall_through(beyond, beyond, params)
+    if wall is None:
+        return None
+    line = Line(wall.distance, wall.angle + RIGHT)
+    return wall if abs(line.offsets(np.asarray(tip)[None, :])[0]) <= params.corner_gate else None
+
+
 def wall_through(seed, points, params):
     """The Line of the straight wall through most of the seed hits, or None.
 
