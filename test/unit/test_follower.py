@@ -647,6 +647,22 @@ def test_an_outer_corner_lands_nearer_a_short_side_that_ends_at_a_wall_across():
     assert landings[0.6] < landings[3.0] - 0.005
 
 
+@pytest.mark.parametrize('reach, due', [(-math.inf, True), (0.05, True), (0.3, False)],
+                         ids=['nothing stands out', "a corner's lip", 'a step up'])
+def test_the_end_of_a_wall_is_no_corner_to_round_where_a_nearer_wall_runs_on_past_it(reach, due):
+    # On Stage's grid the wall's hits stop at the foot of a step up's face
+    # (the face's hits lie no farther ahead than its foot, and the step's
+    # top begins a face's height away), short of where the turn round its
+    # end begins. The step's top stands out of the wall and runs on past
+    # that end; the top of the next wall at a corner (its lip) stands out
+    # only there.
+    seen = Observation.__new__(Observation)
+    seen.wall = Line(0.25, 0.0)
+    seen.wall_runs = 0.05
+    seen.proud, seen.proud_reach = (0.0, reach) if reach == -math.inf else (0.075, reach)
+    assert WallFollower(EXACT).outer_corner.due(seen) == due
+
+
 @pytest.mark.parametrize('angle_deg, proud, pinned', [
     (0.0, 0.0, True), (-20.0, 0.0, True), (-60.0, 0.0, False), (40.0, 0.0, False),
     (0.0, EXACT.corner_gate, True), (0.0, EXACT.corner_gate + 0.01, False)])

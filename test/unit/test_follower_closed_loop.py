@@ -172,6 +172,19 @@ def test_round_an_obtuse_corner_the_wide_end_is_judged_on_the_wall_beyond_the_ti
     assert nearest >= BAND[0], nearest
 
 
+def test_the_foot_of_a_step_ups_face_is_no_corner_to_round(tmp_path):
+    # Generated world 37 of seed 24: the south wall steps 0.1 m north, less
+    # than the lane is wide. The wall ends at the foot of the step's face,
+    # and the turn round that end, begun 0.15 m short of the face, swung
+    # the robot about until it passed the step 0.19 m from it, 1.6 s out of
+    # the band. Started on the south wall, 0.25 m from it, 0.54 m short of
+    # the step.
+    world = generated_world(tmp_path, 24, 37, (0.7, -0.99, 0.0))
+    # Up to 7 cm short of the face.
+    _, states = lap(world, 'stage', time_limit=2.6)
+    assert states == {'FOLLOW'}
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

@@ -9,7 +9,8 @@ import pytest
 from wall_follower.control.following.follower import FollowerParams
 from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import proud_of, right_wall, wall_beyond, wall_runs_to
+from wall_follower.control.sensing.wall_fit import (
+    NOTHING_STANDS_OUT, proud_of, right_wall, wall_beyond, wall_runs_to)
 
 PARAMS = FollowerParams()
 # A wall parallel on the right, 0.25 m from the laser.
@@ -58,9 +59,14 @@ def test_a_gap_wider_than_the_continue_gap_ends_it():
     assert runs_to(beyond) == pytest.approx(END)
 
 
+def standing(points, wall=WALL):
+    """What of points stands out of wall toward the robot."""
+    return proud_of(wall.offsets(points), points, wall.distance, PARAMS)
+
+
 def proud(points, wall=WALL):
     """How far points stand out of wall toward the robot."""
-    return proud_of(wall.offsets(points), points, wall.distance, PARAMS)
+    return standing(points, wall).depth
 
 
 def along_the_wall():
@@ -74,6 +80,20 @@ def test_the_face_of_a_wall_met_at_the_end_stands_out_by_its_depth_past_the_inli
     face = hits(END, 90.0, 0.06, step=0.005)
     assert proud(np.vstack((along_the_wall(), face))) == pytest.approx(
         0.055 - PARAMS.wall_inlier_distance)
+
+
+def test_a_step_ups_top_stands_out_as_far_ahead_as_it_is_seen_a_corners_lip_only_at_the_corner():
+    # A step 0.1 m up at END: its face, then its top for 0.3 m. The top of
+    # the next wall at a corner stands out 6 cm, and that wall falls away.
+    face = hits(END, 90.0, 0.1, step=0.01)
+    top = hits(END + np.array((0.0, 0.1)), 0.0, 0.3)
+    step_up = standing(np.vstack((along_the_wall(), face, top)))
+    assert step_up.depth == pytest.approx(0.1 - PARAMS.wall_inlier_distance)
+    assert step_up.reach == pytest.approx(top[-2, 0])
+    lip = hits(END + np.array((-0.02, 0.06)), 0.0, 0.02, step=0.005)
+    falls_away = hits(END + np.array((0.0, 0.06)), -90.0, 0.5)
+    lipped = standing(np.vstack((along_the_wall(), lip, falls_away)))
+    assert lipped.depth > 0.0 and lipped.reach <= END[0] + 0.001
 
 
 @pytest.mark.parametrize('beside', [
@@ -102,8 +122,8 @@ def test_the_next_wall_beyond_a_wall_turned_away_does_not_stand_out():
 def test_without_a_wall_nothing_stands_out():
     # A wall farther than wall_lost_distance is none to follow.
     far = hits((-0.5, -PARAMS.wall_lost_distance - 0.1), 0.0, 1.0)
-    wall, _, _, proud_of_it = right_wall(far, PARAMS)
-    assert wall is None and proud_of_it == 0.0
+    wall, _, _, nothing = right_wall(far, PARAMS)
+    assert wall is None and nothing == NOTHING_STANDS_OUT
 
 
 @pytest.mark.parametrize('turn_deg', [30.0, 45.0, 62.0])

@@ -55,9 +55,21 @@ class OuterCorner(Manoeuvre):
                               p.outer_wide_tolerance)
 
     def due(self, obs):
-        """True unless the wall on the right goes on past where the arc round its end starts."""
+        """True unless the wall on the right goes on past where the arc round its end starts,
+        or a nearer wall does.
+
+        Where a wall steps up toward the robot by less than the lane is
+        wide, the wall ends at the foot of the step's face, which the robot
+        passes beside; the step's top stands out of the wall and runs on
+        past its end (more than wall_continue_gap): there is no corner to
+        round, and FOLLOW keeps clear of the step. The top of the next wall
+        at a corner can stand out too, but the wall beyond it falls away.
+        """
         p = self.params
-        return obs.wall is None or obs.wall_runs + p.laser_x <= self.turn.lead + p.outer_turn_lead
+        if obs.wall is None:
+            return True
+        ends = obs.wall_runs + p.laser_x <= self.turn.lead + p.outer_turn_lead
+        return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
 
     def begin(self, obs, previous):
         self.arc = self._corner_arc(obs)

@@ -19,8 +19,9 @@ class Observation(object):
     farthest hit ahead it runs on to, past a saw-tooth that the line
     misses (wall_fit.wall_runs_to), where a turn round its end would
     begin; wall_runs its x (-inf without a wall). proud: how far the hits
-    ahead in the wall's sector stand out of it toward the robot
-    (wall_fit.proud_of; 0 without a wall). right: every hit on the
+    ahead in the wall's sector stand out of it toward the robot, and
+    proud_reach the x of the farthest that stand out as far
+    (wall_fit.proud_of; 0 and -inf without). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
     clear_margin each side. ahead: the straight wall across that lane (a
@@ -39,7 +40,8 @@ class Observation(object):
         off_right = np.abs(wrap_angle(np.arctan2(hits[:, 1], hits[:, 0]) - RIGHT))
         near = np.hypot(hits[:, 0], hits[:, 1]) < params.wall_fit_range
         sector = hits[(off_right <= params.wall_sector) & near]
-        self.wall, self.wall_end, self.wall_tip, self.proud = right_wall(sector, params)
+        self.wall, self.wall_end, self.wall_tip, standing = right_wall(sector, params)
+        self.proud, self.proud_reach = standing
         self.wall_ahead = self.wall_end[0] if self.wall_end is not None else -math.inf
         self.wall_runs = self.wall_tip[0] if self.wall_tip is not None else -math.inf
         self.right = hits[off_right <= math.pi / 2]

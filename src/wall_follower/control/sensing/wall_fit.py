@@ -12,6 +12,7 @@ even where a stray beam, an obstacle or the other leg of a corner lies in
 that sector too.
 """
 import math
+from collections import namedtuple
 
 import numpy as np
 
@@ -20,10 +21,24 @@ from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.rotation import wrap_angle
 
 
+class Standing(namedtuple('Standing', ['depth', 'reach'])):
+    """What stands out of a wall toward the robot ahead (proud_of).
+
+    depth: how far, past wall_inlier_distance (m; 0 for nothing); reach:
+    the x of the farthest hit ahead that stands out that far, within
+    wall_inlier_distance (-inf for none): how far ahead a step's top runs.
+    """
+
+    __slots__ = ()
+
+
+NOTHING_STANDS_OUT = Standing(0.0, -math.inf)
+
+
 def right_wall(points, params):
     """(the Line, (x, y) of its farthest hit ahead, (x, y) of the farthest hit ahead it runs
-    on to (wall_runs_to), how far the hits ahead stand out of it toward the robot
-    (proud_of)) of the wall on the right, or None, None, None, 0.
+    on to (wall_runs_to), what stands out of it toward the robot ahead (proud_of)) of the
+    wall on the right, or None, None, None, NOTHING_STANDS_OUT.
 
     Seeded by the hits straight to the right only, so that the other leg of
     a corner, or an obstacle, in the wider sector is not averaged into it.
@@ -32,7 +47,7 @@ def right_wall(points, params):
     seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
     wall = wall_through(seed, points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
-        return None, None, None, 0.0
+        return None, None, None, NOTHING_STANDS_OUT
     line = Line(wall.distance, wall.angle + RIGHT)
     offsets = line.offsets(points)
     inliers = points[np.abs(offsets) < params.wall_inlier_distance]
@@ -42,8 +57,8 @@ def right_wall(points, params):
 
 
 def proud_of(offsets, points, distance, params):
-    """How far the points ahead stand out of a wall toward the robot (offsets: theirs from
-    the wall's line; distance: the wall's), past wall_inlier_distance.
+    """The Standing of the points ahead out of a wall toward the robot (offsets: theirs from
+    the wall's line; distance: the wall's).
 
     The end of a wall can stick out of its line (the face of the wall it
     meets, a door frame): the line holds the robot at target_distance
@@ -53,15 +68,20 @@ def proud_of(offsets, points, distance, params):
     wall turned farther away behind the right has its line run far out to
     the right ahead, and the next wall (across the end of an obtuse inner
     corner, say) stands out of that line without being any nearer. The
-    second farthest hit counts, so that one stray beam cannot move the
-    robot. 0 without such hits.
+    second farthest hit counts, and the second farthest ahead of those
+    that stand out as far, so that one stray beam cannot move the robot.
     """
     ahead = points[:, 0] > 0.0
     nearer_than_wall = distance + points[:, 1] + points[:, 0] * math.tan(params.wall_continue_angle)
-    toward = -offsets[ahead & (nearer_than_wall > params.wall_inlier_distance)]
-    if toward.size < 2:
-        return 0.0
-    return max(0.0, float(np.partition(toward, -2)[-2]) - params.wall_inlier_distance)
+    toward = -offsets
+    standing = ahead & (nearer_than_wall > params.wall_inlier_distance) & (
+        toward > params.wall_inlier_distance)
+    if np.count_nonzero(standing) < 2:
+        return NOTHING_STANDS_OUT
+    deepest = float(np.partition(toward[standing], -2)[-2])
+    top = standing & (toward >= deepest - params.wall_inlier_distance)
+    reach = float(np.partition(points[top, 0], -2)[-2]) if np.count_nonzero(top) > 1 else -math.inf
+    return Standing(deepest - params.wall_inlier_distance, reach)
 
 
 def wall_runs_to(line, offsets, end, points, params):
