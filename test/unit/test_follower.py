@@ -647,9 +647,11 @@ def test_an_outer_corner_lands_nearer_a_short_side_that_ends_at_a_wall_across():
     assert landings[0.6] < landings[3.0] - 0.005
 
 
-@pytest.mark.parametrize('reach, due', [(-math.inf, True), (0.05, True), (0.3, False)],
-                         ids=['nothing stands out', "a corner's lip", 'a step up'])
-def test_the_end_of_a_wall_is_no_corner_to_round_where_a_nearer_wall_runs_on_past_it(reach, due):
+@pytest.mark.parametrize('proud, reach, due', [
+    (0.0, -math.inf, True), (0.075, 0.05, True), (0.075, 0.3, False)],
+    ids=['nothing stands out', "a corner's lip", 'a step up'])
+def test_the_end_of_a_wall_is_no_corner_to_round_where_a_nearer_wall_runs_on_past_it(
+        proud, reach, due):
     # On Stage's grid the wall's hits stop at the foot of a step up's face
     # (the face's hits lie no farther ahead than its foot, and the step's
     # top begins a face's height away), short of where the turn round its
@@ -659,7 +661,7 @@ def test_the_end_of_a_wall_is_no_corner_to_round_where_a_nearer_wall_runs_on_pas
     seen = Observation.__new__(Observation)
     seen.wall = Line(0.25, 0.0)
     seen.wall_runs = 0.05
-    seen.proud, seen.proud_reach = (0.0, reach) if reach == -math.inf else (0.075, reach)
+    seen.proud, seen.proud_reach = proud, reach
     assert WallFollower(EXACT).outer_corner.due(seen) == due
 
 

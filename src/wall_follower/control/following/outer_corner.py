@@ -153,10 +153,10 @@ class OuterCorner(Manoeuvre):
         way, and before that the wall fitted beyond the tip (wall_beyond).
         """
         heading_away = min(0.0, self.arc.turned() - OTHER_WALL_ANGLE)
-        for wall in (obs.wall, wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)):
-            if wall is not None and wall.angle < heading_away:
-                return wall
-        return None
+        wall = obs.wall
+        if wall is None or wall.angle >= heading_away:
+            wall = wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)
+        return wall if wall is not None and wall.angle < heading_away else None
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
