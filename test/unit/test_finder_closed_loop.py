@@ -131,3 +131,13 @@ def test_a_slanted_wall_read_in_steps_wider_than_the_tolerance_still_ends_the_ap
     # it until the call timed out. Read at that slant, the wall is where the
     # grader asks, if not within this file's tighter tolerance.
     assert_found(*generated(tmp_path, 7, 20))
+
+
+def test_the_way_to_a_wall_is_clear_from_where_the_robot_turns_not_from_its_laser(tmp_path):
+    # Generated world 27 of seed 28: from its start, the wall chosen lay
+    # east, with a ledge 0.17 m beside the way there as the laser, 3 cm
+    # behind the rotation centre, saw it; turned to face east on the spot,
+    # the robot drove 0.13 m from the ledge, and turning on the spot again
+    # to put the wall on its right, swung its tail into it and stuck there
+    # until the call timed out.
+    assert_found(*generated(tmp_path, 28, 27))

@@ -75,6 +75,19 @@ def test_path_to_a_wall_is_blocked_by_a_box_in_the_way():
     assert path_is_clear(view, top[0], 0.15)
 
 
+def test_the_way_to_a_wall_is_clear_from_the_rotation_centre_not_from_the_laser():
+    # A box's edge 0.17 m to the right of the way from the laser to the wall
+    # ahead is 0.13 m from the way there from 0.04 m to the laser's right.
+    world = ROOM + box(0.8, -0.5, 1.6, -0.17)
+    view = scan_view(world, (0.0, 0.0, 0.0), STAGE)
+    ahead = [w for w in extract_walls(view, min_length=0.5) if abs(degrees(w)) < 2.0][0]
+    assert path_is_clear(view, ahead, 0.15)
+    assert not path_is_clear(view, ahead, 0.15, origin=(0.0, -0.04))
+    target = nearest_seen_point(ahead)
+    assert path_to_is_clear(view, target, 0.15, wall=ahead)
+    assert not path_to_is_clear(view, target, 0.15, wall=ahead, origin=(0.0, -0.04))
+
+
 def test_a_wall_seen_only_round_its_end_is_reached_at_its_nearest_seen_point():
     # A bar ahead on the left: the point of its near side straight across
     # from the laser, (0, 0.5), lies beyond the bar's end at x = 0.5.

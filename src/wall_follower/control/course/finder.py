@@ -127,9 +127,10 @@ class WallFinder(object):
 
     def _across(self, view, walls):
         """The walls whose point straight across from the laser was seen, with nothing on
-        the way there."""
+        the way there from the rotation centre."""
         return [wall for wall in walls if wall.foot_inside()
-                and path_is_clear(view, wall, self.params['corridor_half_width'])]
+                and path_is_clear(view, wall, self.params['corridor_half_width'],
+                                  origin=self._centre)]
 
     def _go_nearer(self, view, walls):
         """No wall is seen straight across (every one's nearest point lies round its end or
@@ -138,7 +139,8 @@ class WallFinder(object):
         p = self.params
         targets = [(wall, nearest_seen_point(wall, p['end_margin'])) for wall in walls]
         reachable = [(wall, target) for wall, target in targets
-                     if path_to_is_clear(view, target, p['corridor_half_width'], wall=wall)]
+                     if path_to_is_clear(view, target, p['corridor_half_width'], wall=wall,
+                                         origin=self._centre)]
         if not reachable:
             return self._fail('no wall in range: no clear, straight run of hits at least '
                               '%.2f m long in the scan' % p['min_wall_length'])
@@ -262,6 +264,16 @@ class WallFinder(object):
         p = self.params
         return (abs(float(wrap_angle(wall.angle - RIGHT))) <= p['heading_tolerance']
                 and abs(wall.distance - p['wall_distance']) <= p['in_place_tolerance'])
+
+    @property
+    def _centre(self):
+        """(x, y) of the rotation centre in the laser frame: where the way to a wall starts.
+
+        The robot turns on the spot to face a wall before it drives there, which
+        leaves its centre where it was and carries the laser round it: the
+        corridor that must be clear runs from the centre.
+        """
+        return (-self.params['laser_x'], 0.0)
 
     def _heading_error(self, target):
         """Angle (rad) by which the wall's normal lies left of where it should be.

@@ -244,30 +244,40 @@ def refine(view, wall, gate=0.05, min_points=6):
     return wall
 
 
-def path_is_clear(view, wall, half_width, margin=0.08):
-    """True when no hit lies in the corridor from the laser straight to the wall.
+def path_is_clear(view, wall, half_width, margin=0.08, origin=(0.0, 0.0)):
+    """True when no hit lies in the corridor from origin straight to the wall.
 
     The corridor runs along the wall's normal, half_width to each side, and
     stops margin short of the wall so that the wall's own hits do not count.
+    origin: where the path starts, (x, y) in the laser frame (see
+    path_to_is_clear).
     """
-    return path_to_is_clear(view, wall.distance * wall.normal, half_width, margin)
+    normal = np.asarray(wall.normal, dtype=float)
+    origin = np.asarray(origin, dtype=float)
+    foot = origin + (wall.distance - origin.dot(normal)) * normal
+    return path_to_is_clear(view, foot, half_width, margin, origin=origin)
 
 
-def path_to_is_clear(view, target, half_width, margin=0.08, wall=None):
-    """True when no hit lies in the corridor from the laser to the point target (x, y).
+def path_to_is_clear(view, target, half_width, margin=0.08, wall=None, origin=(0.0, 0.0)):
+    """True when no hit lies in the corridor from origin to the point target (x, y).
 
     The corridor is half_width to each side of the straight line there and
     stops margin short of target. With the wall target lies on, hits within
     margin of its line are its own and not in the way: a path that meets the
-    wall at a slant runs along its near end.
+    wall at a slant runs along its near end. origin and target are in the
+    laser frame; a robot that turns on the spot before it drives starts from
+    its rotation centre, not from its laser.
     """
-    reach = math.hypot(*target)
+    origin = np.asarray(origin, dtype=float)
+    way = np.asarray(target, dtype=float) - origin
+    reach = math.hypot(*way)
     if reach <= 0.0:
         return True
-    unit = np.asarray(target, dtype=float) / reach
+    unit = way / reach
     points = view.points()
-    along = points.dot(unit)
-    across = np.abs(points[:, 0] * unit[1] - points[:, 1] * unit[0])
+    relative = points - origin
+    along = relative.dot(unit)
+    across = np.abs(relative[:, 0] * unit[1] - relative[:, 1] * unit[0])
     blocking = (along > 0.0) & (along < reach - margin) & (across < half_width)
     if wall is not None:
         blocking &= np.abs(wall.line.offsets(points)) > margin
