@@ -84,8 +84,14 @@ class WallFollowingNode(object):
         name = rospy.resolve_name('record_odom')
         rospy.loginfo('wall_following: waiting for the %s action server', name)
         if not self._wait_for_recorder(name):
-            rospy.logerr('wall_following: no %s action server after %.0f s; '
-                         'is odom_recorder running?', name, self.node['service_wait'])
+            # One message, not two: the last ones a node logs before it exits can
+            # be lost, as rospy sends them to /rosout from a queue.
+            if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
+                hint = '/use_sim_time is set and no /clock has come; is the simulator running?'
+            else:
+                hint = 'is odom_recorder running?'
+            rospy.logerr('wall_following: no %s action server after %.0f s; %s', name,
+                         self.node['service_wait'], hint)
             return False
         # On wall time the laser may stamp by the robot's clock, not this machine's:
         # record_odom allows for that offset, and there is no clock to wait for.
@@ -117,9 +123,6 @@ class WallFollowingNode(object):
             self._recorder = actionlib.ActionClient(name, OdomRecordAction)
             if wait_in_wall_time(self._recorder.wait_for_server, deadline - time.monotonic()):
                 return True
-        if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
-            rospy.logerr('wall_following: /use_sim_time is set and no /clock has come; '
-                         'is the simulator running?')
         return False
 
     def _clock_at_newest_scan(self):
