@@ -83,10 +83,11 @@ class WallFollowingNode(object):
         """Send the record_odom goal; False when the action server never appears."""
         name = rospy.resolve_name('record_odom')
         rospy.loginfo('wall_following: waiting for the %s action server', name)
+        on_sim_time = rospy.get_param('/use_sim_time', False)
         if not self._wait_for_recorder(name):
             # One message, not two: the last ones a node logs before it exits can
             # be lost, as rospy sends them to /rosout from a queue.
-            if rospy.get_param('/use_sim_time', False) and rospy.get_time() == 0.0:
+            if on_sim_time and rospy.get_time() == 0.0:
                 hint = '/use_sim_time is set and no /clock has come; is the simulator running?'
             else:
                 hint = 'is odom_recorder running?'
@@ -95,7 +96,6 @@ class WallFollowingNode(object):
             return False
         # On wall time the laser may stamp by the robot's clock, not this machine's:
         # record_odom allows for that offset, and there is no clock to wait for.
-        on_sim_time = rospy.get_param('/use_sim_time', False)
         if on_sim_time and not wait_in_wall_time(self._clock_at_newest_scan,
                                                  self.node['service_wait']):
             rospy.logerr('wall_following: no scan on %s, or ROS time short of its stamp, after '
