@@ -95,7 +95,12 @@ class MoveArmTest(unittest.TestCase):
             raise AssertionError('no move_arm action server')
 
     def hand(self):
-        """Where tf has the hand's origin in world at the newest joint state."""
+        """Where tf has the hand's origin in world at the newest joint state.
+
+        A result and the joint states before it come on connections of their own: the
+        states up to the result may still be on their way when it is in, so this waits
+        for one stamped at or after the moment of asking."""
+        self.assertTrue(self.watch.wait_for_time(rospy.get_time()), 'no joint state')
         stamp = rospy.Time.from_sec(self.watch.latest()[0])
         t = self.buffer.lookup_transform('world', 'hand', stamp, rospy.Duration(5.0)).transform
         return np.array([t.translation.x, t.translation.y, t.translation.z])
