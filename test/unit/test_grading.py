@@ -12,6 +12,7 @@ import os
 import re
 from types import SimpleNamespace
 
+import numpy as np
 import pytest
 import rospy
 from actionlib_msgs.msg import GoalID, GoalStatus
@@ -19,7 +20,7 @@ from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry
 
 from wall_follower.evaluation.grading.commands import CommandLog
-from wall_follower.evaluation.grading.criteria import grade_case, grades, shown
+from wall_follower.evaluation.grading.criteria import find_wall_fits, grade_case, grades, shown
 from wall_follower.evaluation.grading.service_calls import (CallWatch, PortWatch, peers_by_port,
                                                             reply_moment)
 from wall_follower.evaluation.pictures.course_plot import plot_course, plt, points_label
@@ -420,6 +421,48 @@ def test_a_reply_seen_late_is_judged_where_the_robot_stood_before_it_drove_away(
                                        lambda pose: (0.28, headings[pose[2]]))
     assert (time, pose) == (20.0, (1.0, 0.0, 0.0))
     assert aligned == (0.28, math.radians(2.0))
+
+
+def test_a_reply_seen_late_is_judged_where_the_robot_stood_between_the_polls():
+    # Seen open at 13.0 mid-turn, 30 deg off its wall; the closing poll came late, at
+    # 14.8, when the solution's follower had already ridden 3 cm nearer the wall. The
+    # true poses between the polls show it parallel at 0.26 m, where the reply came.
+    call = {'last_open': 13.0, 'last_open_pose': 'turning', 'end': 14.8,
+            'end_pose': 'following'}
+    walls = {'turning': (0.27, math.radians(30.0)), 'aligning': (0.265, math.radians(12.0)),
+             'in place': (0.263, math.radians(1.0)), 'dipping': (0.25, math.radians(-3.0)),
+             'following': (0.23, math.radians(0.2))}
+    between = [(14.0, 'in place'), (13.5, 'aligning'), (14.4, 'dipping')]
+    moment = reply_moment(call, walls.get, between, find_wall_fits)
+    assert moment == (14.0, 'in place', walls['in place'])
+    # the polls alone judged it at the closing one, the most parallel, 0.23 m off
+    assert reply_moment(call, walls.get, fits=find_wall_fits)[1] == 'following'
+    # where no moment fits, the most nearly parallel is judged, as before
+    assert reply_moment(call, walls.get, between[1:])[1] == 'following'
+
+
+def test_the_monitor_keeps_every_true_pose_heard_before_the_lap_and_in_it():
+    monitor = CourseMonitor(CourseMap(ROOM))
+    poses = lap_track(laps=0.1)
+    for index, pose in enumerate(poses[:5]):
+        monitor._on_truth(truth(index * STEP, pose))
+    goal = OdomRecordActionGoal()
+    goal.goal_id = GoalID(stamp=rospy.Time.from_sec(0.25), id='lap')
+    monitor._on_goal(goal)
+    for index, pose in enumerate(poses[5:8], 5):
+        monitor._on_truth(truth(index * STEP, pose))
+    between = monitor.poses_between(0.15, 0.55)
+    monitor.close()
+    assert [round(stamp, 3) for stamp, _ in between] == [0.2, 0.3, 0.4, 0.5]
+    assert np.allclose([pose for _, pose in between], poses[2:6])
+
+
+def test_find_wall_fits_where_its_call_has_to_leave_the_robot():
+    assert find_wall_fits((0.26, math.radians(9.0)))
+    assert not find_wall_fits((0.24, 0.0))
+    assert not find_wall_fits((0.36, 0.0))
+    assert not find_wall_fits((0.3, math.radians(-11.0)))
+    assert not find_wall_fits(None)
 
 
 def test_a_reply_with_no_wall_at_either_bound_is_judged_at_the_first():

@@ -95,6 +95,12 @@ def _wall_beside(distance, heading):
     return wrong
 
 
+def find_wall_fits(aligned):
+    """Whether the wall beside the robot, aligned ((distance, heading error [rad]) or
+    None), is where find_wall has to leave it."""
+    return aligned is not None and not _wall_beside(aligned[0], math.degrees(aligned[1]))
+
+
 def judge_find_wall(case):
     """(passed, reason) of find_wall: from the pose when its call replied, else (never
     called) where the lap began, else where the robot ended."""

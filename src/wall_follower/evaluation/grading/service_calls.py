@@ -103,17 +103,27 @@ class CallWatch(object):
         return max(self.calls, key=lambda c: c['end'] - c['start']) if self.calls else None
 
 
-def reply_moment(call, alignment):
-    """(time, pose, alignment) at which to judge a call's reply: of the two bounds of its
-    reply (CallWatch), the one where the robot stood more nearly parallel to the wall
-    alignment(pose) finds ((distance, heading error) or None), the first when neither has
-    a wall. The grader cannot tell where between its two polls the reply came, and its
-    own late poll must not fail the solution."""
+def reply_moment(call, alignment, between=(), fits=lambda aligned: False):
+    """(time, pose, alignment) at which to judge a call's reply.
+
+    The grader cannot tell where between its two polls (CallWatch) the reply
+    came, and its own late poll must not fail the solution: on a busy
+    machine the closing poll may come seconds of simulated time after the
+    reply, once the solution has driven on. So every moment the reply may
+    have come at is a candidate: the two bounds, and `between`, the
+    (time, pose) pairs of the robot's true poses heard between them.
+    alignment(pose) finds the wall beside the robot ((distance, heading
+    error) or None); fits(alignment) says whether that is where the call
+    had to leave it. Of the candidates with a wall, one that fits is taken
+    if any does, the one where the robot stood most nearly parallel among
+    those; with no wall at any, the first bound.
+    """
     bounds = [(call['last_open'], call['last_open_pose']), (call['end'], call['end_pose'])]
-    moments = [(time, pose, alignment(pose)) for time, pose in bounds if pose is not None]
+    candidates = bounds[:1] + sorted(between, key=lambda moment: moment[0]) + bounds[1:]
+    moments = [(time, pose, alignment(pose)) for time, pose in candidates if pose is not None]
     if not moments:
         return None
     aligned = [moment for moment in moments if moment[2] is not None]
     if not aligned:
         return moments[0]
-    return min(aligned, key=lambda moment: abs(moment[2][1]))
+    return min(aligned, key=lambda moment: (not fits(moment[2]), abs(moment[2][1])))

@@ -41,6 +41,7 @@ from std_msgs.msg import Bool
 from actionlib_msgs.msg import GoalStatus
 
 from wall_follower.evaluation.grading.commands import CommandLog
+from wall_follower.evaluation.grading.criteria import find_wall_fits
 from wall_follower.evaluation.grading.service_calls import PortWatch, connected_peers, reply_moment
 from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap, true_lap_length
@@ -146,7 +147,8 @@ class FindWallWatch(object):
             count = len(watch.calls)
             calls = [(c['start'] - start, c['end'] - start) for c in watch.calls[:CALLS_KEPT]]
         moment = None if call is None or call['start_pose'] is None else reply_moment(
-            call, course_map.right_wall_alignment)
+            call, course_map.right_wall_alignment,
+            self._monitor.poses_between(call['last_open'], call['end']), find_wall_fits)
         if moment is None:
             return None
         replied, pose, aligned = moment

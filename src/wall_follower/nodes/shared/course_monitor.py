@@ -148,6 +148,7 @@ class CourseMonitor(object):
         self._trail_stamps = []
         self._backlog = []
         self._before_goal = []
+        self._heard = []   # (stamp, pose) of every ground truth heard
         self._subs = [
             rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
                              queue_size=QUEUE),
@@ -218,6 +219,7 @@ class CourseMonitor(object):
         stamp = msg.header.stamp.to_sec()
         with self.lock:
             self.pose, self.pose_stamp = pose, stamp
+            self._heard.append((stamp, pose))
             if self.scoring:
                 self._score(stamp, pose)
             else:
@@ -322,6 +324,11 @@ class CourseMonitor(object):
                 break
             time.sleep(0.01)
         return True
+
+    def poses_between(self, start, end):
+        """The ground truth heard stamped from start to end [s], as (stamp, pose) pairs."""
+        with self.lock:
+            return [(stamp, pose) for stamp, pose in self._heard if start <= stamp <= end]
 
     def latest(self):
         """(stamp, pose) of the newest ground truth heard, (None, None) before any."""
