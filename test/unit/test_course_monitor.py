@@ -163,3 +163,23 @@ def test_the_score_does_not_need_stalled_which_real_stageros_lacks():
 ])
 def test_simulator_told_apart_by_what_it_publishes(publications, simulator):
     assert simulator_of(publications, '/base_pose_ground_truth', '/stalled') == simulator
+
+
+def test_before_any_goal_the_trail_is_every_pose_heard(monitor):
+    _hear(monitor, 0, 5, goal=None)
+    assert not monitor.scoring
+    assert [x for x, _ in monitor.full_trail()] == pytest.approx([SPEED * t / 10.0
+                                                                  for t in range(5)])
+
+
+def test_scoring_from_the_start_takes_each_pose_once_when_a_goal_comes():
+    watching = CourseMonitor(CourseMap(ROOM), start_on_goal=False)
+    try:
+        _hear(watching, 0, 5, goal=None)
+        watching._on_goal(_goal(0.25))
+        _hear(watching, 5, 8, goal=None)
+        assert [x for x, _ in watching.trail] == pytest.approx([SPEED * t / 10.0
+                                                                for t in range(8)])
+        assert watching.full_trail() == watching.trail
+    finally:
+        watching.close()

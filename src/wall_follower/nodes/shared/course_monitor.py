@@ -146,9 +146,10 @@ class CourseMonitor(object):
         self.result_point_type = None
         self.trail = []
         self._trail_stamps = []
-        self._backlog = []
         self._before_goal = []
-        self._heard = []   # (stamp, pose) of every ground truth heard
+        # (stamp, pose) of every ground truth heard; with start_on_goal, all of it
+        # until the goal comes is what scoring replays from the goal on.
+        self._heard = []
         self._subs = [
             rospy.Subscriber('base_pose_ground_truth', Odometry, self._on_truth,
                              queue_size=QUEUE),
@@ -207,7 +208,7 @@ class CourseMonitor(object):
         start_on_goal, the way to where the lap began (all of it when no lap began)."""
         with self.lock:
             if self.start_on_goal and self.goal_time is None:
-                return [pose[:2] for _, pose in self._backlog]
+                return [pose[:2] for _, pose in self._heard]
             return self._before_goal + list(self.trail)
 
     @property
@@ -222,8 +223,6 @@ class CourseMonitor(object):
             self._heard.append((stamp, pose))
             if self.scoring:
                 self._score(stamp, pose)
-            else:
-                self._backlog.append((stamp, pose))
 
     def _score(self, stamp, pose):
         if self.goal_pose is None and self.start_on_goal:
@@ -244,9 +243,9 @@ class CourseMonitor(object):
             # heard first: the simulator's very first one may come before
             # the monitor's connection does.
             self.score.begin(self.goal_time)
-            before = [(stamp, pose) for stamp, pose in self._backlog if stamp < self.goal_time]
-            since = self._backlog[len(before):]
-            self._backlog = []
+            unscored = self._heard if self.start_on_goal else []
+            before = [(stamp, pose) for stamp, pose in unscored if stamp < self.goal_time]
+            since = unscored[len(before):]
             self._before_goal = [pose[:2] for _, pose in before[:-1]]
             if before:
                 # Odometry is the pose before each step, so the recorder's
