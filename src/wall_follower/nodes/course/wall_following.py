@@ -85,8 +85,7 @@ class WallFollowingNode(object):
         rospy.loginfo('wall_following: waiting for the %s action server', name)
         on_sim_time = rospy.get_param('/use_sim_time', False)
         if not self._wait_for_recorder(name):
-            # One message, not two: the last ones a node logs before it exits can
-            # be lost, as rospy sends them to /rosout from a queue.
+            # One message that names the missing server and its likeliest cause.
             if on_sim_time and rospy.get_time() == 0.0:
                 hint = '/use_sim_time is set and no /clock has come; is the simulator running?'
             else:
