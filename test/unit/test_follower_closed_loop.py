@@ -172,6 +172,23 @@ def test_round_an_obtuse_corner_the_wide_end_is_judged_on_the_wall_beyond_the_ti
     assert nearest >= BAND[0], nearest
 
 
+def test_a_wall_that_bends_away_by_a_third_of_a_right_angle_is_followed_round_the_bend(
+        tmp_path):
+    # Generated world 6 of seed 1 (one the grader's own test laps): the
+    # room's south wall bends away 34 deg to the south-east. The wall fitted
+    # on the right, seeded by hits behind the right as well, stayed a line
+    # half way between the two walls while the robot passed the bend; it
+    # rounded the bend as a corner, turned on past the next wall and back
+    # off it, and came within 0.20 m of it (CI graded a lap 96.9 % in band).
+    # Started on the south wall, 0.25 m from it, 0.35 m short of the bend.
+    world = generated_world(tmp_path, 1, 6, (-1.7, -0.17, 0.0))
+    # Round the bend and some 0.5 m on along the next wall.
+    score, states = lap(world, 'stage', time_limit=5.0)
+    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert states == {'FOLLOW'}
+    assert nearest >= BAND[0] + 0.02, nearest
+
+
 def test_the_foot_of_a_step_ups_face_is_no_corner_to_round(tmp_path):
     # Generated world 37 of seed 24: the south wall steps 0.1 m north, less
     # than the lane is wide. The wall ends at the foot of the step's face,

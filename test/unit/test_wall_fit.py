@@ -145,3 +145,43 @@ def test_a_wall_beyond_that_does_not_meet_the_tip_is_no_next_wall():
     # at the tip (a room's far wall seen past a pillar's side, say).
     farther = hits(END + np.array((0.0, -0.3)), 0.0, 0.5)
     assert wall_beyond(np.vstack((along_the_wall(), farther)), END, (1.0, 0.0), PARAMS) is None
+
+
+def laser_hits(corners, increment_deg=0.5):
+    """What a laser at the origin sees of the polyline through corners: one hit per beam
+    (the nearest crossing), beams every increment_deg all round."""
+    corners = np.asarray(corners, dtype=float)
+    found = []
+    for bearing in np.radians(np.arange(-180.0, 180.0, increment_deg)):
+        ray = np.array((math.cos(bearing), math.sin(bearing)))
+        nearest = math.inf
+        for start, end in zip(corners[:-1], corners[1:]):
+            side = end - start
+            denominator = ray[0] * -side[1] + ray[1] * side[0]
+            if abs(denominator) < 1e-12:
+                continue
+            # start + u * side = t * ray, solved for t (along the ray) and u (along the side).
+            t = (start[0] * -side[1] + start[1] * side[0]) / denominator
+            u = (ray[0] * start[1] - ray[1] * start[0]) / denominator
+            if t > 0.0 and 0.0 <= u <= 1.0:
+                nearest = min(nearest, t)
+        if nearest < math.inf:
+            found.append(nearest * ray)
+    return np.array(found)
+
+
+@pytest.mark.parametrize('bend_deg', [25.0, 35.0, 45.0])
+@pytest.mark.parametrize('vertex_ahead', [-0.04, 0.0, 0.04])
+def test_past_a_bend_away_the_wall_on_the_right_is_the_next_one(bend_deg, vertex_ahead):
+    # The robot has turned round a wall that bends away by bend_deg and heads
+    # along the next wall, 0.25 m from it, beside the bend: the wall it
+    # left comes from behind the right. The wall to follow is the next one,
+    # not a line half way between the two (a few hits of the one left,
+    # beside the bend, may still tilt it by a degree or two).
+    bend = math.radians(bend_deg)
+    vertex = np.array((vertex_ahead, -0.25))
+    left_behind = vertex - 1.0 * np.array((math.cos(bend), math.sin(bend)))
+    points = laser_hits((left_behind, vertex, vertex + (1.5, 0.0)))
+    wall, _, _, _ = right_wall(points[np.hypot(*points.T) < PARAMS.wall_fit_range], PARAMS)
+    assert abs(wall.angle) < math.radians(5.0)
+    assert wall.distance == pytest.approx(0.25, abs=0.015)

@@ -40,20 +40,42 @@ def right_wall(points, params):
     on to (wall_runs_to), what stands out of it toward the robot ahead (proud_of)) of the
     wall on the right, or None, None, None, NOTHING_STANDS_OUT.
 
-    Seeded by the hits straight to the right only, so that the other leg of
-    a corner, or an obstacle, in the wider sector is not averaged into it.
+    Seeded by the hits from straight right to wall_seed_ahead ahead of it:
+    the wall the robot is about to drive along. Hits behind the right would
+    seed the wall being left: past a bend of less than a right angle (a
+    wall that turns away by 30 degrees, say) they outnumber the next wall's
+    while the robot passes the bend, and a line through both, turned half
+    way between them, steers the robot off both. Where those hits hold no
+    wall that runs on at least rejoin_ahead ahead of the laser (the end of
+    a wall beside the robot, whose next wall lies across the sector, or a
+    corner's tip standing out of it), the wall is seeded by the hits within
+    wall_seed either side of straight right instead. The other leg of a
+    corner, or an obstacle, in the wider sector is not averaged in either
+    way.
     """
-    bearings = np.arctan2(points[:, 1], points[:, 0])
-    seed = points[np.abs(bearings - RIGHT) <= params.wall_seed]
-    wall = wall_through(seed, points, params)
-    if wall is None or wall.distance > params.wall_lost_distance:
+    ahead_of_right = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - RIGHT)
+    fitted = _seeded_wall(
+        points, (ahead_of_right >= 0.0) & (ahead_of_right <= params.wall_seed_ahead), params)
+    if fitted is None or fitted[2][0] < params.rejoin_ahead:
+        fitted = _seeded_wall(points, np.abs(ahead_of_right) <= params.wall_seed, params) or fitted
+    if fitted is None:
         return None, None, None, NOTHING_STANDS_OUT
-    line = Line(wall.distance, wall.angle + RIGHT)
+    wall, line, end = fitted
     offsets = line.offsets(points)
-    inliers = points[np.abs(offsets) < params.wall_inlier_distance]
-    end = inliers[np.argmax(inliers[:, 0])]
     return (wall, end, wall_runs_to(line, offsets, end, points, params),
             proud_of(offsets, points, wall.distance, params))
+
+
+def _seeded_wall(points, seeded, params):
+    """(the wall's Line, its line in the laser's frame, its farthest inlier ahead) of the
+    straight wall through most of the seeded points, or None (also when farther than
+    wall_lost_distance)."""
+    wall = wall_through(points[seeded], points, params)
+    if wall is None or wall.distance > params.wall_lost_distance:
+        return None
+    line = Line(wall.distance, wall.angle + RIGHT)
+    inliers = points[np.abs(line.offsets(points)) < params.wall_inlier_distance]
+    return wall, line, inliers[np.argmax(inliers[:, 0])]
 
 
 def proud_of(offsets, points, distance, params):
