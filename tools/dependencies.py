@@ -48,6 +48,7 @@ MODULES = {
     'nav_msgs': ('nav_msgs', 'python3-nav-msgs', RUN),
     'numpy': ('python3-numpy', 'python3-numpy', RUN),
     'pytest': ('python3-pytest', 'python3-pytest', TEST),
+    'rosdep2': ('python3-rosdep', 'python3-rosdep2', TEST),  # installed, never initialised
     'rosgraph': ('rosgraph', 'python3-rosgraph', RUN),
     'rosgraph_msgs': ('rosgraph_msgs', 'python3-rosgraph-msgs', RUN),
     'roslaunch': ('roslaunch', 'python3-roslaunch', RUN),
