@@ -102,9 +102,8 @@ def test_without_the_library_the_node_exits_with_an_error_not_a_traceback():
                          env=_without_the_library(), stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE, universal_newlines=True, timeout=60)
     assert run.returncode == 1
-    # The node's own words end its output. ROS may say something first
-    # (rospkg asks for `rosdep init` on a machine with rosdep installed but
-    # not initialised, as dynamic_reconfigure loads its manifest), but never
-    # a traceback.
+    # The node's own words end its output. ROS may say something first, but
+    # never a traceback (nor, since nodes/shared/rosdep_lookup.py, a request
+    # for `rosdep init`: test_rosdep_lookup.py).
     assert run.stderr.splitlines()[-1] == 'stage_sim: error: %s' % compiled_raytrace.MISSING
     assert 'Traceback' not in run.stderr, run.stderr
