@@ -45,6 +45,7 @@ left out by accident.
 import os
 import re
 import pty
+import shutil
 import signal
 import subprocess
 import sys
@@ -82,6 +83,7 @@ RUN_LIMIT = 60.0      # wall s for a node to be signalled and to end
 LOOKUP_PERIOD = 0.1   # wall s between two questions to the master about one node
 ROOM = 1.2            # m from the robot to each wall of the room in the scans
 PACKAGE = rospkg.RosPack().get_path('wall_follower')
+OUT = '{out}'         # in the arguments: the folder the test makes for the files nodes write
 
 # script -> (arguments, whether it drives)
 NODES = {
@@ -94,7 +96,7 @@ NODES = {
     'range_ahead': ([], False),
     'wander': ([], True),
     'slam': ([], False),
-    'map_saver': (['-f', os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'map')], False),
+    'map_saver': (['-f', os.path.join(OUT, 'map')], False),
     'stage_sim': (['--simulator', 'builtin', '-g', os.path.join(
         PACKAGE, 'worlds', 'room.world')], False),
     'world_map': ([], False),
@@ -103,12 +105,11 @@ NODES = {
     'camera_view': (['_window:=false'], False),
     'arm_controller': ([], False),
     'move_arm': ([], False),
-    'arm_plot': (['_live:=false', '_file:=' + os.path.join(
-        tempfile.mkdtemp(prefix='check_signals'), 'joints.png')], False),
+    'arm_plot': (['_live:=false', '_file:=' + os.path.join(OUT, 'joints.png')], False),
     'grade_case': (['_world:=' + os.path.join(PACKAGE, 'worlds', 'room.world'), '_json:=' +
-                    os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'case.json')], False),
+                    os.path.join(OUT, 'grade_case.json')], False),
     'line_case': (['_world:=' + os.path.join(PACKAGE, 'worlds', 'line_lab.world'), '_json:=' +
-                   os.path.join(tempfile.mkdtemp(prefix='check_signals'), 'case.json')], False),
+                   os.path.join(OUT, 'line_case.json')], False),
 }
 # Scripts that end by themselves once their job is done.
 TOOLS = ('benchmark', 'course_report', 'map_png', 'require_package', 'find_trials', 'grade')
@@ -228,10 +229,12 @@ class Feed(object):
 
 
 class Run(object):
-    """One node under test: its process, when to signal it, and what it commanded."""
+    """One node under test: its process, when to signal it, and what it commanded. out: the
+    folder for the files it writes."""
 
-    def __init__(self, script, wave, moment, inherited, number):
+    def __init__(self, out, script, wave, moment, inherited, number):
         arguments, self.drives = NODES[script]
+        arguments = [argument.replace(OUT, out) for argument in arguments]
         name = '%s_%d' % (script.split('.')[0], wave)
         self.stage, self.delay = moment
         self.number = number
@@ -413,6 +416,8 @@ class Signals(unittest.TestCase):
         self.assertEqual(installed_scripts(), set(NODES) | set(TOOLS))
 
     def test_every_node_ends_on_a_signal_at_any_moment_under_load(self):
+        out = tempfile.mkdtemp(prefix='check_signals')
+        self.addCleanup(shutil.rmtree, out)
         Feed()
         scripts = sorted(NODES)
         problems = []
@@ -425,7 +430,7 @@ class Signals(unittest.TestCase):
         try:
             while waiting or running:
                 while waiting and len(running) < GROUP:
-                    running.append((Run(*waiting.pop(0)), time.monotonic() + RUN_LIMIT))
+                    running.append((Run(out, *waiting.pop(0)), time.monotonic() + RUN_LIMIT))
                 now = time.monotonic()
                 for run, _ in running:
                     run.step(now)
