@@ -29,7 +29,8 @@ class ReportWithoutLap(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.plot = os.path.join(tempfile.mkdtemp(prefix='report_no_lap-'), 'course.png')
+        cls.folder = tempfile.TemporaryDirectory(prefix='report_no_lap-')
+        cls.plot = os.path.join(cls.folder.name, 'course.png')
         port = free_port()
         command = launch_command('main.launch', {
             'sim': 'true', 'simulator': 'builtin', 'world': WORLD, 'report': 'true',
@@ -38,6 +39,10 @@ class ReportWithoutLap(unittest.TestCase):
             cls.ended = launch_and_wait(command, port, log, BOUND)
             log.seek(0)
             cls.output = log.read()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.folder.cleanup()
 
     def test_launch_ends_within_bound(self):
         self.assertTrue(self.ended, 'the launch was still running after %.0f s:\n%s'
