@@ -34,28 +34,29 @@ class RealStageLap(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        workdir = tempfile.mkdtemp(prefix='line_real_stage-')
-        output = os.path.join(workdir, 'lap.json')
-        port = free_port()
-        env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
-        command = display_wrapper() + launch_command('line_following.launch', {
-            'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD}, port)
-        score = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'line_lap_score.py')
-        with tempfile.TemporaryFile('w+') as log:
-            launch = subprocess.Popen(command, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                      start_new_session=True)
-            try:
-                subprocess.run([sys.executable, score, WORLD, str(BOUND), output], env=env,
-                               stdout=log, stderr=subprocess.STDOUT, timeout=BOUND + 30.0)
-            finally:
-                os.killpg(launch.pid, signal.SIGINT)
-                launch.wait()
-            log.seek(0)
-            cls.output = log.read()
         cls.figures = None
-        if os.path.exists(output):
-            with open(output) as stream:
-                cls.figures = json.load(stream)
+        with tempfile.TemporaryDirectory(prefix='line_real_stage-') as workdir:
+            output = os.path.join(workdir, 'lap.json')
+            port = free_port()
+            env = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % port)
+            command = display_wrapper() + launch_command('line_following.launch', {
+                'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD}, port)
+            score = os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                 'line_lap_score.py')
+            with tempfile.TemporaryFile('w+') as log:
+                launch = subprocess.Popen(command, env=env, stdout=log,
+                                          stderr=subprocess.STDOUT, start_new_session=True)
+                try:
+                    subprocess.run([sys.executable, score, WORLD, str(BOUND), output], env=env,
+                                   stdout=log, stderr=subprocess.STDOUT, timeout=BOUND + 30.0)
+                finally:
+                    os.killpg(launch.pid, signal.SIGINT)
+                    launch.wait()
+                log.seek(0)
+                cls.output = log.read()
+            if os.path.exists(output):
+                with open(output) as stream:
+                    cls.figures = json.load(stream)
 
     def test_a_lap_on_the_line(self):
         self.assertIsNotNone(self.figures, 'no figures:\n' + self.output[-3000:])

@@ -35,20 +35,20 @@ class RealStageCourse(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        workdir = tempfile.mkdtemp(prefix='real_stage-')
-        output = os.path.join(workdir, 'course.json')
-        port = free_port()
-        command = display_wrapper() + launch_command('main.launch', {
-            'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD,
-            'report': 'true', 'json': output}, port)
-        with tempfile.TemporaryFile('w+') as log:
-            launch_and_wait(command, port, log, BOUND)
-            log.seek(0)
-            cls.output = log.read()
         cls.figures = None
-        if os.path.exists(output):
-            with open(output) as stream:
-                cls.figures = json.load(stream)
+        with tempfile.TemporaryDirectory(prefix='real_stage-') as workdir:
+            output = os.path.join(workdir, 'course.json')
+            port = free_port()
+            command = display_wrapper() + launch_command('main.launch', {
+                'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD,
+                'report': 'true', 'json': output}, port)
+            with tempfile.TemporaryFile('w+') as log:
+                launch_and_wait(command, port, log, BOUND)
+                log.seek(0)
+                cls.output = log.read()
+            if os.path.exists(output):
+                with open(output) as stream:
+                    cls.figures = json.load(stream)
 
     def figure(self, name):
         self.assertIsNotNone(self.figures, 'the report wrote no figures (no lap recorded):\n'
