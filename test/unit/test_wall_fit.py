@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from laser_conventions import COURSE_720, scan_view
 from wall_follower.control.following.follower import FollowerParams
 from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import RIGHT
@@ -147,29 +148,6 @@ def test_a_wall_beyond_that_does_not_meet_the_tip_is_no_next_wall():
     assert wall_beyond(np.vstack((along_the_wall(), farther)), END, (1.0, 0.0), PARAMS) is None
 
 
-def laser_hits(corners, increment_deg=0.5):
-    """What a laser at the origin sees of the polyline through corners: one hit per beam
-    (the nearest crossing), beams every increment_deg all round."""
-    corners = np.asarray(corners, dtype=float)
-    found = []
-    for bearing in np.radians(np.arange(-180.0, 180.0, increment_deg)):
-        ray = np.array((math.cos(bearing), math.sin(bearing)))
-        nearest = math.inf
-        for start, end in zip(corners[:-1], corners[1:]):
-            side = end - start
-            denominator = ray[0] * -side[1] + ray[1] * side[0]
-            if abs(denominator) < 1e-12:
-                continue
-            # start + u * side = t * ray, solved for t (along the ray) and u (along the side).
-            t = (start[0] * -side[1] + start[1] * side[0]) / denominator
-            u = (ray[0] * start[1] - ray[1] * start[0]) / denominator
-            if t > 0.0 and 0.0 <= u <= 1.0:
-                nearest = min(nearest, t)
-        if nearest < math.inf:
-            found.append(nearest * ray)
-    return np.array(found)
-
-
 @pytest.mark.parametrize('bend_deg', [25.0, 35.0, 45.0])
 @pytest.mark.parametrize('vertex_ahead', [-0.04, 0.0, 0.04])
 def test_past_a_bend_away_the_wall_on_the_right_is_the_next_one(bend_deg, vertex_ahead):
@@ -181,7 +159,8 @@ def test_past_a_bend_away_the_wall_on_the_right_is_the_next_one(bend_deg, vertex
     bend = math.radians(bend_deg)
     vertex = np.array((vertex_ahead, -0.25))
     left_behind = vertex - 1.0 * np.array((math.cos(bend), math.sin(bend)))
-    points = laser_hits((left_behind, vertex, vertex + (1.5, 0.0)))
+    world = [(tuple(left_behind), tuple(vertex)), (tuple(vertex), tuple(vertex + (1.5, 0.0)))]
+    points = scan_view(world, (0.0, 0.0, 0.0), COURSE_720).points()
     wall, _, _, _ = right_wall(points[np.hypot(*points.T) < PARAMS.wall_fit_range], PARAMS)
     assert abs(wall.angle) < math.radians(5.0)
     assert wall.distance == pytest.approx(0.25, abs=0.015)
