@@ -54,28 +54,30 @@ def right_wall(points, params):
     way.
     """
     ahead_of_right = wrap_angle(np.arctan2(points[:, 1], points[:, 0]) - RIGHT)
-    fitted = _seeded_wall(
+    fit = _seeded_wall(
         points, (ahead_of_right >= 0.0) & (ahead_of_right <= params.wall_seed_ahead), params)
-    if fitted is None or fitted[2][0] < params.rejoin_ahead:
-        fitted = _seeded_wall(points, np.abs(ahead_of_right) <= params.wall_seed, params) or fitted
-    if fitted is None:
+    if fit is None or fit.end[0] < params.rejoin_ahead:
+        fit = _seeded_wall(points, np.abs(ahead_of_right) <= params.wall_seed, params) or fit
+    if fit is None:
         return None, None, None, NOTHING_STANDS_OUT
-    wall, line, end = fitted
-    offsets = line.offsets(points)
-    return (wall, end, wall_runs_to(line, offsets, end, points, params),
-            proud_of(offsets, points, wall.distance, params))
+    return (fit.wall, fit.end, wall_runs_to(fit.line, fit.offsets, fit.end, points, params),
+            proud_of(fit.offsets, points, fit.wall.distance, params))
+
+
+SeededWall = namedtuple('SeededWall', ['wall', 'line', 'offsets', 'end'])
 
 
 def _seeded_wall(points, seeded, params):
-    """(the wall's Line, its line in the laser's frame, its farthest inlier ahead) of the
-    straight wall through most of the seeded points, or None (also when farther than
-    wall_lost_distance)."""
+    """The SeededWall (the wall's Line, its line in the laser's frame, the points' offsets
+    from it, its farthest inlier ahead) of the straight wall through most of the seeded
+    points, or None (also when farther than wall_lost_distance)."""
     wall = wall_through(points[seeded], points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
         return None
     line = Line(wall.distance, wall.angle + RIGHT)
-    inliers = points[np.abs(line.offsets(points)) < params.wall_inlier_distance]
-    return wall, line, inliers[np.argmax(inliers[:, 0])]
+    offsets = line.offsets(points)
+    inliers = points[np.abs(offsets) < params.wall_inlier_distance]
+    return SeededWall(wall, line, offsets, inliers[np.argmax(inliers[:, 0])])
 
 
 def proud_of(offsets, points, distance, params):

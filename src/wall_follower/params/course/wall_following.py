@@ -59,8 +59,9 @@ FOLLOWER = (
           'searched for the wall [rad]', 0.0, math.pi),
         P('wall_seed_ahead', math.radians(35.0), 'the sector from straight right to this far '
           'ahead of it seeds the wall fit [rad] ...', 0.0, math.pi / 2),
-        P('wall_seed', math.radians(20.0), '... and where it holds no wall, the sector this '
-          'far either side of straight right [rad]', 0.0, math.pi),
+        P('wall_seed', math.radians(20.0), '... and where that holds no wall running on at '
+          'least rejoin_ahead ahead, the sector this far either side of straight right '
+          '[rad]', 0.0, math.pi),
         P('wall_fit_range', 0.8, 'hits farther than this are not taken for the wall on the '
           'right [m]', 0.1, 5.0),
         P('wall_inlier_distance', 0.025, 'hits this near the seed line belong to the wall [m]',
