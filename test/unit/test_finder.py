@@ -9,6 +9,7 @@ from wall_follower.control.course import finder
 from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
 from wall_follower.control.sensing.scan import ScanView
+from wall_follower.evaluation.scoring.course import RIGHT_SECTOR
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
 
@@ -23,13 +24,14 @@ def laser_pose(pose):
     return x + LASER_X * math.cos(yaw), y + LASER_X * math.sin(yaw), yaw
 
 
-def drive(world, pose, convention, limit=60.0):
-    """Run a finder in a kinematic loop (commands act one step late, as in Stage).
+def drive(world, pose, convention, limit=60.0, **params):
+    """Run a finder (laser_x, and params) in a kinematic loop (commands act one step late, as
+    in Stage).
 
     Returns the finder, the states in the order visited, every command, the
     final robot pose and the time taken.
     """
-    walker = WallFinder(laser_x=LASER_X)
+    walker = WallFinder(laser_x=LASER_X, **params)
     walker.start()
     x, y, yaw = pose
     command = STOP
@@ -263,3 +265,53 @@ def test_a_wall_partly_hidden_by_a_box_still_counts_where_it_is_seen():
     walker.update(scan_view(world, (0.0, 0.0, 0.0), STAGE))
     assert walker.wall.distance == pytest.approx(1.5, abs=0.01)
     assert math.degrees(walker.wall.angle) == pytest.approx(-90.0, abs=1.0)
+
+
+def test_a_wall_is_judged_by_where_the_laser_ends_beside_it_not_by_where_it_starts():
+    # A free-standing wall 0.5 m ahead starts 0.22 m to the right of the laser's
+    # foot on it, more than end_margin. The robot drives there from its rotation
+    # centre and turns left at the wall, which leaves its laser 32 mm back towards
+    # that start: 0.19 m from it, short of the margin. The room's walls, 1.5 m
+    # away, go on for metres either side.
+    world = ROOM + [((0.5, -0.22), (0.5, 1.0))]
+    walker = WallFinder(laser_x=LASER_X)
+    walker.start()
+    walker.update(scan_view(world, (0.0, 0.0, 0.0), STAGE))
+    assert walker.wall.distance == pytest.approx(1.5, abs=0.01)
+
+
+# The grader reads the wall on the right within RIGHT_SECTOR of straight right, from up to
+# 0.3 m: the wall must go on this far [m] either side of the laser.
+JUDGED_REACH = 0.3 * math.tan(RIGHT_SECTOR)
+
+
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+@pytest.mark.parametrize('wall_x', [(-0.15, 3.0), (-3.0, 0.05)], ids=['behind', 'ahead'])
+def test_aligned_beside_a_walls_end_it_slides_along_the_wall_until_it_fills_the_right(
+        convention, wall_x):
+    # The only wall ends 0.15 m behind, or 0.05 m ahead of, the point straight
+    # below the robot's centre: aligned there, the wall would read on only part
+    # of the right.
+    world = [((wall_x[0], -0.5), (wall_x[1], -0.5))]
+    walker, states, _, end, _ = drive(world, (0.0, 0.0, -math.pi / 2), convention)
+    assert walker.success, walker.failure_reason
+    assert finder.SLIDE in states
+    laser_x = laser_pose(end)[0]
+    assert laser_x - JUDGED_REACH >= wall_x[0] - 0.01
+    assert laser_x + JUDGED_REACH <= wall_x[1] + 0.01
+    distance, heading = right_wall_error((-3.0, -0.5, 3.0, 3.0), end)
+    assert distance == pytest.approx(WALL_DISTANCE, abs=0.015)
+    assert abs(heading) <= defaults(FINDER)['heading_tolerance']
+
+
+def test_a_wall_too_short_to_fill_the_right_ends_the_slide_where_it_is_short_both_sides():
+    # With right_sector 1 rad the wall must go on 0.44 m either side of the
+    # laser, more than half of this 0.8 m wall. Aligned, the laser is 0.13 m
+    # from its end ahead: the robot slides back once, and stops where the wall
+    # falls short behind too, 0.44 m from its other end.
+    world = [((-0.7, -0.5), (0.1, -0.5))]
+    walker, states, _, end, _ = drive(world, (0.0, 0.0, -math.pi / 2), STAGE,
+                                      right_sector=1.0)
+    assert walker.success, walker.failure_reason
+    assert states.count(finder.SLIDE) == 1
+    assert laser_pose(end)[0] == pytest.approx(-0.7 + WALL_DISTANCE * math.tan(1.0), abs=0.04)

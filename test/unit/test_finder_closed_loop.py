@@ -141,3 +141,11 @@ def test_the_way_to_a_wall_is_clear_from_where_the_robot_turns_not_from_its_lase
     # to put the wall on its right, swung its tail into it and stuck there
     # until the call timed out.
     assert_found(*generated(tmp_path, 28, 27))
+
+
+def test_aligned_beside_a_walls_end_it_slides_along_until_the_grader_reads_the_wall(tmp_path):
+    # Generated world 19 of seed 41: the wall chosen from the start ends 0.16 m
+    # behind where the laser came to rest, and the grader's sector, 30 degrees
+    # either side of the right, read past its end a wall 0.97 m away: 0.21 m and
+    # 40 degrees off. The search now slides on along the wall before it ends.
+    assert_found(*generated(tmp_path, 41, 19))

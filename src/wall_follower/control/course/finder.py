@@ -5,6 +5,7 @@ be driven by unit tests, by the simulator in a closed loop, or by the
 find_wall service node alike:
 
     IDLE -> start() -> CHOOSE_WALL -> ROTATE_TO_WALL -> APPROACH -> ALIGN -> DONE
+                        |  |    |                                    +-> SLIDE -> ALIGN -> DONE
                         |  |    +-> ALIGN (already beside the wall)
                         |  |    +-> DONE (already in place: parallel at wall_distance)
                         |  +-> FAILED (no wall in range, or the wall kept getting lost)
@@ -15,8 +16,13 @@ Every state re-measures the chosen wall on every scan (closed loop): the
 turns end when the wall's normal is where it should be, not after a time.
 The robot is steered by the wall's fitted line, not by single rays, which
 makes both distance and heading far steadier than the shortest ray would.
+Once aligned, it checks what a user's node will read: the wall on every
+beam around straight right. Beside a wall's end it is not so, and the robot
+slides along the wall, away from the end, until it is (SLIDE).
 """
 import math
+
+import numpy as np
 
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.sensing.scan import RIGHT
@@ -30,10 +36,18 @@ CHOOSE_WALL = 'CHOOSE_WALL'
 ROTATE_TO_WALL = 'ROTATE_TO_WALL'
 APPROACH = 'APPROACH'
 ALIGN = 'ALIGN'
+SLIDE = 'SLIDE'
 NEARER = 'NEARER'
 DONE = 'DONE'
 FAILED = 'FAILED'
 IDLE = 'IDLE'
+
+# A beam reads the chosen wall when its hit lies within this of the wall's line [m]: a
+# noisy laser, or Stage's grid seen at a slant, spreads a wall's hits over a few centimetres.
+WALL_GATE = 0.05
+# Beams on one side of right_sector that may miss the wall without a slide: a spurious
+# reading or a dropout.
+STRAY_BEAMS = 1
 
 
 class WallFinder(object):
@@ -83,6 +97,7 @@ class WallFinder(object):
         self._reacquired = 0
         self._settled = 0
         self._heading = None
+        self._slid = False
 
     def update(self, view):
         """Advance on one scan (a ScanView) and return the Command to drive."""
@@ -91,6 +106,7 @@ class WallFinder(object):
             ROTATE_TO_WALL: self._rotate_to_wall,
             APPROACH: self._approach,
             ALIGN: self._align,
+            SLIDE: self._slide,
             NEARER: self._nearer,
         }.get(self.state)
         command = handler(view) if handler is not None else STOP
@@ -113,7 +129,7 @@ class WallFinder(object):
         # Ending near a wall's end leaves the robot at a corner, with another
         # wall on its right as soon as it moves: choose such a wall only if
         # there is nothing better.
-        walls = [wall for wall in walls if wall.foot_inside(p['end_margin'])] or walls
+        walls = [wall for wall in walls if self._ends_inside(wall)] or walls
         if not walls:
             return self._go_nearer(view, seen)
         self.wall = walls[0]
@@ -216,15 +232,56 @@ class WallFinder(object):
             # robot turns a fraction of that, the middle is never read, and
             # the robot would turn to and fro across it: having turned
             # across it inside the tolerance has to do, as in the approach.
-            self.state = DONE
-            return STOP
+            return self._aligned(view)
         if within and self._last == STOP:
             self._settled += 1
             if self._settled >= p['settle_updates']:
-                self.state = DONE
+                return self._aligned(view)
             return STOP
         self._settled = 0
         return Command(0.0, self._turn(heading_error))
+
+    def _aligned(self, view):
+        """Done; or, beside a wall's end the first time aligned, first the slide away from it."""
+        if self._slid or not self._slide_direction(view):
+            self.state = DONE
+            return STOP
+        self._slid = True
+        self.state = SLIDE
+        return self._slide(view, tracked=True)
+
+    def _slide(self, view, tracked=False):
+        """Along the wall, away from the side of the right where it does not read, until it
+        reads all round the right, it does not read on either side, or something lies within
+        corridor_half_width of the way, up to twice that ahead of the rotation centre; then
+        straighten up once more."""
+        if not tracked and not self._track(view):
+            return self._on_lost()
+        p = self.params
+        direction = self._slide_direction(view)
+        way = (-p['laser_x'] + direction * 2.0 * p['corridor_half_width'], 0.0)
+        if not direction or not path_to_is_clear(view, way, p['corridor_half_width'], margin=0.0,
+                                                 origin=self._centre):
+            return self._start_align(view)
+        return Command(direction * p['slide_speed'], self._turn(self._heading_error(RIGHT)))
+
+    def _slide_direction(self, view):
+        """+1 (forward) where the chosen wall does not read on the beams behind the right,
+        within right_sector, -1 (back) where it does not read ahead of it, 0 where it reads
+        on both sides or on neither.
+
+        A beam misses the wall when it reads nothing, or a hit more than
+        WALL_GATE off the wall's line: past the wall's end, the wall beyond
+        it or nothing at all.
+        """
+        sector = view.in_sector(RIGHT, self.params['right_sector'])
+        angles, ranges = view.angles[sector], view.ranges[sector]
+        with np.errstate(invalid='ignore'):
+            points = np.column_stack((ranges * np.cos(angles), ranges * np.sin(angles)))
+            reads = view.valid[sector] & (np.abs(self.wall.line.offsets(points)) <= WALL_GATE)
+        behind = np.count_nonzero(~reads & (angles < RIGHT)) > STRAY_BEAMS
+        ahead = np.count_nonzero(~reads & (angles > RIGHT)) > STRAY_BEAMS
+        return float(behind) - float(ahead)
 
     # Helpers
 
@@ -264,6 +321,21 @@ class WallFinder(object):
         p = self.params
         return (abs(float(wrap_angle(wall.angle - RIGHT))) <= p['heading_tolerance']
                 and abs(wall.distance - p['wall_distance']) <= p['in_place_tolerance'])
+
+    def _ends_inside(self, wall):
+        """True when the laser, once the search ends beside wall, has end_margin of wall seen
+        on either side of it.
+
+        That is not where the laser's own foot is now. The robot drives to
+        the wall from its rotation centre, which the laser does not share,
+        and the quarter turn at the wall leaves the laser laser_x along the
+        wall from the centre, in the direction the robot then faces: the
+        positive way along the wall, which is to the robot's left as it
+        faces the wall. Beside a wall's end, those few centimetres decide
+        whether the wall still fills the right of the laser.
+        """
+        arrival = wall.along_of(self._centre) + self.params['laser_x']
+        return wall.seen_around(arrival, self.params['end_margin'])
 
     @property
     def _centre(self):

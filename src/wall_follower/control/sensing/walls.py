@@ -48,18 +48,32 @@ class Wall(namedtuple('Wall', ['line', 'length', 'rms', 'count', 'start', 'end',
     def normal(self):
         return self.line.normal
 
+    def along_of(self, point):
+        """Position along the line (m, as start, end and foot are) of the foot of the
+        perpendicular from point (x, y) in the laser frame."""
+        normal = self.line.normal
+        return self.foot - normal[1] * point[0] + normal[0] * point[1]
+
+    def seen_around(self, along, margin=0.0):
+        """True when the wall was seen at position along, with at least margin (m) of
+        wall on either side of it.
+
+        At an open end the wall goes on out of sight, so the margin is not
+        asked for there.
+        """
+        low = self.start if self.start_open else self.start + margin
+        high = self.end if self.end_open else self.end - margin
+        return low <= along <= high
+
     def foot_inside(self, margin=0.0):
         """True when the point of the wall straight across from the laser was seen,
         with at least margin (m) of wall on either side of it.
 
         Driving along the normal then ends on wall that is known to be there,
         not on wall merely extrapolated behind an obstacle, nor just short
-        of a corner. At an open end the wall goes on out of sight, so the
-        margin is not asked for there.
+        of a corner.
         """
-        low = self.start if self.start_open else self.start + margin
-        high = self.end if self.end_open else self.end - margin
-        return low <= self.foot <= high
+        return self.seen_around(self.foot, margin)
 
 
 def extract_walls(view, min_points=6, split_tolerance=0.05, max_gap=0.1,

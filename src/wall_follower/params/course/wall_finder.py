@@ -31,6 +31,11 @@ FINDER = (
           'the straight path to it [m]', 0.0, 1.0),
         P('end_margin', 0.2, 'walls seen to go on at least this far both sides of the point '
           'straight across from the robot are preferred [m]', 0.0, 5.0),
+        P('right_sector', 0.6, 'once aligned, the wall must read on every beam but one this '
+          'far either side of straight right [rad]; where it does not on one side (the wall '
+          'ends there), the robot slides along it away from that side until it does', 0.0,
+          math.pi / 2),
+        P('slide_speed', 0.05, 'speed of that slide [m/s]', 0.0, 0.19),
         P('min_linear', 0.02, 'slowest useful speed: the last millimetres are covered at it '
           '[m/s]', 0.0, 0.19),
         P('min_angular', 0.03, 'slowest useful turn rate [rad/s]', 0.0, 0.49),
