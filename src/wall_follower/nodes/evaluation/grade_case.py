@@ -27,7 +27,10 @@ namespace.
 When the run cannot even begin for the grader's own reasons (the world
 file unreadable, no ground truth from the simulator), the record says so
 in 'grader_error', and grading counts the case as not graded rather than
-as the solution's failure.
+as the solution's failure. Stopped by a signal while it still waits (grade
+ending the case at its --timeout, or interrupted), it writes no record at all
+and ends quietly with status 0 (nodes/shared/shutdown.py): it has seen
+nothing to blame on the solution, nor on the simulator.
 """
 import math
 import threading
@@ -53,6 +56,8 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
 from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.shutdown import (poll_until, quiet_on_shutdown,
+                                                 raise_if_shut_down)
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.evaluation.grade_case import TABLE
 from wall_follower.rotation import wrap_angle
@@ -176,7 +181,8 @@ class SolutionSeen(object):
 
 
 def watch(monitor, graph, seen, clock, params, start, calls):
-    """Why the run ended: 'result', or the reason no lap can come any more.
+    """Why the run ended: 'result', or the reason no lap can come any more;
+    rospy.ROSInterruptException if rospy shuts down first (the run has not ended).
 
     Meanwhile notes in seen what the solution advertises. The solution's
     nodes count as gone only after ~start_limit wall seconds, the time
@@ -186,7 +192,8 @@ def watch(monitor, graph, seen, clock, params, start, calls):
     """
     gone = SolutionGone(graph, params['start_limit'], params['gone_limit'])
     next_graph = time.monotonic()
-    while not rospy.is_shutdown():
+    while True:
+        raise_if_shut_down()
         if monitor.done.is_set():
             return 'result'
         now = rospy.get_time()
@@ -206,16 +213,15 @@ def watch(monitor, graph, seen, clock, params, start, calls):
             if gone.look(state):
                 return GONE
         time.sleep(POLL)
-    return 'shut down'
 
 
 def keep_watching(monitor, seconds, wall_limit=30.0):
-    """Ground truth for `seconds` more simulated seconds (at most wall_limit wall seconds)."""
+    """Ground truth for `seconds` more simulated seconds (at most wall_limit wall seconds);
+    rospy.ROSInterruptException if rospy shuts down first: a record cut short would
+    misjudge where the robot went."""
     monitor.wait(catch_up=10.0)
     end = rospy.get_time() + seconds
-    deadline = time.monotonic() + wall_limit
-    while rospy.get_time() < end and time.monotonic() < deadline and not rospy.is_shutdown():
-        time.sleep(POLL)
+    poll_until(lambda: rospy.get_time() >= end, wall_limit, period=POLL)
 
 
 def freeze(monitor):
@@ -290,6 +296,7 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
     }
 
 
+@quiet_on_shutdown
 def main():
     init_node('grade_case')
     params = NodeParameters(TABLE).snapshot()
@@ -304,7 +311,8 @@ def main():
         return grader_failed(params, NO_SIMULATOR)
     call_simulator('unpause_physics', wait=SERVICE_WAIT)
     start = rospy.get_time()
-    while monitor.pose is None and not rospy.is_shutdown():
+    while monitor.pose is None:
+        raise_if_shut_down()
         time.sleep(0.01)
     start_pose = monitor.pose
     seen = SolutionSeen()

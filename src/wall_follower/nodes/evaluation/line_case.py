@@ -19,7 +19,9 @@ Then it pauses the world, writes the record (~json;
 evaluation/grading/line_record.py, graded by line_criteria.py) and the plot
 (~plot), and ends, which ends the launch. A world whose course file cannot
 be read, or a simulator that sends no ground truth, is the grader's error
-('grader_error' in the record), never the solution's.
+('grader_error' in the record), never the solution's. Stopped by a signal
+while it still waits, it writes no record and ends quietly with status 0
+(nodes/shared/shutdown.py).
 """
 import threading
 import time
@@ -44,6 +46,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
 from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_of
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.shutdown import quiet_on_shutdown, raise_if_shut_down
 from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.evaluation.line_case import TABLE
 
@@ -127,10 +130,12 @@ def run_over(centreline, run, params, start):
 
 
 def watch(centreline, run, graph, params, start):
-    """Why the run ended: run_over's reason, GONE, or 'shut down'."""
+    """Why the run ended: run_over's reason, or GONE; rospy.ROSInterruptException if rospy
+    shuts down first (the run has not ended)."""
     gone = SolutionGone(graph, params['start_limit'], params['gone_limit'])
     next_graph = time.monotonic()
-    while not rospy.is_shutdown():
+    while True:
+        raise_if_shut_down()
         reason, idle = run_over(centreline, run, params, start)
         if reason:
             return GONE if idle and not solution_running(graph) else reason
@@ -139,9 +144,9 @@ def watch(centreline, run, graph, params, start):
             if gone.look():
                 return GONE
         time.sleep(POLL)
-    return 'shut down'
 
 
+@quiet_on_shutdown
 def main():
     init_node('line_case')
     params = NodeParameters(TABLE).snapshot()

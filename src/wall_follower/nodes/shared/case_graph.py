@@ -16,6 +16,7 @@ from std_srvs.srv import Empty
 from wall_follower.action_registration import action_servers, master_graph
 from wall_follower.evaluation.grading.commands import non_finite_text
 from wall_follower.nodes.shared.course_monitor import node_alive
+from wall_follower.nodes.shared.shutdown import poll_until, raise_if_shut_down
 
 # Nodes of the grading itself (the case's launch file and the simulation.launch it
 # includes: the simulator, the world's map and the robot's model for rviz), not of the
@@ -92,25 +93,23 @@ class SolutionGone(object):
 
 
 def wait_for_simulator(connected, limit=SIMULATOR_LIMIT):
-    """Until connected() says ground truth is heard; False after limit wall seconds or on
-    shutdown."""
-    deadline = time.monotonic() + limit
-    while not connected():
-        if rospy.is_shutdown() or time.monotonic() > deadline:
-            return False
-        time.sleep(0.05)
-    return True
+    """Until connected() says ground truth is heard; False after limit wall seconds (then
+    NO_SIMULATOR is the grader's error); rospy.ROSInterruptException if rospy shuts down
+    first, which is no simulator missing (shutdown.py)."""
+    return poll_until(connected, limit)
 
 
 def call_simulator(name, wait=None):
     """Call the simulator's std_srvs/Empty service name (unpause_physics, pause_physics),
     waiting up to wait wall seconds for it; False, said in the log, when there is none
-    (a simulator that was never paused, or one that has ended)."""
+    (a simulator that was never paused, or one that has ended); rospy.ROSInterruptException
+    when rospy shut down meanwhile, which says nothing of the simulator."""
     try:
         if wait:
             rospy.wait_for_service(name, timeout=wait)
         rospy.ServiceProxy(name, Empty)()
     except (rospy.ServiceException, rospy.ROSException):
+        raise_if_shut_down()
         rospy.loginfo('%s: no %s service', rospy.get_name(), name)
         return False
     return True
