@@ -6,6 +6,9 @@ each poll advances the clock by one second.
 import itertools
 import threading
 
+import pytest
+import rospy
+
 from wall_follower.nodes.evaluation.course_report import RESULT_GRACE, no_lap_reason
 
 
@@ -63,3 +66,11 @@ def test_the_result_gets_a_grace_after_the_follower_ends():
             monitor.done.set()
         return poll == 0
     assert reason(monitor, alive) is None
+
+
+def test_a_shutdown_is_no_reason_why_no_lap_can_come(monkeypatch):
+    """A signal ends the wait, not the lap: it raises as rospy's waits do, and no error
+    names a cause (before: 'shut down before the lap was recorded', status 1)."""
+    monkeypatch.setattr(rospy, 'is_shutdown', lambda: True)
+    with pytest.raises(rospy.ROSInterruptException):
+        reason(Monitor(goal_time=1.0), lambda _name: True)

@@ -13,8 +13,10 @@ from types import SimpleNamespace
 import pytest
 import rospy
 
-from wall_follower.nodes.evaluation import grade_case, line_case
+from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.nodes.evaluation import course_report, find_trials, grade_case, line_case
 from wall_follower.nodes.shared.case_graph import call_simulator, wait_for_simulator
+from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
 ROOM = os.path.join(os.path.dirname(__file__), '..', '..', 'worlds', 'room.world')
 LEVELS = ('info', 'warn', 'err')
@@ -48,6 +50,19 @@ def shut_down(monkeypatch, log):
     return log
 
 
+@pytest.fixture
+def monitors():
+    """CourseMonitor, every one made (by the test or a node's main) closed after the test."""
+    made = []
+
+    def monitor(*args, **kwargs):
+        made.append(CourseMonitor(*args, **kwargs))
+        return made[-1]
+    yield monitor
+    for each in made:
+        each.close()
+
+
 def assert_ended_quietly(status, log, record=None):
     assert status == 0
     assert log['err'] == [] and log['warn'] == []
@@ -72,6 +87,28 @@ def test_a_simulator_service_wait_ended_by_shutdown_is_no_missing_service(shut_d
     assert shut_down['info'] == []
 
 
+def test_the_monitor_raises_on_shutdown_while_it_waits_to_connect(shut_down, monitors):
+    with pytest.raises(rospy.ROSInterruptException):
+        monitors(CourseMap(ROOM)).start_world()
+
+
+def test_the_monitor_still_gives_up_connecting_after_its_limit(log, monitors):
+    assert monitors(CourseMap(ROOM)).start_world(limit=0.0) is False
+
+
+def test_the_monitor_raises_on_shutdown_while_it_waits_for_unpause_physics(shut_down, monitors):
+    monitor = monitors(CourseMap(ROOM))
+    monitor.connected = lambda topics=None: True
+    with pytest.raises(rospy.ROSInterruptException):
+        monitor.start_world()
+    assert shut_down['info'] == []
+
+
+def test_the_monitor_raises_on_shutdown_while_it_waits_for_the_run(shut_down, monitors):
+    with pytest.raises(rospy.ROSInterruptException):
+        monitors(CourseMap(ROOM)).wait()
+
+
 @pytest.mark.parametrize('watch', [
     lambda: grade_case.watch(None, None, None, None, {'start_limit': 0.0, 'gone_limit': 0.0},
                              0.0, None),
@@ -84,6 +121,14 @@ def test_a_case_run_watched_until_shutdown_has_not_ended(shut_down, monkeypatch,
     monkeypatch.setattr(rospy, 'get_time', lambda: 0.0)
     with pytest.raises(rospy.ROSInterruptException):
         watch()
+
+
+def test_find_trials_judges_no_pose_on_shutdown(shut_down):
+    """Not the newest pose, with a warning that the robot never came to rest."""
+    monitor = SimpleNamespace(latest=lambda: (1.0, (0.0, 0.0, 0.0)))
+    with pytest.raises(rospy.ROSInterruptException):
+        find_trials.at_rest(monitor, limit=5.0)
+    assert shut_down['warn'] == []
 
 
 # The nodes: a signal while they wait ends them quietly.
@@ -117,3 +162,23 @@ def test_line_case_signalled_while_it_waits_for_the_simulator(shut_down, monkeyp
             ('Graph', lambda _action_ns: None)):
         monkeypatch.setattr(line_case, name, stand_in)
     assert_ended_quietly(line_case.main(), shut_down, record)
+
+
+def test_course_report_signalled_while_it_waits_for_the_simulator(shut_down, monkeypatch,
+                                                                  monitors, tmp_path):
+    """Before: 'could not connect to the simulator ... and record_odom', status 1."""
+    monkeypatch.setattr(rospy, 'init_node', lambda _name: None)
+    monkeypatch.setattr(course_report, 'NodeParameters', parameters(
+        {'world': os.path.abspath(ROOM), 'plot': str(tmp_path / 'course.png'), 'json': '',
+         'follower': 'wall_following'}))
+    monkeypatch.setattr(course_report, 'CourseMonitor', monitors)
+    assert_ended_quietly(course_report.main(), shut_down, str(tmp_path / 'course.png'))
+
+
+def test_find_trials_signalled_while_it_waits_for_find_wall(shut_down, monkeypatch):
+    """Before: the error 'find_trials: rospy shutdown', status 1."""
+    monkeypatch.setattr(rospy, 'init_node', lambda _name: None)
+    monkeypatch.setattr(find_trials, 'NodeParameters', parameters(
+        {'world': os.path.abspath(ROOM), 'json': '', 'poses': {
+            os.path.abspath(ROOM): [[0.0, 0.0, 0.0]]}}))
+    assert_ended_quietly(find_trials.main(), shut_down)

@@ -10,6 +10,9 @@ for any other reason, or record_odom ended its goal without a lap) it says
 so and exits with status 1 instead of waiting for ever, and writes no plot
 or figures: those exist only for a recorded lap. (roslaunch itself exits 0
 whatever its required node's status; tools/run-main checks for the plot.)
+Stopped by a signal (Ctrl-C, the launch ending) while it waits, it ends
+quietly with status 0 and no plot (nodes/shared/shutdown.py): that is no
+failure of the simulator or the follower.
 
 Parameters: the table in wall_follower.params.evaluation.course_report, read once at
 start.
@@ -25,6 +28,7 @@ from wall_follower.evaluation.pictures.course_plot import plot_course
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.shutdown import quiet_on_shutdown, raise_if_shut_down
 from wall_follower.params.evaluation.course_report import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
@@ -47,14 +51,15 @@ def no_lap_reason(monitor, follower, alive=node_alive, clock=time.monotonic,
 
     Polls the follower (alive(name), every poll wall seconds): once it has
     been gone for RESULT_GRACE with no result (or never appeared within
-    FOLLOWER_START_LIMIT), nothing will drive the lap any more.
+    FOLLOWER_START_LIMIT), nothing will drive the lap any more. A shutdown
+    is no such reason (the lap may well have come): it raises
+    rospy.ROSInterruptException.
     """
     started = clock()
     seen = False
     gone_since = None
     while not monitor.done.is_set():
-        if rospy.is_shutdown():
-            return 'shut down before the lap was recorded'
+        raise_if_shut_down()
         now = clock()
         if alive(follower):
             seen, gone_since = True, None
@@ -118,6 +123,7 @@ def format_summary(f):
     ]
 
 
+@quiet_on_shutdown
 def main():
     rospy.init_node('course_report')
     values = NodeParameters(TABLE).snapshot()
@@ -144,8 +150,7 @@ def main():
     if reason is not None:
         rospy.logerr('course_report: %s', reason)
         return 1
-    if not monitor.wait():
-        return 1
+    monitor.wait()
     figures = course_figures(monitor)
     figures['simulator'] = simulator
     for line in format_summary(figures):

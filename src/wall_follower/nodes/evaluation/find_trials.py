@@ -6,7 +6,8 @@ teleported through the simulator's cmd_pose topic, so this needs the
 builtin simulator (or a stageros built with cmd_pose).
 
 Parameters: the table in wall_follower.params.evaluation.find_trials, read once at
-start.
+start. Stopped by a signal before the last trial, it ends quietly with status 0
+and writes no figures (nodes/shared/shutdown.py).
 """
 import json
 import math
@@ -22,6 +23,7 @@ from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.messages import pose_message
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.shutdown import quiet_on_shutdown, raise_if_shut_down
 from wall_follower.params.evaluation.find_trials import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
@@ -96,10 +98,12 @@ class FindTrials(object):
 
 def at_rest(monitor, limit=REST_LIMIT):
     """The robot's true pose once monitor's ground truth shows it at rest (RestWatch); the
-    newest heard, with a warning, after limit wall seconds without."""
+    newest heard, with a warning, after limit wall seconds without;
+    rospy.ROSInterruptException if rospy shuts down first."""
     watch = RestWatch()
     deadline = time.monotonic() + limit
-    while time.monotonic() < deadline and not rospy.is_shutdown():
+    while time.monotonic() < deadline:
+        raise_if_shut_down()
         pose = watch.look(*monitor.latest())
         if pose is not None:
             return pose
@@ -115,6 +119,7 @@ def is_pose(start):
         isinstance(value, numbers.Real) and not isinstance(value, bool) for value in start)
 
 
+@quiet_on_shutdown
 def main():
     rospy.init_node('find_trials')
     values = NodeParameters(TABLE).snapshot()
@@ -138,6 +143,7 @@ def main():
         rospy.logerr('find_trials: cannot read world %s: %s', world, err)
         return 1
     except rospy.ROSException as err:
+        raise_if_shut_down()   # not find_wall missing: shut down while waiting for it
         rospy.logerr('find_trials: %s', err)
         return 1
     results = []

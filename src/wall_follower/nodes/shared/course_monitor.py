@@ -8,7 +8,6 @@ ground truth and the map too, so the score works on real stageros, which
 publishes no `stalled`.
 """
 import threading
-import time
 import xmlrpc.client
 
 import genpy.dynamic
@@ -25,6 +24,7 @@ from actionlib_msgs.msg import GoalStatus, GoalStatusArray
 from wall_follower.evaluation.scoring.course import RunScore, stretches_on_trail
 from wall_follower.nodes.shared.connections import keep_connected
 from wall_follower.nodes.shared.messages import pose_of
+from wall_follower.nodes.shared.shutdown import poll_until, raise_if_shut_down
 
 # Every simulated step matters to a score, and in lockstep the simulator runs
 # as fast as the controllers answer: queues long enough never to drop one.
@@ -303,7 +303,8 @@ class CourseMonitor(object):
             return self.score.summary()
 
     def wait(self, catch_up=10.0):
-        """Block until the run ends (result, or lap on ground truth); False on shutdown.
+        """Block until the run ends (result, or lap on ground truth); on shutdown,
+        rospy.ROSInterruptException (shutdown.py: no run ended).
 
         Then, up to catch_up wall seconds, until ground truth has been heard
         up to the result's stamp too (see caught_up). There is no time-out
@@ -311,18 +312,10 @@ class CourseMonitor(object):
         bound every run.
         """
         while not self.done.wait(0.1):
-            if rospy.is_shutdown():
-                return False
-        deadline = time.monotonic() + catch_up
-        while not self.caught_up():
-            if rospy.is_shutdown():
-                return False
-            if time.monotonic() > deadline:
-                rospy.logwarn('course monitor: no ground truth up to the result after %.0f s; '
-                              'scoring what came', catch_up)
-                break
-            time.sleep(0.01)
-        return True
+            raise_if_shut_down()
+        if not poll_until(self.caught_up, catch_up, period=0.01):
+            rospy.logwarn('course monitor: no ground truth up to the result after %.0f s; '
+                          'scoring what came', catch_up)
 
     def poses_between(self, start, end):
         """The ground truth heard stamped from start to end [s], as (stamp, pose) pairs."""
@@ -371,16 +364,15 @@ class CourseMonitor(object):
         so the launch starts the simulator paused and the monitor lets it go
         only when it hears everything it needs. A simulator without pause_physics
         (real stageros) is left as it is. False if the monitor could not
-        connect within limit wall seconds.
+        connect within limit wall seconds; rospy.ROSInterruptException if rospy
+        shut down meanwhile (shutdown.py: that is no simulator missing).
         """
-        deadline = time.monotonic() + limit
-        while not self.connected():
-            if rospy.is_shutdown() or time.monotonic() > deadline:
-                return False
-            time.sleep(0.05)
+        if not poll_until(self.connected, limit):
+            return False
         try:
             rospy.wait_for_service('unpause_physics', timeout=min(5.0, limit))
         except rospy.ROSException:
+            raise_if_shut_down()
             rospy.loginfo('no unpause_physics service: the simulator was not paused')
             return True
         rospy.ServiceProxy('unpause_physics', Empty)()
