@@ -6,15 +6,18 @@ main thread holds mid-publish. Needs ROS's Python modules but no master:
 rospy's init_node and signal_shutdown are replaced by the test's.
 """
 import os
+import select
 import signal
+import socket
 import subprocess
 import sys
 import threading
+import time
 
 import pytest
 import rospy
 
-from wall_follower.nodes.shared import signals
+from wall_follower.nodes.shared import signals, startup
 from wall_follower.nodes.shared.startup import init_node
 
 SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, 'scripts')
@@ -65,6 +68,7 @@ def test_a_signal_shuts_rospy_down_from_a_thread_of_its_own(monkeypatch, handler
         calls.append((reason, threading.current_thread() is threading.main_thread()))
         done.set()
 
+    monkeypatch.setattr(startup, 'master_answers', lambda: True)
     monkeypatch.setattr(rospy, 'init_node', lambda name, **kwargs: calls.append(kwargs))
     monkeypatch.setattr(rospy, 'signal_shutdown', signal_shutdown)
     init_node('test')
@@ -106,3 +110,51 @@ def test_a_node_script_leaves_sigint_to_the_kernel_before_any_python_code_runs(s
                             preexec_fn=lambda: signal.signal(signal.SIGINT, inherited),
                             timeout=60.0, check=True).stdout
     assert answer == b'default'
+
+
+def closed_port():
+    """A local TCP port nothing listens on (bound, then closed at once)."""
+    with socket.socket() as probe:
+        probe.bind(('localhost', 0))
+        return probe.getsockname()[1]
+
+
+def line_with(stream, text, limit):
+    """The first line read from stream (a pipe) that holds text, within limit wall seconds;
+    None without one."""
+    deadline = time.monotonic() + limit
+    pending = b''
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([stream], [], [], max(0.0, deadline - time.monotonic()))
+        if not ready:
+            break
+        chunk = os.read(stream.fileno(), 4096)
+        if not chunk:
+            break
+        pending += chunk
+        for line in pending.split(b'\n'):
+            if text.encode() in line:
+                return line.decode(errors='replace')
+    return None
+
+
+@pytest.mark.parametrize('number', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
+@pytest.mark.parametrize('script', ['wall_finder.py', 'wall_following.py', 'line_follower'])
+def test_a_node_started_before_its_master_ends_at_once_on_a_signal(script, number):
+    """rospy.init_node with no master retries registering for ever, holding the lock that
+    rospy's shutdown waits for: the node never ended. It now waits for the master first,
+    says so, and a signal meanwhile ends it quietly."""
+    environment = dict(os.environ, ROS_MASTER_URI='http://localhost:%d' % closed_port())
+    child = subprocess.Popen([sys.executable, os.path.join(SCRIPTS, script)],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=environment)
+    try:
+        said = line_with(child.stderr, 'waiting for the ROS master', 60.0)
+        assert said, '%s never said it waits for the master' % script
+        child.send_signal(number)
+        assert child.wait(5.0) == 0
+        rest = child.stderr.read().decode(errors='replace')
+        assert 'Traceback' not in rest, rest
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()

@@ -1,10 +1,47 @@
 """How every node starts: rospy.init_node with SIGINT and SIGTERM answered from its first moment."""
 import os
+import sys
 import threading
+import time
 
+import rosgraph
 import rospy
 
 from wall_follower.nodes.shared import signals
+
+# Wall seconds between two tries to reach a master that does not answer.
+MASTER_RETRY = 1.0
+# Wall seconds between two looks, meanwhile, for a signal.
+SIGNAL_POLL = 0.05
+
+
+def master_answers():
+    """True when the ROS master answers at all (getPid), False while nothing listens there."""
+    try:
+        rosgraph.Master(rospy.get_name()).getPid()
+    except OSError:
+        return False
+    return True
+
+
+def _wait_for_master(name, caught):
+    """Until the master answers; False if a signal (in caught) came first.
+
+    Said once on stderr, as rospy's logging is not set up yet: a node
+    started before roscore otherwise waits without a word.
+    """
+    said = False
+    while not caught:
+        if master_answers():
+            return True
+        if not said:
+            sys.stderr.write('%s: waiting for the ROS master at %s\n'
+                             % (name, rosgraph.get_master_uri()))
+            said = True
+        deadline = time.monotonic() + MASTER_RETRY
+        while not caught and time.monotonic() < deadline:
+            time.sleep(SIGNAL_POLL)
+    return False
 
 
 def init_node(name):
@@ -22,14 +59,23 @@ def init_node(name):
     seconds (registering with the master, reading /use_sim_time): a signal
     then ends the start-up, and the node exits quietly, having driven
     nothing. (Before this call, nodes.signals answers.)
+
+    rospy.init_node is called only once the master answers. Without one,
+    rospy retries the registration of its /rosout publisher for ever while
+    it holds the topic manager's lock, and rospy.signal_shutdown waits for
+    that lock before it marks rospy shut down: a node started before
+    roscore would never end on a signal. Waiting here, a signal ends it
+    at once.
     """
     caught = []
+    started = []   # rospy.init_node has been called: only rospy's shutdown ends the node now
     wake_read, wake_write = os.pipe()
     os.set_blocking(wake_write, False)   # a pipe full of signals already holds a wake-up
 
     def shut_down():
         number = os.read(wake_read, 1)[0]
-        rospy.signal_shutdown('signal %d' % number)
+        if started:
+            rospy.signal_shutdown('signal %d' % number)
 
     def on_signal(number):
         caught.append(number)
@@ -40,6 +86,9 @@ def init_node(name):
 
     threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
     signals.answer_with(on_signal)
+    if not _wait_for_master(name, caught):
+        raise SystemExit(0)
+    started.append(True)
     try:
         rospy.init_node(name, disable_signals=True)
     except rospy.ROSInitException:
