@@ -139,7 +139,8 @@ def line_with(stream, text, limit):
 
 
 @pytest.mark.parametrize('number', [signal.SIGINT, signal.SIGTERM], ids=['SIGINT', 'SIGTERM'])
-@pytest.mark.parametrize('script', ['wall_finder.py', 'wall_following.py', 'line_follower'])
+@pytest.mark.parametrize('script', ['wall_finder.py', 'wall_following.py', 'line_follower',
+                                    'course_report', 'map_saver'])
 def test_a_node_started_before_its_master_ends_at_once_on_a_signal(script, number):
     """rospy.init_node with no master retries registering for ever, holding the lock that
     rospy's shutdown waits for: the node never ended. It now waits for the master first,

@@ -167,7 +167,7 @@ def test_line_case_signalled_while_it_waits_for_the_simulator(shut_down, monkeyp
 def test_course_report_signalled_while_it_waits_for_the_simulator(shut_down, monkeypatch,
                                                                   monitors, tmp_path):
     """Before: 'could not connect to the simulator ... and record_odom', status 1."""
-    monkeypatch.setattr(rospy, 'init_node', lambda _name: None)
+    monkeypatch.setattr(course_report, 'init_node', lambda _name: None)
     monkeypatch.setattr(course_report, 'NodeParameters', parameters(
         {'world': os.path.abspath(ROOM), 'plot': str(tmp_path / 'course.png'), 'json': '',
          'follower': 'wall_following'}))
@@ -177,7 +177,7 @@ def test_course_report_signalled_while_it_waits_for_the_simulator(shut_down, mon
 
 def test_find_trials_signalled_while_it_waits_for_find_wall(shut_down, monkeypatch):
     """Before: the error 'find_trials: rospy shutdown', status 1."""
-    monkeypatch.setattr(rospy, 'init_node', lambda _name: None)
+    monkeypatch.setattr(find_trials, 'init_node', lambda _name: None)
     monkeypatch.setattr(find_trials, 'NodeParameters', parameters(
         {'world': os.path.abspath(ROOM), 'json': '', 'poses': {
             os.path.abspath(ROOM): [[0.0, 0.0, 0.0]]}}))

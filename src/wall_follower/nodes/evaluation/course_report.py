@@ -29,6 +29,7 @@ from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.nodes.shared.course_monitor import CourseMonitor, node_alive
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.shutdown import quiet_on_shutdown, raise_if_shut_down
+from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.evaluation.course_report import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
@@ -125,7 +126,7 @@ def format_summary(f):
 
 @quiet_on_shutdown
 def main():
-    rospy.init_node('course_report')
+    init_node('course_report')
     values = NodeParameters(TABLE).snapshot()
     world, plot, output = values['world'], values['plot'], values['json']
     for name, path in (('plot', plot), ('json', output)):

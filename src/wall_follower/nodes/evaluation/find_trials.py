@@ -24,6 +24,7 @@ from wall_follower.nodes.shared.course_monitor import CourseMonitor
 from wall_follower.nodes.shared.messages import pose_message
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.shutdown import quiet_on_shutdown, raise_if_shut_down
+from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.evaluation.find_trials import TABLE
 from wall_follower.sim.stage_interface import world_path
 from wall_follower.sim.worldfile import WorldFileError
@@ -121,7 +122,7 @@ def is_pose(start):
 
 @quiet_on_shutdown
 def main():
-    rospy.init_node('find_trials')
+    init_node('find_trials')
     values = NodeParameters(TABLE).snapshot()
     world, output = values['world'], values['json']
     starts = values['poses'].get(world)

@@ -25,6 +25,7 @@ from wall_follower.mapping.mapfile import map_problem, save_map
 from wall_follower.msg import OdomRecordActionResult
 from wall_follower.nodes.shared.messages import yaw_of
 from wall_follower.nodes.shared.parameters import NodeParameters
+from wall_follower.nodes.shared.startup import init_node
 from wall_follower.params.mapping.map_saver import TABLE
 
 
@@ -77,7 +78,7 @@ class MapSaver(object):
 
 
 def main():
-    rospy.init_node('map_saver')
+    init_node('map_saver')
     values = NodeParameters(TABLE).snapshot()
     parser = argparse.ArgumentParser(prog='map_saver', description=__doc__.splitlines()[0])
     parser.add_argument('-f', dest='name', default=values['file'],
