@@ -311,9 +311,7 @@ def main():
         return grader_failed(params, NO_SIMULATOR)
     call_simulator('unpause_physics', wait=SERVICE_WAIT)
     start = rospy.get_time()
-    while monitor.pose is None:
-        raise_if_shut_down()
-        time.sleep(0.01)
+    poll_until(lambda: monitor.pose is not None, math.inf, period=0.01)
     start_pose = monitor.pose
     seen = SolutionSeen()
     calls = FindWallWatch(monitor)

@@ -2,12 +2,12 @@
 import os
 import sys
 import threading
-import time
 
 import rosgraph
 import rospy
 
 from wall_follower.nodes.shared import signals
+from wall_follower.nodes.shared.shutdown import poll_until
 
 # Wall seconds between two tries to reach a master that does not answer.
 MASTER_RETRY = 1.0
@@ -38,9 +38,7 @@ def _wait_for_master(name, caught):
             sys.stderr.write('%s: waiting for the ROS master at %s\n'
                              % (name, rosgraph.get_master_uri()))
             said = True
-        deadline = time.monotonic() + MASTER_RETRY
-        while not caught and time.monotonic() < deadline:
-            time.sleep(SIGNAL_POLL)
+        poll_until(lambda: caught, MASTER_RETRY, SIGNAL_POLL)
     return False
 
 
@@ -68,14 +66,12 @@ def init_node(name):
     at once.
     """
     caught = []
-    started = []   # rospy.init_node has been called: only rospy's shutdown ends the node now
     wake_read, wake_write = os.pipe()
     os.set_blocking(wake_write, False)   # a pipe full of signals already holds a wake-up
 
     def shut_down():
         number = os.read(wake_read, 1)[0]
-        if started:
-            rospy.signal_shutdown('signal %d' % number)
+        rospy.signal_shutdown('signal %d' % number)
 
     def on_signal(number):
         caught.append(number)
@@ -84,11 +80,11 @@ def init_node(name):
         except BlockingIOError:
             pass
 
-    threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
     signals.answer_with(on_signal)
     if not _wait_for_master(name, caught):
         raise SystemExit(0)
-    started.append(True)
+    # Only now: a signal while no rospy runs has nothing of it to shut down.
+    threading.Thread(target=shut_down, name='shutdown', daemon=True).start()
     try:
         rospy.init_node(name, disable_signals=True)
     except rospy.ROSInitException:
