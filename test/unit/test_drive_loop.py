@@ -48,6 +48,8 @@ DEAD = Msg([0.0] * 360)
 BLIND_AHEAD = Msg([0.0] * 31 + [1.0] * 299 + [0.0] * 30)
 # Beam 0 ahead: the sector within 30 deg ahead is beams 330..359 and 0..30 (61 beams).
 ONE_BEAM_AHEAD = Msg([1.0] + [0.0] * 30 + [1.0] * 299 + [0.0] * 30)
+# Beams 150..210: the sector within 30 deg behind.
+BLIND_BEHIND = Msg([1.0] * 150 + [0.0] * 61 + [1.0] * 149)
 DROPOUTS_AHEAD = Msg([1.0 if i % 4 else 0.0 for i in range(360)])
 
 
@@ -152,6 +154,14 @@ def test_backwards_motion_is_not_held_back_by_a_blind_sector_ahead():
     outcome, sent, _ = run([(0.1, BLIND_AHEAD)], until=0.5,
                            answer=lambda view, taken: Command(-0.1, 0.0))
     assert any(c == Command(-0.1, 0.0) for t, c in sent)
+
+
+def test_backwards_motion_into_a_blind_sector_behind_keeps_only_its_turn():
+    outcome, sent, _ = run([(0.1, BLIND_BEHIND)], until=0.5,
+                           answer=lambda view, taken: Command(-0.1, 0.2))
+    answered = [c for t, c in sent if c != STOP]
+    assert answered and all(c == Command(0.0, 0.2) for c in answered)
+    assert Clock.warnings == ['no valid reading within 30 deg behind; not driving backward']
 
 
 def blind_run(script, until, answer=lambda view, taken: Command(0.1, 0.2)):

@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
+from laser_conventions import CONVENTIONS, STAGE, Convention, box, cast, scan_view
 from wall_follower.control.course import finder
 from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
@@ -302,6 +302,18 @@ def test_aligned_beside_a_walls_end_it_slides_along_the_wall_until_it_fills_the_
     distance, heading = right_wall_error((-3.0, -0.5, 3.0, 3.0), end)
     assert distance == pytest.approx(WALL_DISTANCE, abs=0.015)
     assert abs(heading) <= defaults(FINDER)['heading_tolerance']
+
+
+def test_a_slide_backward_is_not_begun_where_the_laser_has_no_beams_behind():
+    # A 270-degree laser (a Hokuyo's) sees nothing within 45 degrees of straight
+    # behind. The wall ends 0.05 m ahead of the point below the robot's centre:
+    # the slide would back up along it, blind. It straightens up where it is.
+    hokuyo = Convention('hokuyo270', -0.75 * math.pi, 1081, 1.5 * math.pi / 1080, 0.1, 30.0,
+                        math.inf)
+    world = [((-3.0, -0.5), (0.05, -0.5))]
+    walker, _, commands, _, _ = drive(world, (0.0, 0.0, -math.pi / 2), hokuyo)
+    assert walker.success, walker.failure_reason
+    assert min(command.linear for command in commands) >= 0.0
 
 
 def test_a_wall_too_short_to_fill_the_right_ends_the_slide_where_it_is_short_both_sides():

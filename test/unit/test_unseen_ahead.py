@@ -43,10 +43,26 @@ def test_a_command_that_turns_faster_than_the_blind_turn_turns_in_place_at_its_o
     assert held_back(Command(0.19, 0.29), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
 
 
-@pytest.mark.parametrize('command', [Command(0.0, 0.4), Command(-0.1, 0.0)])
-def test_a_command_that_does_not_drive_forward_goes_as_it_is(command):
+def test_a_turn_in_place_goes_as_it_is():
     turn = BlindTurn(-0.3)
-    assert held_back(command, UNSEEN, turn, 0.0) == command
+    assert held_back(Command(0.0, 0.4), UNSEEN, turn, 0.0) == Command(0.0, 0.4)
+    assert turn.turned(5.0) == 0.0
+
+
+def test_the_way_behind_is_judged_on_the_beams_behind():
+    # Beams 150..210 lie within 30 deg behind.
+    blind_behind = [1.0] * 150 + [0.0] * 61 + [1.0] * 149
+    assert unseen_ahead(view(blind_behind), math.radians(30.0), 0.1) is None
+    assert unseen_ahead(view(blind_behind), math.radians(30.0), 0.1, backward=True) == (
+        'no valid reading within 30 deg behind')
+    assert unseen_ahead(view([1.0] * 360), math.radians(30.0), 0.1, backward=True) is None
+
+
+def test_backward_motion_into_the_unseen_keeps_only_its_turn_and_never_starts_a_blind_turn():
+    turn = BlindTurn(-0.3)
+    behind = 'no valid reading within 30 deg behind'
+    assert held_back(Command(-0.05, 0.1), behind, turn, 0.0) == Command(0.0, 0.1)
+    assert held_back(Command(-0.05, 0.1), None, turn, 0.0) == Command(-0.05, 0.1)
     assert turn.turned(5.0) == 0.0
 
 

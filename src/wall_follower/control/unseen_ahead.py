@@ -1,5 +1,5 @@
-"""Forward motion held back while the laser does not show the way ahead, and the turn that
-looks for it.
+"""Motion held back while the laser does not show the way it goes, and the turn that looks
+for the way ahead.
 
 A laser's scan shows the way ahead when enough of the beams within a sector
 either side of straight ahead read a hit or a proven no-return; a dropout
@@ -9,6 +9,9 @@ that sees nothing ahead, and a node that only asked to go straight would
 stand there for good. A wall follower knows which side its wall is on: a
 BlindTurn turns it in place toward that side, where the wall is near, until
 the way ahead comes into view, and stops it if half a turn has not shown it.
+Backward motion (find_wall's slide, a teleop user's reverse) is held by the
+same rule on the sector behind, with no turn: nothing drives backward for
+want of a view.
 """
 import math
 
@@ -20,34 +23,38 @@ half a turn toward the followed wall has pointed the sector ahead at that wall, 
 that still shows nothing there is blind, not facing open space."""
 
 
-def unseen_ahead(view, half_width, min_known):
-    """Why a ScanView does not show the way ahead well enough to drive into; None if it does.
+def unseen_ahead(view, half_width, min_known, backward=False):
+    """Why a ScanView does not show the way ahead (behind, when backward) well enough to
+    drive into; None if it does.
 
-    half_width: rad either side of straight ahead; min_known: the share of the beams there
-    that must read a hit or a proven no-return.
+    half_width: rad either side of straight ahead (behind); min_known: the share of the
+    beams there that must read a hit or a proven no-return.
     """
-    known, beams = view.known_share_in_sector(0.0, half_width)
-    degrees = math.degrees(half_width)
+    known, beams = view.known_share_in_sector(math.pi if backward else 0.0, half_width)
+    where = '%.0f deg %s' % (math.degrees(half_width), 'behind' if backward else 'ahead')
     if known == 0:
-        return 'no valid reading within %.0f deg ahead' % degrees
+        return 'no valid reading within %s' % where
     if known < min_known * beams:
-        return ('only %d of the %d beams within %.0f deg ahead read valid (%.0f%% needed)'
-                % (known, beams, degrees, 100.0 * min_known))
+        return ('only %d of the %d beams within %s read valid (%.0f%% needed)'
+                % (known, beams, where, 100.0 * min_known))
     return None
 
 
 def held_back(command, problem, blind_turn, now):
-    """What a loop sends for command when the way ahead is as problem says (unseen_ahead's
-    answer; None: in view), at ROS time now.
+    """What a loop sends for command when the way it drives is as problem says (unseen_ahead's
+    answer for that way; None: in view), at ROS time now.
 
-    A command that does not drive forward goes as it is. Forward motion into an unseen way
+    A command that turns in place goes as it is; backward motion into an unseen way goes
+    without its backward part. Forward motion into an unseen way
     goes without its forward part: the command's own turn, in place, or, with a BlindTurn,
     that turn while the command turns slower (its_own_turn): a node that only asked to go
     on would stand for good, one that turns knows where it is going (a left turn onto a
     dark wall ahead, which an LDS-01 reads as 0.0, goes on in place). A way in view ends
     the turn under way.
     """
-    if command.linear <= 0.0:
+    if command.linear < 0.0:
+        return command if problem is None else Command(0.0, command.angular)
+    if command.linear == 0.0:
         return command
     if problem is None:
         if blind_turn is not None:

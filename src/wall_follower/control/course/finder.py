@@ -28,8 +28,10 @@ from wall_follower.control.motion import STOP, Command
 from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.control.sensing.walls import (
     closest_match, extract_walls, nearest_seen_point, path_is_clear, path_to_is_clear, refine)
+from wall_follower.control.unseen_ahead import unseen_ahead
 from wall_follower.params import checked
 from wall_follower.params.course.wall_finder import FINDER
+from wall_follower.params.driving import AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN
 from wall_follower.rotation import wrap_angle
 
 CHOOSE_WALL = 'CHOOSE_WALL'
@@ -254,14 +256,17 @@ class WallFinder(object):
         """Along the wall, away from the side of the right where it does not read, until it
         reads all round the right, it does not read on either side, or something lies within
         corridor_half_width of the way, up to twice that ahead of the rotation centre; then
-        straighten up once more."""
+        straighten up once more. A way the scan does not show (as the drive loop judges it
+        by default: a laser with no beams behind, say) is no way to slide: the loop would
+        hold the robot there for good."""
         if not tracked and not self._track(view):
             return self._on_lost()
         p = self.params
         direction = self._slide_direction(view)
         way = (-p['laser_x'] + direction * 2.0 * p['corridor_half_width'], 0.0)
-        if not direction or not path_to_is_clear(view, way, p['corridor_half_width'], margin=0.0,
-                                                 origin=self._centre):
+        if not direction or unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN,
+                                         backward=direction < 0) or not path_to_is_clear(
+                view, way, p['corridor_half_width'], margin=0.0, origin=self._centre):
             return self._start_align(view)
         return Command(direction * p['slide_speed'], self._turn(self._heading_error(RIGHT)))
 
@@ -274,11 +279,9 @@ class WallFinder(object):
         WALL_GATE off the wall's line: past the wall's end, the wall beyond
         it or nothing at all.
         """
-        sector = view.in_sector(RIGHT, self.params['right_sector'])
-        angles, ranges = view.angles[sector], view.ranges[sector]
+        angles, points, valid = view.beams(RIGHT, self.params['right_sector'])
         with np.errstate(invalid='ignore'):
-            points = np.column_stack((ranges * np.cos(angles), ranges * np.sin(angles)))
-            reads = view.valid[sector] & (np.abs(self.wall.line.offsets(points)) <= WALL_GATE)
+            reads = valid & (np.abs(self.wall.line.offsets(points)) <= WALL_GATE)
         behind = np.count_nonzero(~reads & (angles < RIGHT)) > STRAY_BEAMS
         ahead = np.count_nonzero(~reads & (angles > RIGHT)) > STRAY_BEAMS
         return float(behind) - float(ahead)

@@ -64,6 +64,15 @@ class ScanView(object):
 
     def points(self, center=0.0, half_width=math.pi):
         """Valid hits in a sector as an (N, 2) array of x, y in the laser frame."""
-        mask = self.in_sector(center, half_width) & self.valid
-        r, a = self.ranges[mask], self.angles[mask]
-        return np.column_stack((r * np.cos(a), r * np.sin(a)))
+        _, points, valid = self.beams(center, half_width)
+        return points[valid]
+
+    def beams(self, center, half_width):
+        """Every beam in a sector, for a check that counts the beams that miss as well as
+        those that hit: (angles (N,), points (N, 2) x, y in the laser frame, valid (N,)).
+        An invalid beam's point is wherever its reading puts it, or NaN."""
+        sector = self.in_sector(center, half_width)
+        r, a = self.ranges[sector], self.angles[sector]
+        with np.errstate(invalid='ignore'):
+            points = np.column_stack((r * np.cos(a), r * np.sin(a)))
+        return a, points, self.valid[sector]

@@ -14,7 +14,9 @@ knows the way ahead; a laser's command is held back while fewer than
 are valid readings (a hit or a proven no-return): a laser that sees
 nothing there, or a beam or two of the sector, may be blind, not looking
 at free space; with a `blind_turn`, the robot turns in place instead, to
-bring the way ahead into view (control.unseen_ahead.BlindTurn). A clock
+bring the way ahead into view (control.unseen_ahead.BlindTurn). Nor does a
+laser's command drive backward into a sector behind that it does not show
+by the same rule; it turns in place instead. A clock
 that jumps back (a simulator restarted, a bag looped) drops the reading
 held and lets the node reset what it timed on the old clock.
 
@@ -181,23 +183,35 @@ class DriveLoop(object):
         return due + self.tick if now < due + self.tick else now + self.tick
 
     def _safe(self, answered, view, now):
-        """The Command of answered (a Command or an Answer), with no forward motion into a
-        sector ahead that the sensor does not show."""
+        """The Command of answered (a Command or an Answer), with no motion into a sector
+        ahead, or behind, that the sensor does not show."""
         command, known = answered if isinstance(answered, Answer) else (answered, None)
-        problem = self._unseen_ahead(view, known) if command.linear > 0.0 else None
+        problem = self._unseen_way(view, known, command.linear)
         safe = held_back(command, problem, self._blind_turn, now)
         if problem is not None:
             self._warn(problem + self._holding(command, safe, now), now)
         return safe
 
     def _holding(self, command, safe, now):
-        """What the loop does for want of a view ahead, as its warning ends."""
+        """What the loop does for want of a view of its way, as its warning ends."""
+        if command.linear < 0.0:
+            return '; not driving backward'
         if its_own_turn(command, self._blind_turn):
             return '; not driving forward'
         if safe == STOP:
             return (' after turning %.0f deg to look for it; stopped'
                     % math.degrees(self._blind_turn.turned(now)))
         return '; turning in place to look for the way'
+
+    def _unseen_way(self, view, known, linear):
+        """Why the way linear [m/s] drives is not known well enough to drive into; None if
+        it is, or if the command does not drive. Backward, only a laser's beams can tell:
+        an Answer's word is about the way ahead."""
+        if linear > 0.0:
+            return self._unseen_ahead(view, known)
+        if linear < 0.0 and self.ahead_min_known is not None:
+            return unseen_ahead(view, self.ahead_half_width, self.ahead_min_known, backward=True)
+        return None
 
     def _unseen_ahead(self, view, known):
         """Why the way ahead is not known well enough to drive into (known: the Answer's
