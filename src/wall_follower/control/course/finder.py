@@ -256,19 +256,30 @@ class WallFinder(object):
         """Along the wall, away from the side of the right where it does not read, until it
         reads all round the right, it does not read on either side, or something lies within
         corridor_half_width of the way, up to twice that ahead of the rotation centre; then
-        straighten up once more. A way the scan does not show (as the drive loop judges it
-        by default: a laser with no beams behind, say) is no way to slide: the loop would
-        hold the robot there for good."""
+        straighten up once more."""
         if not tracked and not self._track(view):
             return self._on_lost()
-        p = self.params
         direction = self._slide_direction(view)
-        way = (-p['laser_x'] + direction * 2.0 * p['corridor_half_width'], 0.0)
-        if not direction or unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN,
-                                         backward=direction < 0) or not path_to_is_clear(
-                view, way, p['corridor_half_width'], margin=0.0, origin=self._centre):
+        if not direction or not self._way_open(view, direction):
             return self._start_align(view)
+        p = self.params
         return Command(direction * p['slide_speed'], self._turn(self._heading_error(RIGHT)))
+
+    def _way_open(self, view, direction):
+        """True when the scan shows the way of a slide in direction (+1 forward, -1 back) and
+        nothing lies within corridor_half_width of it, up to twice that from the rotation
+        centre.
+
+        Shows it as the drive loop judges it by default: a way it does not
+        show (a laser with no beams behind, say) the loop would hold the robot
+        from for good.
+        """
+        if unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN, backward=direction < 0):
+            return False
+        p = self.params
+        way = (-p['laser_x'] + direction * 2.0 * p['corridor_half_width'], 0.0)
+        return path_to_is_clear(view, way, p['corridor_half_width'], margin=0.0,
+                                origin=self._centre)
 
     def _slide_direction(self, view):
         """+1 (forward) where the chosen wall does not read on the beams behind the right,
