@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from laser_conventions import CONVENTIONS, STAGE, Convention, box, cast, scan_view
+from laser_conventions import CONVENTIONS, LDS01, STAGE, Convention, box, cast, scan_view
 from wall_follower.control.course import finder
 from wall_follower.control.course.finder import WallFinder
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, STOP, clamp
@@ -314,6 +314,21 @@ def test_a_slide_backward_is_not_begun_where_the_laser_has_no_beams_behind():
     walker, _, commands, _, _ = drive(world, (0.0, 0.0, -math.pi / 2), hokuyo)
     assert walker.success, walker.failure_reason
     assert min(command.linear for command in commands) >= 0.0
+
+
+@pytest.mark.parametrize('min_known', [None, 0.5], ids=['default', 'tuned'])
+def test_a_slide_judges_the_way_behind_by_the_loops_ahead_min_known(min_known):
+    # An LDS-01 reads 0.0 where nothing is within its reach: of the beams within
+    # ahead_half_width (30 degrees) of straight behind, only those that reach the
+    # wall on the right read, about 40 %. That shows the way by default, and the
+    # slide backs up; a node tuned to ahead_min_known 0.5 holds its loop there,
+    # and the slide, judging by the same value, does not begin.
+    world = [((-3.0, -0.5), (0.05, -0.5))]
+    tuned = {} if min_known is None else {'ahead_min_known': min_known}
+    walker, _, commands, _, _ = drive(world, (0.0, 0.0, -math.pi / 2), LDS01, **tuned)
+    assert walker.success, walker.failure_reason
+    backed_up = min(command.linear for command in commands) < 0.0
+    assert backed_up == (min_known is None)
 
 
 def test_a_wall_too_short_to_fill_the_right_ends_the_slide_where_it_is_short_both_sides():

@@ -251,20 +251,23 @@ def test_a_driving_node_declares_the_loop_and_the_clamp_through_params_driving(n
     """One declaration of the loop's and the clamp's parameters: only the input timeout's
     default (and a laser node's scan_timeout's meaning) and blind_turn's default, where a node
     has one, may differ from node to node; a node that drives by its camera has image_timeout
-    instead, and no share of beams."""
+    instead, and no share of beams. A node whose behaviour judges its own way by the loop's
+    rule (wall_finder) declares that rule as the shared section of its own."""
     table = NODES[node][0]
     sections = dict((section.name, section) for section in table)
     assert sections['limits'] is driving.LIMITS
+    assert sections.get('view_ahead', driving.AHEAD) is driving.AHEAD
     declared = dict((p.name, p) for p in sections['drive_loop'].parameters)
     if 'image_timeout' in declared:
         expected = driving.camera_loop(declared['image_timeout'].default)
     else:
         blind_turn = declared['blind_turn'].default if 'blind_turn' in declared else None
         expected = driving.loop(declared['scan_timeout'].default,
-                                declared['scan_timeout'].description, blind_turn)
+                                declared['scan_timeout'].description, blind_turn,
+                                ahead='view_ahead' not in sections)
     assert sections['drive_loop'] == expected
     loops = (driving.loop(1.0, blind_turn=0.0), driving.camera_loop(1.0), driving.LIMITS)
     shared = set(p.name for p in parameters(loops))
     elsewhere = [p.name for section in table for p in section.parameters
-                 if section.name not in ('drive_loop', 'limits')]
+                 if section.name not in ('drive_loop', 'limits', 'view_ahead')]
     assert not shared & set(elsewhere)

@@ -42,7 +42,21 @@ LASER_INPUT = LoopInput('scan_timeout', 'ahead_min_known')
 CAMERA_INPUT = LoopInput('image_timeout', None)
 
 
-def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None):
+AHEAD = Section('view_ahead', (
+    P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward (backward) while too few beams '
+      'within this angle either side of straight ahead (behind) read a hit or a proven '
+      'no-return [rad]', 0.0, math.pi),
+    P(LASER_INPUT.min_known, AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width that '
+      'must read a hit or a proven no-return for the robot to drive that way (0: one beam will '
+      'do); low enough for an LDS-01 that drops beams or sees nothing beyond its reach there',
+      0.0, 1.0),
+))
+"""How much of the way a laser must show for the robot to drive into it: the drive loop's rule
+(nodes/shared/drive_loop.py), which a behaviour that checks its own way (WallFinder's slide)
+takes as its table's section, so that the two never disagree."""
+
+
+def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None, ahead=True):
     """The Section of the DriveLoop's parameters (nodes/shared/drive_loop.py) of a node that reads
     the laser.
 
@@ -50,7 +64,8 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None):
     scan_timeout_meaning what the node does when a scan is that old. blind_turn: the default
     of ~blind_turn [rad/s, positive left], for a node that knows which way to turn to bring
     the way ahead into view (a wall follower: toward its wall); None declares no such
-    parameter, and the node turns as its command says.
+    parameter, and the node turns as its command says. ahead: include the AHEAD section's
+    parameters; False for a node whose behaviour's table declares them.
     """
     blind = () if blind_turn is None else (
         P('blind_turn', blind_turn, 'while too few beams ahead read valid to drive forward '
@@ -61,14 +76,7 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None):
     return Section('drive_loop', (
         RATE, KEEPALIVE,
         P(LASER_INPUT.timeout, scan_timeout, scan_timeout_meaning, 0.05, 10.0),
-        P('ahead_half_width', AHEAD_HALF_WIDTH, 'never drive forward while too few beams within '
-          'this angle either side of straight ahead read a hit or a proven no-return [rad]',
-          0.0, math.pi),
-        P(LASER_INPUT.min_known, AHEAD_MIN_KNOWN, 'share of the beams within ~ahead_half_width '
-          'that must read a hit or a proven no-return for the robot to drive forward (0: one '
-          'beam will do); low enough for an LDS-01 that drops beams or sees nothing beyond its '
-          'reach there', 0.0, 1.0),
-    ) + blind)
+    ) + (AHEAD.parameters if ahead else ()) + blind)
 
 
 def camera_loop(image_timeout):

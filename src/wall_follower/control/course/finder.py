@@ -31,7 +31,6 @@ from wall_follower.control.sensing.walls import (
 from wall_follower.control.unseen_ahead import unseen_ahead
 from wall_follower.params import checked
 from wall_follower.params.course.wall_finder import FINDER
-from wall_follower.params.driving import AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN
 from wall_follower.rotation import wrap_angle
 
 CHOOSE_WALL = 'CHOOSE_WALL'
@@ -270,13 +269,14 @@ class WallFinder(object):
         nothing lies within corridor_half_width of it, up to twice that from the rotation
         centre.
 
-        Shows it as the drive loop judges it by default: a way it does not
-        show (a laser with no beams behind, say) the loop would hold the robot
-        from for good.
+        Shows it as the drive loop judges it, by the same ahead_half_width and
+        ahead_min_known: a way it does not show (a laser with no beams behind,
+        say) the loop would hold the robot from for good.
         """
-        if unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN, backward=direction < 0):
-            return False
         p = self.params
+        if unseen_ahead(view, p['ahead_half_width'], p['ahead_min_known'],
+                        backward=direction < 0):
+            return False
         way = (-p['laser_x'] + direction * 2.0 * p['corridor_half_width'], 0.0)
         return path_to_is_clear(view, way, p['corridor_half_width'], margin=0.0,
                                 origin=self._centre)

@@ -10,7 +10,7 @@ NODE = (
     )),
     driving.loop(scan_timeout=1.0, scan_timeout_meaning='a call answers false when no scan '
                  'younger than this is available this long after it started, or at any point '
-                 'later on [s]'),
+                 'later on [s]', ahead=False),
 )
 """The node's own parameters (wall_follower.nodes.course.wall_finder)."""
 
@@ -21,6 +21,7 @@ FINDER = (
           'the laser at wall_distance', -0.3, 0.3),
     )),
     driving.LIMITS,
+    driving.AHEAD,
     Section('behaviour', (
         P('wall_distance', 0.28, 'final distance from the laser to the wall on the right [m]; '
           'the course asks for 0.3 m, which is the edge of the following band (0.2-0.3 m): '
@@ -63,6 +64,6 @@ FINDER = (
     )),
 )
 """The finder's parameters (wall_follower.control.course.finder.WallFinder); its speed limits are
-the clamp's."""
+the clamp's, and its rule for a way the laser shows is the drive loop's."""
 
 TABLE = NODE + FINDER
