@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
 """A test relay: forwards scan to gated_scan while open; ~set_open (std_srvs/SetBool) opens and
-closes it, answering with the ROS time of the last scan it forwarded. On opening it reads
-~stamp (s, default 0): other than 0, every scan it forwards carries that stamp for its own."""
+closes it, answering with the time the last scan it forwarded was taken (its stamp as it came).
+On opening it reads ~stamp (s, default 0): other than 0, every scan it forwards carries that
+stamp for its own.
+
+The stamp, not this node's clock at forwarding: on a busy machine its /clock comes in on
+another connection than the scans, and lags the scan it forwards by up to a few world steps,
+which would date the last scan early and have a check wait for a stop that soon."""
 import threading
 
 import rospy
@@ -23,10 +28,11 @@ class ScanGate(object):
     def on_scan(self, msg):
         with self.lock:
             if self.open:
+                taken = msg.header.stamp.to_sec()
                 if self.stamp is not None:
                     msg.header.stamp = self.stamp
                 self.publisher.publish(msg)
-                self.last_forwarded = rospy.get_time()
+                self.last_forwarded = taken
 
     def set_open(self, request):
         with self.lock:
