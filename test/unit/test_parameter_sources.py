@@ -12,6 +12,7 @@ import glob
 import importlib
 import logging
 import os
+import pickle
 import re
 
 import pytest
@@ -230,6 +231,15 @@ def test_the_readme_tables_show_the_defaults():
             for name, text in zip(names, texts):
                 assert name in declared, '%s has no ~%s: %s' % (node, name, line)
                 assert readme_value_matches(text, declared[name]), line
+
+
+def test_a_refusal_reads_the_same_after_crossing_to_another_process():
+    with pytest.raises(ParameterError) as refused:
+        checked(wall_following.TABLE, {'target_distance': 'far', 'target_distanse': 0.3})
+    crossed = pickle.loads(pickle.dumps(refused.value))
+    assert crossed.problems == refused.value.problems
+    assert str(crossed) == str(refused.value)
+    assert 'unknown parameter target_distanse' in str(crossed)
 
 
 def test_a_wrong_type_or_a_misspelling_is_refused_by_name():

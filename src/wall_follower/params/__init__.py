@@ -121,6 +121,16 @@ class ParameterError(ValueError):
         ValueError.__init__(self, '; '.join(problems))
         self.problems = list(problems)
 
+    def __reduce__(self):
+        """Rebuilt from the problems, not from the joined message.
+
+        An error sent to another process (multiprocessing, a pool of
+        workers) is pickled, and by default rebuilt from its args: the
+        joined message taken for the list of problems reads one letter per
+        problem.
+        """
+        return ParameterError, (self.problems,)
+
 
 def parameters(table):
     """Every Parameter of a table, in order."""
