@@ -86,13 +86,43 @@ def test_with_the_gap_it_plans_the_turn_flies_the_planned_arc():
         assert turn.radius_within(turn.gap(angle), angle) == turn.arc_radius(angle)
 
 
-def test_a_long_gap_widens_the_rest_of_the_turn_up_to_the_wide_arc():
-    # Begun early, the turn still ends where planned, as far as cruise speed allows.
+def test_a_long_gap_is_spent_on_the_wide_end_not_on_a_wider_tight_arc():
+    # Begun early, the tight arc is flown as planned, and the wide end
+    # begins as soon as a wide arc from here ends the turn where planned.
     angle = math.radians(60.0)
-    turn = plan()
-    assert turn.radius_within(1.2 * turn.gap(angle), angle) == pytest.approx(1.2 * TIGHT)
+    turn = plan(wide_end=WIDE_END)
+    assert turn.radius_within(1.2 * turn.gap(angle), angle) == TIGHT
+    assert turn.radius_within(WIDE * (1.0 - math.cos(angle)), angle) == WIDE
     assert turn.radius_within(3.0 * turn.gap(angle), angle) == WIDE
+    # The wide start was at its widest already.
     assert turn.radius_within(1.2 * turn.gap(math.radians(85.0)), math.radians(85.0)) == WIDE
+    # Planned without a wide end, the tight arc widens to end where planned.
+    assert plan().radius_within(1.2 * plan().gap(angle), angle) == pytest.approx(1.2 * TIGHT)
+
+
+def fly(turn, gap, angle, step=math.radians(0.1)):
+    """Fly a turn as radius_within commands it: (gap left at its end, farthest off the old wall
+    at 45 degrees still to turn)."""
+    off_old_wall = 0.0
+    while angle > 0.0:
+        radius = turn.radius_within(gap, angle)
+        gap -= radius * (math.cos(angle - step) - math.cos(angle))
+        if angle > math.pi / 4:
+            off_old_wall += radius * (math.sin(angle) - math.sin(angle - step))
+        angle -= step
+    return gap, off_old_wall
+
+
+@pytest.mark.parametrize('early', [0.005, 0.015, 0.03])
+def test_an_early_turn_ends_where_planned_and_passes_the_corner_as_planned(early):
+    turn = plan(wide_end=WIDE_END)
+    start = math.radians(70.0)
+    planned_gap, planned_off = fly(turn, turn.gap(start), start)
+    gap, off = fly(turn, turn.gap(start) + early, start)
+    assert abs(gap) < 2e-3
+    # Scaling the tight arc up instead would swing the robot farther off the
+    # wall it leaves by the corner.
+    assert off == pytest.approx(planned_off, abs=1e-3)
 
 
 def test_a_short_gap_shrinks_the_rest_of_the_turn_in_proportion():

@@ -15,9 +15,10 @@ radius.
 A turn is planned by the angle still to turn, which is the angle of the
 wall ahead: that is what each scan measures again. gap(angle) is how much
 nearer to the wall ahead the rest of the turn carries the robot, so the
-turn starts where the gap left equals it, and a gap that has run short or
-long (a late or early start, a wall seen late) scales every arc of the rest
-of the turn in proportion, which keeps its shape and where it ends.
+turn starts where the gap left equals it. A gap that has run short (a late
+start, a wall seen late) scales every arc of the rest of the turn down in
+proportion, which keeps its shape and where it ends; one that has run long
+(an early start) brings the wide end forward (radius_within).
 """
 import math
 
@@ -84,10 +85,21 @@ class LeftTurn(object):
     def radius_within(self, gap, angle):
         """Radius to fly now, with angle still to turn and gap left to the turn's end.
 
-        The planned radius, scaled by how much longer or shorter the gap is
-        than the plan needs, so that the turn still ends where planned; but
-        never wider than wide_radius, which cruise speed allows.
+        A gap shorter than the plan needs (a late start) scales the planned
+        radius down in proportion, so that the turn still ends where planned.
+        A longer one (an early start) is spent on the wide end instead: the
+        tight arc goes on until a wide arc from here would end the turn
+        where planned. A wider tight arc would spend it where the robot
+        passes the corner, swinging it farther off the wall it leaves, and
+        an arc turning from angle a covers r * sin a of the gap per radian,
+        so the last degrees carry the robot farthest on along the new wall
+        for the same room. A turn planned without a wide end scales its
+        tight arc up instead. Never wider than wide_radius, which cruise
+        speed allows.
         """
         needed = self.gap(angle)
+        if gap > needed and self._tight_to > 0.0 and self.arc_radius(angle) == self.radius:
+            wide_from_here = self.wide_radius * (1.0 - math.cos(min(max(angle, 0.0), math.pi)))
+            return self.wide_radius if gap >= wide_from_here else self.radius
         scale = max(0.0, gap) / needed if needed > 0.0 else 1.0
         return min(self.wide_radius, self.arc_radius(angle) * scale)

@@ -104,8 +104,8 @@ FOLLOWER = (
           'drift of the wide start less wide_allowance [m]', 0.0, 5.0),
         P('inner_corner_distance', 0.22, 'distance of the rotation centre from the wall ahead '
           'at which the left turn ends [m]', 0.05, 1.0),
-        P('turn_lead', 0.015, 'start the left turn this much early, for the scan and command '
-          'delay [m]', -0.5, 0.5),
+        P('turn_lead', 0.02, 'start the left turn this much early, for the scan and command '
+          'delay; what the turn then has to spare, its wide end flies [m]', -0.5, 0.5),
         P('settle_time', 3.0, 'after the left turn (which lands nearer than target_distance on '
           'purpose), raise the distance gain for this long [s] ...', 0.0, 60.0),
         P('settle_gain', 1.5, '... by this factor, to come back out to target_distance sooner',
