@@ -129,7 +129,7 @@ class ParameterError(ValueError):
         joined message taken for the list of problems reads one letter per
         problem.
         """
-        return ParameterError, (self.problems,)
+        return type(self), (self.problems,)
 
 
 def parameters(table):
