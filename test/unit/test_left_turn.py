@@ -117,7 +117,7 @@ def fly(turn, gap, angle, step=math.radians(0.1)):
 def test_an_early_turn_ends_where_planned_and_passes_the_corner_as_planned(early):
     turn = plan(wide_end=WIDE_END)
     start = math.radians(70.0)
-    planned_gap, planned_off = fly(turn, turn.gap(start), start)
+    _, planned_off = fly(turn, turn.gap(start), start)
     gap, off = fly(turn, turn.gap(start) + early, start)
     assert abs(gap) < 2e-3
     # Scaling the tight arc up instead would swing the robot farther off the

@@ -52,7 +52,11 @@ class LeftTurn(object):
 
     def arc_radius(self, angle):
         """Radius planned with angle (rad) still to turn."""
-        return self.radius if self._tight_to < angle <= self._tight_from else self.wide_radius
+        return self.radius if self._on_tight_arc(angle) else self.wide_radius
+
+    def _on_tight_arc(self, angle):
+        """True when the plan flies the tight arc with angle (rad) still to turn."""
+        return self._tight_to < angle <= self._tight_from
 
     def gap(self, angle):
         """How much nearer to the wall the turn from angle to parallel carries the robot.
@@ -98,8 +102,8 @@ class LeftTurn(object):
         speed allows.
         """
         needed = self.gap(angle)
-        if gap > needed and self._tight_to > 0.0 and self.arc_radius(angle) == self.radius:
-            wide_from_here = self.wide_radius * (1.0 - math.cos(min(max(angle, 0.0), math.pi)))
+        if gap > needed and self._tight_to > 0.0 and self._on_tight_arc(angle):
+            wide_from_here = self.wide_radius * (1.0 - math.cos(angle))
             return self.wide_radius if gap >= wide_from_here else self.radius
         scale = max(0.0, gap) / needed if needed > 0.0 else 1.0
         return min(self.wide_radius, self.arc_radius(angle) * scale)
