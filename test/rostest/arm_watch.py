@@ -6,6 +6,7 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import JointState
 
+from driven_clock import STAMP_ROUNDING
 from waiting import wait_until
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.model import read_srdf, read_urdf
@@ -17,13 +18,19 @@ WALL_LIMIT = 30.0
 class ArmWatch(object):
     """joint_states as (stamp [s], positions, velocities) in the model's joint order."""
 
-    def __init__(self):
+    def __init__(self, wait=True):
+        """wait: return once the first joint_states has come (False: the caller first starts
+        what makes the arm publish them, then calls wait_for_first_state)."""
         self.model = read_urdf(rospy.get_param('robot_description'))
         self.semantics = read_srdf(rospy.get_param('robot_description_semantic'), self.model)
         self.checker = CollisionChecker(self.model, self.semantics.disabled)
         self._lock = threading.Lock()
         self.states = []
         rospy.Subscriber('joint_states', JointState, self._on_state, queue_size=1000)
+        if wait:
+            self.wait_for_first_state()
+
+    def wait_for_first_state(self):
         if not wait_until(lambda: self.states, WALL_LIMIT):
             raise AssertionError('no joint_states from the arm')
 
@@ -38,13 +45,18 @@ class ArmWatch(object):
         with self._lock:
             return self.states[-1]
 
+    def latest_stamp(self):
+        """The newest state's stamp [s]; None before the first."""
+        with self._lock:
+            return self.states[-1][0] if self.states else None
+
     def since(self, start, end=float('inf')):
         with self._lock:
             return [s for s in self.states if start <= s[0] <= end]
 
     def wait_for_time(self, time):
         """Wait until a joint state stamped at or after time [s] has come; False if none did."""
-        return wait_until(lambda: self.latest()[0] >= time, WALL_LIMIT)
+        return wait_until(lambda: self.latest()[0] >= time - STAMP_ROUNDING, WALL_LIMIT)
 
     def at(self, time):
         """The joint positions at time [s], interpolated between the states around it."""

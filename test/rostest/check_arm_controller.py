@@ -2,13 +2,15 @@
 """rostest: arm_controller follows trajectories on arm_controller/command as ros_control's
 JointTrajectoryController does.
 
-In simulated time, the controller driving /clock: a trajectory is followed (the joints
+In simulated time that the test drives (the controller's own /clock is move_arm.test's),
+held still while a trajectory stamped ahead is sent, until the controller has logged it: so
+it arrives before its stamp however loaded the machine. A trajectory is followed (the joints
 within 0.01 rad of each point at its time, with splines through points with velocities
 and straight lines through points without); a replacing trajectory takes over mid-way
 without a jump; every bad trajectory is rejected with a warning naming the problem and
 no motion (a single point due now among them, as JointTrajectoryController rejects it),
-one wholly in the past leaves the current one going on, and one stamped an hour ahead is
-named in the log and waits for its time. An empty trajectory (no joints named, as
+one wholly in the past leaves the current one going on, and one stamped an hour ahead waits
+for its time. An empty trajectory (no joints named, as
 JointTrajectoryController's own tests send it) stops the arm from where it actually is,
 braking within the acceleration limits to rest, and holds it there. No joint_states
 heard breaks a limit or puts a link into the floor or into another.
@@ -22,6 +24,7 @@ from rosgraph_msgs.msg import Log
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from arm_watch import ArmWatch
+from driven_clock import DrivenClock
 from rosout_log import RosoutLog
 from waiting import wait_until
 from wall_follower.arm.model import read_acceleration_limits
@@ -30,12 +33,11 @@ from wall_follower.params.arm.arm_controller import TABLE
 
 STEP = 1.0 / defaults(TABLE)['rate']    # s: the controller's step, as arm.launch runs it
 
+SPEEDUP = 2.0   # simulated seconds per wall second while the clock runs
+CONTROLLER = '/arm_controller'
 NAMES = ['hip', 'shoulder', 'elbow', 'wrist']
 TOLERANCE = 0.01   # rad
-# Simulated s between now and the stamp of a trajectory sent: time for it to arrive, even
-# from a test process held up on a loaded machine (a trajectory that came late would be
-# joined from where the arm then is, and might not meet its first point).
-LEAD = 0.5
+LEAD = 0.5   # simulated s between now and the stamp of a trajectory sent ahead
 
 
 def trajectory(stamp, points, names=NAMES):
@@ -56,16 +58,36 @@ class ArmControllerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node('check_arm_controller')
-        cls.log = RosoutLog('/arm_controller')
-        cls.watch = ArmWatch()
+        cls.log = RosoutLog(CONTROLLER)
+        cls.watch = ArmWatch(wait=False)
+        cls.clock = DrivenClock(STEP, SPEEDUP, cls.watch.latest_stamp)
+        cls.watch.wait_for_first_state()
         cls.command = rospy.Publisher('arm_controller/command', JointTrajectory, queue_size=10)
         if not wait_until(lambda: cls.command.get_num_connections() > 0, 30.0):
             raise AssertionError('arm_controller does not subscribe arm_controller/command')
 
-    def follow(self, msg, start):
-        """Publish msg, wait past its last point and check each point was met at its time."""
-        self.command.publish(msg)
+    def send_ahead(self, points, names=NAMES, lead=LEAD):
+        """Send a trajectory through points (as trajectory() takes them) stamped lead [s]
+        ahead of now, holding the clock until the controller has logged it; its stamp and
+        the message."""
+        words = 'is stamped %.3f s ahead' % lead
+        logged = len(self.log.lines(CONTROLLER, words, Log.INFO))
+        with self.clock.held() as now:
+            # the controller at the clock's time, so that its "ahead" is the lead
+            self.assertTrue(self.watch.wait_for_time(now), 'the arm\'s clock stopped')
+            msg = trajectory(now + lead, points, names)
+            self.command.publish(msg)
+            self.assertTrue(wait_until(
+                lambda: len(self.log.lines(CONTROLLER, words, Log.INFO)) > logged, 30.0),
+                'the controller never logged a trajectory that %s' % words)
+        return now + lead, msg
+
+    def follow(self, points, names=NAMES):
+        """Send a trajectory ahead, wait past its last point and check each point was met at
+        its time; its stamp."""
+        start, msg = self.send_ahead(points, names)
         self.assert_points_met(msg, start)
+        return start
 
     def assert_points_met(self, msg, start):
         """Wait past msg's last point and check each point was met at its time (start [s]:
@@ -81,36 +103,34 @@ class ArmControllerTest(unittest.TestCase):
                                 number, due, reached, wanted))
 
     def test_1_follows_a_trajectory_through_its_points_at_their_times(self):
-        start = self.watch.latest()[0] + LEAD
         # cubic: positions and velocities; joints named in another order than the URDF's
-        names = ['elbow', 'hip', 'wrist', 'shoulder']
-        self.follow(trajectory(start, [
-            (1.0, [0.4, 0.5, 0.3, 0.4], [0.4, 0.3, 0.2, 0.3]),
-            (2.0, [0.9, 0.8, 0.5, 0.7], [0.3, 0.2, 0.1, 0.2]),
-            (3.0, [1.2, 0.6, 0.0, 0.9], [0.0, 0.0, 0.0, 0.0])], names), start)
+        self.follow([(1.0, [0.4, 0.5, 0.3, 0.4], [0.4, 0.3, 0.2, 0.3]),
+                     (2.0, [0.9, 0.8, 0.5, 0.7], [0.3, 0.2, 0.1, 0.2]),
+                     (3.0, [1.2, 0.6, 0.0, 0.9], [0.0, 0.0, 0.0, 0.0])],
+                    ['elbow', 'hip', 'wrist', 'shoulder'])
         # linear: positions only, from a zero stamp (now)
         start = self.watch.latest()[0]
         msg = trajectory(0.0, [(1.0, [0.2, 0.7, 0.8, 0.2]), (2.0, [-0.3, 0.3, 0.4, 0.0])])
         self.command.publish(msg)
-        self.assertTrue(self.watch.wait_for_time(start + 2.3))
-        moved = [s for s in self.watch.since(start) if np.any(np.abs(s[2]) > 0)]
-        begun = moved[0][0] - STEP     # the stamp's "now": the controller's step before
+
+        def moved():
+            return [s for s in self.watch.since(start) if np.any(np.abs(s[2]) > 0)]
+        self.assertTrue(wait_until(moved, 30.0), 'the arm never moved')
+        begun = moved()[0][0] - STEP     # the stamp's "now": the controller's step before
+        self.assertTrue(self.watch.wait_for_time(begun + 2.1), 'the arm\'s clock stopped')
         for point in msg.points:
             reached = self.watch.at(begun + point.time_from_start.to_sec())
             self.assertTrue(np.all(np.abs(reached - point.positions) < TOLERANCE),
                             '%s, not %s' % (reached, point.positions))
 
     def test_2_a_replacing_trajectory_takes_over_mid_way(self):
-        start = self.watch.latest()[0] + LEAD
-        first = trajectory(start, [(2.0, [1.0, 1.0, 1.0, 1.0]), (4.0, [1.5, 0.5, 0.5, 0.5])])
-        initial = self.watch.latest()[1]
-        self.command.publish(first)
+        start, _ = self.send_ahead([(2.0, [1.0, 1.0, 1.0, 1.0]), (4.0, [1.5, 0.5, 0.5, 0.5])])
         self.assertTrue(self.watch.wait_for_time(start + 1.1 - LEAD))
-        takeover = self.watch.latest()[0] + LEAD
-        self.follow(trajectory(takeover, [
+        takeover = self.follow([
             (1.5, [0.0, 0.3, 0.2, 0.0], [0, 0, 0, 0], [0, 0, 0, 0]),
-            (2.0, [0.0, 0.2, 0.1, 0.0], [0, 0, 0, 0], [0, 0, 0, 0])]), takeover)
+            (2.0, [0.0, 0.2, 0.1, 0.0], [0, 0, 0, 0], [0, 0, 0, 0])])
         # the first trajectory was followed until the takeover...
+        initial = self.watch.at(start)
         for time in np.arange(start, takeover, 0.1):
             expected = initial + (np.array([1.0] * 4) - initial) * (time - start) / 2.0
             self.assertTrue(np.all(np.abs(self.watch.at(time) - expected) < TOLERANCE))
@@ -138,7 +158,7 @@ class ArmControllerTest(unittest.TestCase):
         for msg, words in bad:
             before = self.watch.latest()
             self.command.publish(msg)
-            self.assertTrue(wait_until(lambda: self.log.said('/arm_controller', words, Log.WARN),
+            self.assertTrue(wait_until(lambda: self.log.said(CONTROLLER, words, Log.WARN),
                                        30.0), 'no warning saying %r' % words)
             self.assertTrue(self.watch.wait_for_time(before[0] + 0.5))
             for state in self.watch.since(before[0]):
@@ -146,23 +166,18 @@ class ArmControllerTest(unittest.TestCase):
             self.log._lines[:] = []
 
     def test_4_a_trajectory_in_the_past_leaves_the_current_one_going_on(self):
-        start = self.watch.latest()[0] + LEAD
-        current = trajectory(start, [(1.0, [0.3, 0.3, 0.3, 0.3]), (2.0, [0.6, 0.2, 0.5, 0.1])])
-        self.command.publish(current)
+        start, current = self.send_ahead([(1.0, [0.3, 0.3, 0.3, 0.3]),
+                                          (2.0, [0.6, 0.2, 0.5, 0.1])])
         self.assertTrue(self.watch.wait_for_time(start + 0.5))
         self.command.publish(trajectory(start - 3.0, [(1.0, [0.0, 0.0, 0.0, 0.0])]))
         self.assertTrue(wait_until(lambda: self.log.said(
-            '/arm_controller', 'every point is in the past', Log.WARN), 30.0))
+            CONTROLLER, 'every point is in the past', Log.WARN), 30.0))
         self.assert_points_met(current, start)
         self.watch.assert_safe(self)
 
     def test_5_a_trajectory_stamped_ahead_is_logged_and_waits_for_its_time(self):
         before = self.watch.latest()
-        self.command.publish(trajectory(before[0] + 3600.0, [(1.0, [0.5, 0.5, 0.5, 0.5])]))
-        self.assertTrue(wait_until(lambda: any(
-            3500.0 < float(line.split('stamped ')[1].split()[0]) <= 3600.0
-            for line in self.log.lines('/arm_controller', 's ahead: it starts then', Log.INFO)),
-            30.0), 'no log line for it')
+        self.send_ahead([(1.0, [0.5, 0.5, 0.5, 0.5])], lead=3600.0)
         self.assertTrue(self.watch.wait_for_time(before[0] + 1.0))
         for state in self.watch.since(before[0]):
             self.assertTrue(np.allclose(state[1], before[1], atol=1e-12))
@@ -175,10 +190,8 @@ class ArmControllerTest(unittest.TestCase):
         acceleration = read_acceleration_limits(
             rospy.get_param('robot_description_planning'), self.watch.model)
         limit = self.watch.model.velocity[0]
-        start = self.watch.latest()[0] + LEAD
-        self.follow(trajectory(start, [(4.0, [-3.0, 0.0, 0.0, 0.0])]), start)
-        start = self.watch.latest()[0] + LEAD     # 6 s at its limit to 3 rad: time to stop it
-        self.command.publish(trajectory(start, [(0.5, [3.0, 0.0, 0.0, 0.0])]))
+        self.follow([(4.0, [-3.0, 0.0, 0.0, 0.0])])
+        start, _ = self.send_ahead([(0.5, [3.0, 0.0, 0.0, 0.0])])   # 6 s at its limit to 3 rad
         self.assertTrue(self.watch.wait_for_time(start + 0.6))
         asked = self.watch.latest()[0]
         self.assertAlmostEqual(self.watch.latest()[2][0], limit)     # held back
