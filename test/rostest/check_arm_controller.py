@@ -10,10 +10,10 @@ and straight lines through points without); a replacing trajectory takes over mi
 without a jump; every bad trajectory is rejected with a warning naming the problem and
 no motion (a single point due now among them, as JointTrajectoryController rejects it),
 one wholly in the past leaves the current one going on, and one stamped an hour ahead waits
-for its time. An empty trajectory (no joints named, as
-JointTrajectoryController's own tests send it) stops the arm from where it actually is,
-braking within the acceleration limits to rest, and holds it there. No joint_states
-heard breaks a limit or puts a link into the floor or into another.
+for its time. An empty trajectory (no joints named, as JointTrajectoryController's own
+tests send it) stops the arm from where it actually is, braking within the acceleration
+limits to rest, and holds it there. No joint_states heard breaks a limit or puts a link
+into the floor or into another.
 """
 import unittest
 
