@@ -6,13 +6,15 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import JointState
 
-from driven_clock import STAMP_ROUNDING
 from waiting import wait_until
 from wall_follower.arm.collision import CollisionChecker
 from wall_follower.arm.model import read_srdf, read_urdf
 
 # Wall seconds a rostest waits for the arm to reach a time or a state before failing.
 WALL_LIMIT = 30.0
+# s: how far below the time it was taken at a stamp may read (rospy.Time.from_sec truncates
+# to the nanosecond)
+STAMP_ROUNDING = 1e-6
 
 
 class ArmWatch(object):
@@ -45,10 +47,10 @@ class ArmWatch(object):
         with self._lock:
             return self.states[-1]
 
-    def latest_stamp(self):
-        """The newest state's stamp [s]; None before the first."""
+    def reached(self, time):
+        """Whether a joint state stamped at or after time [s] has come."""
         with self._lock:
-            return self.states[-1][0] if self.states else None
+            return bool(self.states) and self.states[-1][0] >= time - STAMP_ROUNDING
 
     def since(self, start, end=float('inf')):
         with self._lock:
@@ -56,7 +58,7 @@ class ArmWatch(object):
 
     def wait_for_time(self, time):
         """Wait until a joint state stamped at or after time [s] has come; False if none did."""
-        return wait_until(lambda: self.latest()[0] >= time - STAMP_ROUNDING, WALL_LIMIT)
+        return wait_until(lambda: self.reached(time), WALL_LIMIT)
 
     def at(self, time):
         """The joint positions at time [s], interpolated between the states around it."""

@@ -60,7 +60,7 @@ class ArmControllerTest(unittest.TestCase):
         rospy.init_node('check_arm_controller')
         cls.log = RosoutLog(CONTROLLER)
         cls.watch = ArmWatch(wait=False)
-        cls.clock = DrivenClock(STEP, SPEEDUP, cls.watch.latest_stamp)
+        cls.clock = DrivenClock(STEP, SPEEDUP, cls.watch.reached)
         cls.watch.wait_for_first_state()
         cls.command = rospy.Publisher('arm_controller/command', JointTrajectory, queue_size=10)
         if not wait_until(lambda: cls.command.get_num_connections() > 0, 30.0):

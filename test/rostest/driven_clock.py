@@ -17,24 +17,22 @@ from waiting import wait_until
 # Wall seconds a step waits for the node's own step before it goes on regardless (the
 # test's own checks then fail on what is missing).
 STEP_LIMIT = 30.0
-# s: how far below the time it was taken at a stamp may read (rospy.Time.from_sec truncates
-# to the nanosecond)
-STAMP_ROUNDING = 1e-6
 
 
 class DrivenClock(object):
     """Simulated time from 0, advanced by step [s] each step / speedup wall seconds unless
     held; latched, so a node that subscribes late starts from the time it is at.
 
-    latest() gives the stamp [s] of the driven node's newest output (None until it has
-    one); from its first, each step waits for the node's output of the step before, so
-    the node steps with the clock however slowly it runs, and skips none.
+    reached(time) tells whether the driven node has put out its step at time [s] or a later
+    one; reached(0) is whether it has put out anything. From its first output on, each step
+    waits for the node's output of that step, so the node steps with the clock however
+    slowly it runs, and skips none.
     """
 
-    def __init__(self, step, speedup, latest):
+    def __init__(self, step, speedup, reached):
         self._step = rospy.Duration.from_sec(step)
         self._pause = step / speedup
-        self._latest = latest
+        self._reached = reached
         self._publisher = rospy.Publisher('/clock', Clock, queue_size=1, latch=True)
         self._lock = threading.Lock()
         self._now = rospy.Time(0)
@@ -53,11 +51,8 @@ class DrivenClock(object):
                     if not rospy.is_shutdown():
                         raise
                     return   # rospy closes the topics while it shuts down
-                if self._latest() is not None:
-                    wait_until(self._caught_up, STEP_LIMIT)
-
-    def _caught_up(self):
-        return self._latest() >= self._now.to_sec() - STAMP_ROUNDING
+                if self._reached(0.0):
+                    wait_until(lambda: self._reached(self._now.to_sec()), STEP_LIMIT)
 
     @contextlib.contextmanager
     def held(self):
