@@ -141,6 +141,25 @@ def test_round_a_sharp_tip_a_robot_carried_off_its_arc_turns_back_onto_it(tmp_pa
     assert farthest <= BAND[1], farthest
 
 
+def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_after_it(
+        tmp_path):
+    # Generated world 3 of seed 51: a slanted wall ends in a tip, some 105
+    # deg of right turn before a 0.59 m side with a wall across its end. The
+    # arc round the tip, ridden a little wide, ended at target_distance from
+    # the side, as its wide end never came; the left turn onto the wall across
+    # its end then had no room to ride nearer first, and its crossover
+    # carried the robot out of the band. (That the corner lands nearer by the
+    # left turn's dip was planned only for its wide end, and only for a
+    # square corner.) Started on the slanted wall, 0.25 m from it, 0.35 m
+    # short of the tip.
+    world = generated_world(tmp_path, 51, 3, (-1.78, 0.32, math.radians(-104.0)))
+    # Round the tip, along the side and into the left turn's crossover.
+    score, states = lap(world, 'gazebo', time_limit=6.5)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert {'OUTER_CORNER', 'WALL_AHEAD'} <= states
+    assert farthest <= BAND[1], farthest
+
+
 def test_the_wall_past_an_obtuse_inner_corner_is_not_taken_for_a_face_to_keep_clear_of(
         tmp_path):
     # Generated world 15 of seed 22: a slanted wall meets the north wall at

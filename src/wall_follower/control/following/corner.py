@@ -48,11 +48,19 @@ class CornerArc(object):
         away = np.array((-along[1], along[0]))
         self._to_center = center[0] * along + center[1] * away
         self._along = along
+        self._pulled = np.zeros(2)
 
     @property
     def center(self):
         """(x, y) of the circle's centre."""
-        return self.tip + self._to_center
+        return self.tip + self._to_center + self._pulled
+
+    def pull(self, amount, wall):
+        """Move the centre amount metres toward wall (a Line, angle from the right), so that
+        an arc that ends along that wall ends that much nearer it; again from where it was
+        planned at each call."""
+        angle = wall.angle
+        self._pulled = amount * np.array((math.sin(angle), -math.cos(angle)))
 
     def moved(self, advance, turn):
         """Follow the robot's move (advance metres ahead, then turn rad left)."""
@@ -61,6 +69,7 @@ class CornerArc(object):
         rotate = np.array(((c, s), (-s, c)))
         self._to_center = rotate.dot(self._to_center)
         self._along = rotate.dot(self._along)
+        self._pulled = rotate.dot(self._pulled)
 
     @property
     def along(self):

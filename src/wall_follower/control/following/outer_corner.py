@@ -3,11 +3,14 @@
 A wide arc, an arc round the corner's tip and a wide arc again (see
 corner.py): the middle arc is pinned to the tip at every scan, and the
 last one starts where it will end at the planned distance from the next
-wall (nearer, by the dip, when that wall is a short side with a wall
-across its end): judged on that wall once it is fitted, and until then
-as if the corner were square, in which case it then goes on. A corner
-that comes up with no wall fitted (the end of a box's short side,
-mid-turn) is circled instead.
+wall: judged on that wall once it is fitted, and until then as if the
+corner were square, in which case it then goes on. Where that wall is a
+short side with a wall across its end, the turn onto which leaves no
+room to ride nearer first, the corner lands nearer it by that turn's dip:
+the wide end is planned to, and once the side is fitted the arc round
+the tip is pulled toward it by as much, for a corner whose wide end
+never comes (a sharp tip, ridden wide). A corner that comes up with no
+wall fitted (the end of a box's short side, mid-turn) is circled instead.
 """
 import math
 
@@ -128,13 +131,17 @@ class OuterCorner(Manoeuvre):
             self.arc.turned(), self.arc.offset()[0])
         # A wall across the way just past the corner (beyond a pillar's
         # short side) leaves no room to ride nearer before the turn onto
-        # it: the corner lands that much nearer the side instead.
-        nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
+        # it: the corner lands that much nearer the side instead. The turn
+        # onto that wall starts once this one is over: the rest of this
+        # one adds to its angle.
         next_wall = self._next_wall(obs)
         if next_wall is not None:
+            nearer = self.inner_corner.dip(obs, -next_wall.angle)
+            self.arc.pull(nearer, next_wall)
             self.ending_wide = self.turn.lands_within(
                 from_centre(next_wall, self.params.laser_x).distance, -next_wall.angle, nearer)
         else:
+            nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
             self.ending_wide = self.ending_wide or self.turn.ends_wide(
                 self.arc.turned(), self.arc.past_tip(), nearer)
 
