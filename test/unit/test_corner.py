@@ -7,6 +7,7 @@ import pytest
 from wall_follower.control.following.corner import CornerArc, OuterTurn
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.lines import Line
+from wall_follower.control.sensing.wall_fit import in_laser_frame
 
 RADIUS, ROUNDING = 0.30, 0.05
 KEPT = RADIUS - ROUNDING   # distance kept from the rounded-off corner
@@ -62,26 +63,20 @@ def test_observing_re_pins_the_tip_to_the_corner_not_to_the_wall_beside_it():
 def test_pulled_toward_the_next_wall_the_centre_moves_square_to_it_and_with_the_robot():
     arc = start_arc()
     planned = arc.center
-    # The next wall ahead, turned 30 deg into the way (a Line: angle from the right).
-    wall = Line(0.4, math.radians(60.0))
-    arc.pull(0.03, wall)
-    moved = arc.center - planned
-    assert np.hypot(*moved) == pytest.approx(0.03)
-    assert moved.dot(wall_normal(wall)) == pytest.approx(0.03)
+    # The next wall ahead, turned 30 deg into the way (measured from the right).
+    toward = in_laser_frame(Line(0.4, math.radians(60.0))).normal
+    assert toward == pytest.approx((math.sin(math.radians(60.0)), -0.5))
+    arc.pull(0.03, toward)
+    assert arc.center - planned == pytest.approx(0.03 * toward)
     # Pulled again, from where it was planned, not from the last pull.
-    arc.pull(0.01, wall)
-    assert arc.center - planned == pytest.approx(0.01 * wall_normal(wall))
+    arc.pull(0.01, toward)
+    assert arc.center - planned == pytest.approx(0.01 * toward)
     # A step and a turn later the pull has turned with everything else.
     arc.moved(0.1, -0.2)
     unpulled = start_arc()
     unpulled.moved(0.1, -0.2)
     turned = np.array(((math.cos(0.2), -math.sin(0.2)), (math.sin(0.2), math.cos(0.2))))
-    assert arc.center - unpulled.center == pytest.approx(turned.dot(0.01 * wall_normal(wall)))
-
-
-def wall_normal(wall):
-    """The unit vector from the laser square toward a wall measured from the right."""
-    return np.array((math.sin(wall.angle), -math.cos(wall.angle)))
+    assert arc.center - unpulled.center == pytest.approx(turned.dot(0.01 * toward))
 
 
 def test_a_corner_out_of_the_gate_leaves_the_tip_where_it_was_expected():

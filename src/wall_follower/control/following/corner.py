@@ -55,12 +55,11 @@ class CornerArc(object):
         """(x, y) of the circle's centre."""
         return self.tip + self._to_center + self._pulled
 
-    def pull(self, amount, wall):
-        """Move the centre amount metres toward wall (a Line, angle from the right), so that
-        an arc that ends along that wall ends that much nearer it; again from where it was
-        planned at each call."""
-        angle = wall.angle
-        self._pulled = amount * np.array((math.sin(angle), -math.cos(angle)))
+    def pull(self, amount, toward):
+        """Move the centre amount metres along the unit vector toward (a wall's normal), so
+        that an arc that ends along that wall ends that much nearer it; each call replaces
+        the last, from where the centre was planned."""
+        self._pulled = amount * np.asarray(toward, dtype=float)
 
     def moved(self, advance, turn):
         """Follow the robot's move (advance metres ahead, then turn rad left)."""

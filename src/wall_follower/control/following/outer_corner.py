@@ -19,7 +19,8 @@ from wall_follower.control.following.follow_wall import steer
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, from_centre, wall_beyond
+from wall_follower.control.sensing.wall_fit import (along_the_way, from_centre, in_laser_frame,
+                                                    wall_beyond)
 from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the
@@ -137,7 +138,7 @@ class OuterCorner(Manoeuvre):
         next_wall = self._next_wall(obs)
         if next_wall is not None:
             nearer = self.inner_corner.dip(obs, -next_wall.angle)
-            self.arc.pull(nearer, next_wall)
+            self.arc.pull(nearer, in_laser_frame(next_wall).normal)
             self.ending_wide = self.turn.lands_within(
                 from_centre(next_wall, self.params.laser_x).distance, -next_wall.angle, nearer)
         else:

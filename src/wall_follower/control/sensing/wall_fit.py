@@ -74,7 +74,7 @@ def _seeded_wall(points, seeded, params):
     wall = wall_through(points[seeded], points, params)
     if wall is None or wall.distance > params.wall_lost_distance:
         return None
-    line = Line(wall.distance, wall.angle + RIGHT)
+    line = in_laser_frame(wall)
     offsets = line.offsets(points)
     inliers = points[np.abs(offsets) < params.wall_inlier_distance]
     return SeededWall(wall, line, offsets, inliers[np.argmax(inliers[:, 0])])
@@ -154,7 +154,7 @@ def wall_beyond(points, tip, along, params):
     wall = wall_through(beyond, beyond, params)
     if wall is None:
         return None
-    line = Line(wall.distance, wall.angle + RIGHT)
+    line = in_laser_frame(wall)
     return wall if abs(line.offsets(np.asarray(tip)[None, :])[0]) <= params.corner_gate else None
 
 
@@ -183,6 +183,12 @@ def same_line(first, second, max_angle=math.radians(15.0), max_distance=0.05):
     """True when two walls are one and the same, within fit error."""
     return (abs(float(wrap_angle(first.angle - second.angle))) < max_angle
             and abs(first.distance - second.distance) < max_distance)
+
+
+def in_laser_frame(wall):
+    """The Line of a wall measured from the right as the laser frame has it: its normal's
+    angle from ahead, the normal pointing from the laser toward the wall."""
+    return Line(wall.distance, wall.angle + RIGHT)
 
 
 def along_the_way(wall, max_angle):
