@@ -293,6 +293,36 @@ def test_a_left_turn_held_only_by_the_wall_it_leaves_hands_back_to_following():
     assert controller.state == FOLLOW
 
 
+@pytest.mark.parametrize('distance, into_deg', [(0.23, 5.0), (0.23, 7.0), (0.24, 8.0)])
+def test_the_last_degrees_onto_a_wall_that_has_left_the_lane_are_flown_wide(distance, into_deg):
+    # Past the corner the new wall has left the lane ahead, but the robot
+    # still heads into it, so the widened lane's edge holds the turn on.
+    # Flown on the tight arc for want of a wall ahead, those degrees were
+    # a pivot (the arena's first corner: three scans at 0.044 m/s).
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    view = scan_view(right_wall(distance), (0.0, 0.0, -math.radians(into_deg)), STAGE)
+    obs = Observation(view, EXACT)
+    assert obs.ahead is None and not controller.inner_corner.clear_of_lane_edges(obs)
+    command = controller.update(view)
+    assert controller.state == WALL_AHEAD
+    assert command.linear == pytest.approx(EXACT.cruise_speed)
+    assert command.angular == pytest.approx(EXACT.max_turn_rate)
+
+
+def test_the_last_degrees_onto_a_wall_already_too_near_are_turned_on_the_spot():
+    # Planned on the wall it lands on, the wide end still gives way to the
+    # tight arc where that wall is nearer than inner_corner_distance.
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    view = scan_view(right_wall(EXACT.inner_corner_distance - 0.01),
+                     (0.0, 0.0, -math.radians(4.0)), STAGE)
+    assert Observation(view, EXACT).ahead is None
+    command = controller.update(view)
+    assert controller.state == WALL_AHEAD
+    assert command.linear == pytest.approx(0.0, abs=1e-9)
+
+
 def test_a_left_turn_that_has_left_a_walls_end_behind_goes_round_it():
     # The wall on the right ended 0.1 m behind the laser, and the robot has
     # turned 60 deg left of it with the lane ahead clear and no wall along

@@ -3,13 +3,14 @@
 The turn is flown at the full turn rate: wide at first, nearly pivoting
 past the corner, and wide again onto parallel (see left_turn.py). Its
 speed is re-planned from the wall ahead at every scan, so the turn is
-closed-loop, not timed. Its wide end, once the new wall is on the right,
-is flown by FOLLOW's rule for heading into a wall: at cruise speed as far
-as closest_distance allows. While such a wall comes up, the robot rides a
-little nearer the old wall, by as much as the wide start will carry it off
-beyond wide_allowance; a turn begun without that room (after a short wall)
-flies short_turn instead: a shorter wide start and a tight arc rather than
-a pivot.
+closed-loop, not timed. Its wide end is planned on the new wall to the
+last: once that wall has come round to the right and left the lane ahead,
+it is the wall on the right the robot still heads into, and the turn goes
+on until the lane's edges are clear of it. While such a wall comes up,
+the robot rides a little nearer the old wall, by as much as the wide start
+will carry it off beyond wide_allowance; a turn begun without that room
+(after a short wall) flies short_turn instead: a shorter wide start and a
+tight arc rather than a pivot.
 """
 import math
 
@@ -140,12 +141,29 @@ class InnerCorner(Manoeuvre):
         """
         p = self.params
         radius = p.inner_corner_radius
-        if obs.ahead is not None:
-            distance, angle = self._ahead_as_planned(obs)
+        landing = self._landing_on(obs)
+        if landing is not None:
+            distance, angle = landing
             radius = self.turn.radius_within(distance - p.inner_corner_distance, angle)
         if obs.front < p.front_stop_distance:
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
+
+    def _landing_on(self, obs):
+        """The wall the turn lands on, as the rotation centre has it, or None.
+
+        That is the wall ahead while there is one. Past the corner the new
+        wall leaves the lane ahead, but it is still at the widened lane's
+        edge while the robot heads into it, which holds the turn on: the
+        wall on the right is then the one it lands on. Flown on the tight
+        arc for want of a wall ahead, those last degrees cost a pivot's
+        time where the wide end had room for cruise speed.
+        """
+        if obs.ahead is not None:
+            return self._ahead_as_planned(obs)
+        if along_the_way(obs.wall, self.params.rejoin_angle) and obs.wall.angle > 0.0:
+            return from_centre(obs.wall, self.params.laser_x)
+        return None
 
     def dip(self, obs, still_turning=0.0):
         """How much nearer to ride while a wall across the way is within approach_range.
