@@ -323,6 +323,25 @@ def test_the_last_degrees_onto_a_wall_already_too_near_are_turned_on_the_spot():
     assert command.linear == pytest.approx(0.0, abs=1e-9)
 
 
+@pytest.mark.parametrize('runs_on, speed', [(0.3, 0.0), (0.6, EXACT.cruise_speed)])
+def test_the_last_degrees_onto_a_short_side_do_not_land_nearer_than_target(runs_on, speed):
+    # A side that ends landing_run ahead or sooner leaves no room to steer
+    # back out to target_distance before the outer corner at its end, which
+    # is planned from there: landed nearer (gen_s53_004, a slanted short
+    # side Stage read 2.6 cm long), the robot passed that corner's tip out
+    # of the band. 0.24 m from it, the turn ends on the spot instead; a side
+    # that runs on is landed on at cruise speed.
+    side = [((-5.0, -0.24), (runs_on, -0.24)), ((runs_on, -0.24), (runs_on, -3.0))]
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    view = scan_view(side, (0.0, 0.0, -math.radians(8.0)), STAGE)
+    obs = Observation(view, EXACT)
+    assert obs.ahead is None and not controller.inner_corner.clear_of_lane_edges(obs)
+    command = controller.update(view)
+    assert controller.state == WALL_AHEAD
+    assert command.linear == pytest.approx(speed, abs=1e-9)
+
+
 def test_a_left_turn_that_has_left_a_walls_end_behind_goes_round_it():
     # The wall on the right ended 0.1 m behind the laser, and the robot has
     # turned 60 deg left of it with the lane ahead clear and no wall along

@@ -18,7 +18,8 @@ from wall_follower.control.following.body import Body
 from wall_follower.control.following.left_turn import LeftTurn
 from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
-from wall_follower.control.sensing.wall_fit import along_the_way, as_planned, from_centre, same_line
+from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, from_centre,
+                                                    in_laser_frame, same_line, wall_runs_to)
 
 
 class InnerCorner(Manoeuvre):
@@ -141,29 +142,41 @@ class InnerCorner(Manoeuvre):
         """
         p = self.params
         radius = p.inner_corner_radius
-        landing = self._landing_on(obs)
+        landing = self._landing(obs)
         if landing is not None:
-            distance, angle = landing
-            radius = self.turn.radius_within(distance - p.inner_corner_distance, angle)
+            radius = self.turn.radius_within(*landing)
         if obs.front < p.front_stop_distance:
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
 
-    def _landing_on(self, obs):
-        """The wall the turn lands on, as the rotation centre has it, or None.
+    def _landing(self, obs):
+        """(gap, angle): how much nearer the wall the turn lands on the rest of the turn may
+        carry the rotation centre, and the angle (rad) still to turn onto it; or None.
 
-        That is the wall ahead while there is one. Past the corner the new
-        wall leaves the lane ahead, but it is still at the widened lane's
+        That wall is the wall ahead while there is one. Past the corner the
+        new wall leaves the lane ahead, but it is still at the widened lane's
         edge while the robot heads into it, which holds the turn on: the
         wall on the right is then the one it lands on. Flown on the tight
-        arc for want of a wall ahead, those last degrees cost a pivot's
-        time where the wide end had room for cruise speed.
+        arc for want of a wall ahead, those last degrees cost a pivot's time
+        where the wide end had room for cruise speed. The turn lands
+        inner_corner_distance from a wall, nearer than target_distance, for
+        FOLLOW to steer back out along it; a short side that runs on less
+        than landing_run leaves no room for that before the turn round its
+        end, which is planned from target_distance, and a landing nearer
+        would carry the robot past that end's tip nearer still. On such a
+        side the turn lands at target_distance.
         """
+        p = self.params
         if obs.ahead is not None:
-            return self._ahead_as_planned(obs)
-        if along_the_way(obs.wall, self.params.rejoin_angle) and obs.wall.angle > 0.0:
-            return from_centre(obs.wall, self.params.laser_x)
-        return None
+            distance, angle = self._ahead_as_planned(obs)
+            return distance - p.inner_corner_distance, angle
+        if not (along_the_way(obs.wall, p.rejoin_angle) and obs.wall.angle > 0.0):
+            return None
+        distance, angle = from_centre(obs.wall, p.laser_x)
+        line = in_laser_frame(obs.wall)
+        runs = wall_runs_to(line, line.offsets(obs.right), obs.wall_tip, obs.right, p)[0]
+        landing = p.inner_corner_distance if runs >= p.landing_run else p.target_distance
+        return distance - landing, angle
 
     def dip(self, obs, still_turning=0.0):
         """How much nearer to ride while a wall across the way is within approach_range.

@@ -102,6 +102,9 @@ FOLLOWER = (
           0.0, math.pi / 2),
         P('approach_range', 0.8, 'with a wall ahead this near, ride nearer the wall by the '
           'drift of the wide start less wide_allowance [m]', 0.0, 5.0),
+        P('landing_run', 0.45, 'the left turn lands inner_corner_distance from the new wall '
+          'only where that runs on at least this far ahead; on a shorter one it lands at '
+          'target_distance, from which the turn round its end is planned [m]', 0.0, 5.0),
         P('inner_corner_distance', 0.22, 'distance of the rotation centre from the wall ahead '
           'at which the left turn ends [m]', 0.05, 1.0),
         P('turn_lead', 0.02, 'start the left turn this much early, for the scan and command '
