@@ -120,6 +120,22 @@ def test_a_lap_from_a_corner_closes_where_it_cuts_the_corner_past_the_start():
     assert recorder.total_distance == pytest.approx(path_length(poses[:poses.index(closing) + 1]))
 
 
+def test_a_lap_that_turns_on_the_spot_short_of_the_start_closes_at_the_start_line():
+    """The last left turn before the start pivots 15 cm short of it, within
+    close_tolerance and heading nearly the start's way: standing there, the
+    robot comes no nearer, but it has not passed the start point."""
+    path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.5), (-1.0, 1.5), (-1.0, 0.0), (-0.15, 0.0)]
+    poses = walk(path)
+    t = poses[-1][0]
+    pivot = [(t + 0.1 * (i + 1), -0.15, 0.0, math.radians(-30.0 + 5.0 * i)) for i in range(7)]
+    on = [(t + 0.8 + pose[0], pose[1], pose[2], pose[3])
+          for pose in walk([(-0.15, 0.0), (1.0, 0.0)])[1:]]
+    recorder = LapRecorder()
+    closing = feed(recorder, poses + pivot + on)
+    assert closing is not None
+    assert closing[1] == pytest.approx(0.0, abs=SPEED / RATE)
+
+
 def test_passing_the_start_point_the_other_way_closes_nothing():
     path = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (1.5, 1.0), (1.5, 0.05), (-1.0, 0.05)]
     poses = walk(path)

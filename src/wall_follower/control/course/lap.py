@@ -43,6 +43,10 @@ from wall_follower.rotation import wrap_angle
 # metres, and at most this many points (a robot can stand at its start).
 STRETCH_SPACING = 0.01
 STRETCH_POINTS = 200
+# A robot is past its nearest point to the start once it has come no nearer
+# for this much path [m]: one that turns on the spot there, odometry
+# jittering by a millimetre, has not passed it.
+PASS_TRAVEL = 0.01
 
 # The defaults of the keyword arguments below: the odom_recorder node's.
 _DEFAULT = defaults(TABLE)
@@ -125,7 +129,9 @@ class LapDetector(object):
         # until it first gets close_tolerance from the start.
         self._first_stretch = [(0.0, 0.0, self.yaw0)]
         self._first_stretch_over = False
-        self._nearest = None   # the nearest distance to the start on this pass by it
+        # (distance, travelled): the nearest distance to the start on this pass by
+        # it, and the path length there.
+        self._nearest = None
 
     def _frame(self, x, y):
         """(along, across) position relative to the start pose's heading."""
@@ -156,7 +162,7 @@ class LapDetector(object):
         if not (self.left_start and travelled - self._travelled_before >= self.min_travel):
             return False
         self.closed = (self._crossed_start_line(previous_along, previous_across, along, across, yaw)
-                       or self._passed_start_point(along, across, yaw, distance))
+                       or self._passed_start_point(along, across, yaw, distance, travelled))
         return self.closed
 
     def _crossed_start_line(self, previous_along, previous_across, along, across, yaw):
@@ -169,13 +175,21 @@ class LapDetector(object):
         heading_error = abs(float(wrap_angle(yaw - self.yaw0)))
         return abs(crossing) <= self.close_tolerance and heading_error <= self.max_heading_error
 
-    def _passed_start_point(self, along, across, yaw, distance):
-        """True past the nearest point to the start, near it, heading the first stretch's way."""
+    def _passed_start_point(self, along, across, yaw, distance, travelled):
+        """True past the nearest point to the start, near it, heading the first stretch's way.
+
+        Past it means no nearer for PASS_TRAVEL of path: a robot that turns on
+        the spot short of the start (a left turn just before it) comes no
+        nearer for a while without having passed it, and the lap ended
+        there, short of the start line it crossed next.
+        """
         if distance > self.close_tolerance:
             self._nearest = None
             return False
-        if self._nearest is None or distance < self._nearest:
-            self._nearest = distance
+        if self._nearest is None or distance < self._nearest[0]:
+            self._nearest = (distance, travelled)
+            return False
+        if travelled - self._nearest[1] < PASS_TRAVEL:
             return False
         # The first stretch's heading where it came nearest to here.
         _, _, first_yaw = min(self._first_stretch,
