@@ -110,6 +110,38 @@ def test_each_new_scan_is_answered_once_and_repeated_after_keepalive():
     assert sent[-1][1] == STOP
 
 
+class StampedScans(Scans):
+    """Scans as Scans, each stamped as `stamps` says (arrival time -> stamp)."""
+
+    def __init__(self, script, stamps):
+        super().__init__(script)
+        self.stamps = stamps
+
+    def latest(self, timeout):
+        reading = super().latest(timeout)
+        if reading.view is None:
+            return reading
+        return reading._replace(taken=self.stamps[reading.taken])
+
+
+@pytest.mark.parametrize('simulated', [True, False])
+def test_an_answer_to_a_scan_ahead_of_the_clock_is_repeated_a_keepalive_after_its_stamp(
+        monkeypatch, simulated):
+    # Steps of 0.1 s. A simulator sends each step's scan before its /clock: the scan
+    # of 0.2 s comes while this node's clock reads 0.1. The next one (0.3 s) comes
+    # after its /clock, and no keepalive is due before it: a repeat then would be
+    # taken in lockstep for the answer to it. On wall time a stamp proves nothing (a
+    # laser host's clock may run ahead), and the keepalive counts by this node's clock.
+    monkeypatch.setattr(rospy.rostime, 'is_wallclock', lambda: not simulated)
+    scans = StampedScans([(0.099, GOOD), (0.299, GOOD)], {0.099: 0.2, 0.299: 0.3})
+    commander = Commander()
+    loop = DriveLoop('test', scans, commander, 1.0 / PERIOD, keepalive=0.15, input_timeout=0.5)
+    loop.run(lambda view, taken: Command(0.1, 0.2), lambda: 'end' if Clock.now >= 0.32 else None)
+    moving = [t for t, c in commander.sent if c == Command(0.1, 0.2)]
+    expected = [0.1, 0.3] if simulated else [0.1, 0.25, 0.3]
+    assert moving == [pytest.approx(t) for t in expected]
+
+
 def test_a_stale_scan_stops_the_robot_and_a_new_one_resumes_it():
     outcome, sent, _ = run([(0.1, GOOD), (2.0, GOOD)], until=2.2)
     after_timeout = [c for t, c in sent if 0.65 <= t < 2.0]

@@ -36,6 +36,7 @@ import math
 import rospy
 
 from wall_follower.control.motion import STOP, Answer
+from wall_follower.control.stamps import arrival_time
 from wall_follower.control.unseen_ahead import BlindTurn, held_back, its_own_turn, unseen_ahead
 from wall_follower.nodes.shared.velocity import VelocityCommander
 from wall_follower.params.driving import AHEAD_MIN_KNOWN
@@ -160,15 +161,27 @@ class DriveLoop(object):
         return False
 
     def _answer(self, answer, reading):
-        """Send answer's command for a usable reading, made safe."""
+        """Send answer's command for a usable reading, made safe.
+
+        The keepalive counts from the reading's time when that is later than
+        the clock's, on simulated time (control.stamps.arrival_time): a
+        simulator sends /clock after the scan, so a scan can come a step
+        ahead of this node's clock. Counted from the clock alone, the
+        answer looked a step old when the next /clock came, and a repeat of
+        it went out before the next scan was read: in lockstep the world
+        stepped on that repeat, and the answers after it came a step late.
+        """
         self._started = self._now
         self._out_of_patience = False
         self._due_at = self._next_due(self._due_at, self._now)
-        self._send(self._safe(answer(reading.view, reading.taken), reading.view, self._now))
+        command = self._safe(answer(reading.view, reading.taken), reading.view, self._now)
+        self._send(command, arrival_time(self._now, reading.taken,
+                                         not rospy.rostime.is_wallclock()))
 
-    def _send(self, command):
+    def _send(self, command, dated=None):
+        """Send command; the keepalive counts from `dated` (ROS s), now by default."""
         self.commander.send(command)
-        self._sent = self._now
+        self._sent = self._now if dated is None else dated
 
     def _due(self, fresh):
         """Whether to answer now: at each new reading, or with a tick, once the tick is due."""
