@@ -62,6 +62,24 @@ def test_lockstep_steps_at_once_when_the_command_is_already_there():
     assert run_steps(pacer, 1, driving=[True]) < 20.0
 
 
+def test_lockstep_takes_no_command_from_before_the_readings_for_their_answer():
+    # A controller a step behind answers the readings before while the step is
+    # computed: the world waits for the answer to the readings that went out.
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=0.2)
+    pacer.command_arrived(0)
+    before = time.monotonic()
+    pacer.readings_out()
+    pacer.command_arrived(0, at=before)   # came before, let in after (a step under way)
+    assert run_steps(pacer, 1, driving=[True]) >= 0.2
+
+
+def test_lockstep_takes_a_command_after_the_readings_for_their_answer():
+    pacer = StepPacer(period=0.0, lockstep=True, timeout=30.0)
+    pacer.readings_out()
+    pacer.command_arrived(0)
+    assert run_steps(pacer, 1, driving=[True]) < 20.0
+
+
 def test_lockstep_gives_up_on_a_silent_controller_after_the_timeout():
     pacer = StepPacer(period=0.0, lockstep=True, timeout=0.05)
     assert run_steps(pacer, 2, driving=[True]) >= 0.1

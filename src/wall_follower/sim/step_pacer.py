@@ -25,7 +25,13 @@ class StepPacer(object):
         `grace` for someone to start.
 
     Command callbacks call command_arrived() from their own threads; the main
-    loop calls wait_turn() before each step.
+    loop calls wait_turn() before each step and readings_out() as the step's
+    readings go out. In lockstep only a command that comes after them
+    answers them: one that came while the step was computed answers the
+    readings before (from a controller a step behind: at its start, or
+    after a step the timeout let go), and taken for the answer to these it
+    let the world step before they were answered, and kept every answer
+    after it a step late.
     """
 
     STOP_POLL = 0.1
@@ -40,13 +46,24 @@ class StepPacer(object):
         self._clock = clock
         self._due = None
         self._fresh = [False] * robot_count
+        self._out_at = None   # clock() when the newest readings went out
         self._stopped = False
         self._condition = threading.Condition()
 
-    def command_arrived(self, index):
+    def command_arrived(self, index, at=None):
+        """Robot index's command came at clock() time `at` (now by default)."""
+        at = self._clock() if at is None else at
         with self._condition:
-            self._fresh[index] = True
-            self._condition.notify_all()
+            if self._out_at is None or at >= self._out_at:
+                self._fresh[index] = True
+                self._condition.notify_all()
+
+    def readings_out(self):
+        """The step's readings are going out: only a command that comes from now on
+        answers them."""
+        with self._condition:
+            self._out_at = self._clock()
+            self._fresh = [False] * len(self._fresh)
 
     def stop(self):
         """Releases a waiting wait_turn(), which then returns False."""

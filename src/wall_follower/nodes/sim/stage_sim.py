@@ -274,9 +274,10 @@ class StageSimNode(object):
         self._pacer.request_stop()
 
     def _on_cmd_vel(self, msg, index):
+        arrived = time.monotonic()   # before a step under way lets it in
         with self._lock:
             self._sim.set_command(index, msg.linear.x, msg.angular.z)
-        self._pacer.command_arrived(index)
+        self._pacer.command_arrived(index, arrived)
 
     def _on_cmd_pose(self, msg, index):
         yaw = yaw_of(msg.orientation)
@@ -322,6 +323,7 @@ class StageSimNode(object):
                 first_step = time.time()
             with self._lock:
                 frame = self._sim.step(with_scans=with_scans, with_images=with_images)
+            self._pacer.readings_out()
             try:
                 self._publish(frame)
             except rospy.ROSException:

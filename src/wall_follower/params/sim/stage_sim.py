@@ -16,7 +16,8 @@ TABLE = (
           'back on the next steps', 0.0, 1.0),
         P('lockstep', False, 'step only after every driven robot (commanded to move, or held '
           'still by a controller that told it to stand before each of the last two steps) has '
-          'sent a new cmd_vel, so that results do not depend on machine load'),
+          'answered the last step\'s scans with a new cmd_vel, so that results do not depend on '
+          'machine load'),
         P('lockstep_timeout', 1.0, 'in lockstep, step anyway after this long without one '
           '[wall s]', 0.0, 60.0),
         P('lockstep_grace', 0.05, 'in lockstep, the wait when nobody drives [wall s]',
