@@ -67,7 +67,7 @@ def test_lockstep_takes_no_command_from_before_the_readings_for_their_answer():
     # computed: the world waits for the answer to the readings that went out.
     pacer = StepPacer(period=0.0, lockstep=True, timeout=0.2)
     pacer.command_arrived(0)
-    before = time.monotonic()
+    before = pacer.now()
     pacer.readings_out()
     pacer.command_arrived(0, at=before)   # came before, let in after (a step under way)
     assert run_steps(pacer, 1, driving=[True]) >= 0.2

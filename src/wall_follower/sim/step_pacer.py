@@ -50,8 +50,12 @@ class StepPacer(object):
         self._stopped = False
         self._condition = threading.Condition()
 
+    def now(self):
+        """The pacer's clock, for timing a command before it can be handed on."""
+        return self._clock()
+
     def command_arrived(self, index, at=None):
-        """Robot index's command came at clock() time `at` (now by default)."""
+        """Robot index's command came at time `at` by now() (now by default)."""
         at = self._clock() if at is None else at
         with self._condition:
             if self._out_at is None or at >= self._out_at:

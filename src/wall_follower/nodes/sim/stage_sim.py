@@ -274,7 +274,7 @@ class StageSimNode(object):
         self._pacer.request_stop()
 
     def _on_cmd_vel(self, msg, index):
-        arrived = time.monotonic()   # before a step under way lets it in
+        arrived = self._pacer.now()   # before a step under way lets it in
         with self._lock:
             self._sim.set_command(index, msg.linear.x, msg.angular.z)
         self._pacer.command_arrived(index, arrived)
