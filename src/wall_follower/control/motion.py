@@ -27,6 +27,19 @@ def clamp(command, max_linear=MAX_LINEAR, max_angular=MAX_ANGULAR):
     return Command(limit(command.linear, max_linear), limit(command.angular, max_angular))
 
 
+def along_curvature(curvature, max_linear, max_angular):
+    """The fastest Command along a path of curvature [1/m] (> 0 to the left) within the limits.
+
+    Where max_linear would turn faster than max_angular, the turn is held at
+    max_angular and the speed lowered to fit the curvature: a controller
+    that steers by curvature keeps its turn at the limit round a curve and
+    still corrects its path, by its speed.
+    """
+    if abs(curvature) * max_linear > max_angular:
+        return Command(max_angular / abs(curvature), math.copysign(max_angular, curvature))
+    return Command(max_linear, curvature * max_linear)
+
+
 def seen_after_move(points, advance, turn, laser_x=0.0):
     """(N, 2) laser-frame points as the laser sees them after the robot's move.
 
