@@ -152,6 +152,23 @@ FOLLOWER = (
         P('arc_exit_angle', math.radians(5.0), 'an outer corner arc ends this near parallel to '
           'the next wall [rad]', 0.0, math.pi / 2),
     )),
+    Section('pillar', (
+        P('pillar_window', 0.3, 'a round pillar is fitted to the hits on the right this near the '
+          'nearest one [m] ...', 0.05, 1.0),
+        P('pillar_clearance', 0.15, '... when no hit lies up to this much farther from it (the '
+          'pillar stands free) [m] ...', 0.0, 1.0),
+        P('pillar_max_radius', 0.25, '... and its circle is no larger than this [m] ...', 0.0,
+          1.0),
+        P('pillar_fit_tolerance', 0.02, '... and fits those hits this well, RMS [m]; it is '
+          'circled while it does ...', 0.0, 0.1),
+        P('pillar_min_arc', math.radians(100.0), '... once, on pillar_confirm scans running, '
+          'those hits span this much of it [rad] ...', 0.0, 2.0 * math.pi),
+        P('pillar_max_bulge', 0.02, "... and bend from it by no more than this (a small box's "
+          'corner bends them by more) [m] ...', 0.0, 0.1),
+        P('pillar_confirm', 3, '... see pillar_min_arc [scans]', 1, 100),
+        P('pillar_nearer', 0.015, 'circle a round pillar this much nearer than target_distance '
+          "[m] (Stage's grid draws a small disc up to a cell fatter on one side)", 0.0, 0.1),
+    )),
     Section('search', (
         P('search_speed', 0.15, 'no wall near: drive straight at this speed until one appears '
           '[m/s]', 0.0, 0.19),
