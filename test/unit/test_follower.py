@@ -13,7 +13,8 @@ from scan_queries import min_range
 from wall_follower.control.following.corner import CornerArc
 from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                                       FollowerParams, WallFollower)
-from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, Command, clamp, seen_after_move
+from wall_follower.control.motion import (MAX_ANGULAR, MAX_LINEAR, Command, along_curvature, clamp,
+                                          seen_after_move)
 from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.observation import Observation, unbiased
 from wall_follower.control.sensing.scan import ScanView
@@ -869,3 +870,13 @@ def round_a_corner(world, steps, corner_state):
     states = [state for state, _, _ in trail]
     assert corner_state in states and states[-1] == FOLLOW
     return trail[-1][1], [distance for _, _, distance in trail], set(states)
+
+
+@pytest.mark.parametrize('curvature, command', [
+    (0.0, (MAX_LINEAR, 0.0)),
+    (1.0, (MAX_LINEAR, MAX_LINEAR)),
+    (-5.0, (MAX_ANGULAR / 5.0, -MAX_ANGULAR)),
+    (5.0, (MAX_ANGULAR / 5.0, MAX_ANGULAR)),
+], ids=['straight', 'gentle', 'tight right', 'tight left'])
+def test_a_curve_is_flown_at_full_speed_or_at_the_full_turn_rate(curvature, command):
+    assert along_curvature(curvature, MAX_LINEAR, MAX_ANGULAR) == pytest.approx(command)

@@ -321,3 +321,17 @@ def test_facing_a_room_deeper_than_the_laser_reaches_the_robot_turns_to_see_its_
     world = generated_world(tmp_path, 21, 25, (0.999, 1.597, math.radians(179.8)))
     score, _ = lap(world, 'lds01', time_limit=150.0)
     assert_a_lap_in_band(score)
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01'])
+def test_a_round_pillar_is_circled_at_the_full_turn_rate(tmp_path, profile):
+    # Generated world 8 of seed 2: a round pillar 7 cm in radius stands
+    # free. Any lap turns a full turn, which takes 2 pi / MAX_ANGULAR s at
+    # the least; round a pillar the fastest lap takes no longer. Fitted as
+    # a string of short walls, the pillar was rounded as a run of outer
+    # corners, each slowed for: 15.2 s with Stage's laser, 15.5 s with
+    # LDS-01's. Started 0.25 m from its side, heading round it.
+    world = generated_world(tmp_path, 2, 8, (0.640, -0.323, math.radians(15.5)))
+    score, _ = lap(world, profile, time_limit=30.0)
+    assert_a_lap_in_band(score, least=0.99)
+    assert score.summary()['lap_time'] <= 1.1 * 2.0 * math.pi / MAX_ANGULAR

@@ -15,7 +15,8 @@ what it has to remember and says when it is done (see manoeuvre.py):
   by settle_gain to bring it back out sooner;
 - OUTER_CORNER (outer_corner.py): a wall that ends on the right (a convex
   corner) is rounded on a wide arc, an arc round the corner's tip and a
-  wide arc again;
+  wide arc again; a round pillar (pillar.py), looked for at every scan, is
+  circled at the full turn rate;
 - SEARCH (search.py): no wall near, straight ahead until one comes up.
 
 Corners get their own states because a wall fit cannot see them coming.
@@ -35,6 +36,7 @@ from wall_follower.control.following.follow_wall import FollowWall
 from wall_follower.control.following.inner_corner import InnerCorner
 from wall_follower.control.following.manoeuvre import FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD
 from wall_follower.control.following.outer_corner import OuterCorner
+from wall_follower.control.following.pillar import RoundPillar
 from wall_follower.control.following.search import Search
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.observation import Observation
@@ -80,7 +82,8 @@ class WallFollower(object):
         self.state = SEARCH
         self.command = Command(0.0, 0.0)
         self.inner_corner = InnerCorner(self.params)
-        self.outer_corner = OuterCorner(self.params, self.inner_corner)
+        self.pillar = RoundPillar(self.params)
+        self.outer_corner = OuterCorner(self.params, self.inner_corner, self.pillar)
         self.follow_wall = FollowWall(self.params, self.inner_corner, self.outer_corner)
         self.manoeuvres = {
             FOLLOW: self.follow_wall,
@@ -120,6 +123,7 @@ class WallFollower(object):
         dt = p.latency if stamp is None or self._stamp is None else stamp - self._stamp
         self._stamp = stamp
         obs = Observation(view, p, self.command)
+        self.pillar.observe(obs, self.command, dt)
         if self.state != WALL_AHEAD:
             # Until it is flown, the turn onto a wall ahead is planned afresh at every scan.
             self.inner_corner.plan(obs)

@@ -11,6 +11,8 @@ the wide end is planned to, and once the side is fitted the arc round
 the tip is pulled toward it by as much, for a corner whose wide end
 never comes (a sharp tip, ridden wide). A corner that comes up with no
 wall fitted (the end of a box's short side, mid-turn) is circled instead.
+A round pillar standing free is no corner but one curve: it is circled
+at the turn rate's limit for as long as it is seen (pillar.py).
 """
 import math
 
@@ -40,13 +42,15 @@ class OuterCorner(Manoeuvre):
     ending_wide: whether it has begun its wide end (which, once begun, goes
     on: the tip's position jitters by a grid cell from scan to scan).
     inner_corner: the left turn, whose approach dip a wall across the way
-    just past the corner leaves no room for.
+    just past the corner leaves no room for. pillar: the RoundPillar, the
+    follower's, circled instead while one is found.
     """
 
-    def __init__(self, params, inner_corner):
+    def __init__(self, params, inner_corner, pillar):
         super().__init__(params)
         self.configure()
         self.inner_corner = inner_corner
+        self.pillar = pillar
         self.arc = None
         self.starting_wide = False
         self.ending_wide = False
@@ -66,11 +70,12 @@ class OuterCorner(Manoeuvre):
         wide, the wall ends at the foot of the step's face, which the robot
         passes beside; the step's top stands out of the wall and runs on
         past its end (more than wall_continue_gap): there is no corner to
-        round, and FOLLOW keeps clear of the step. The top of the next wall
+        round, and FOLLOW keeps clear of the step. A wall fitted on a round
+        pillar is one of its chords: the pillar is rounded. The top of the next wall
         at a corner can stand out too, but the wall beyond it falls away.
         """
         p = self.params
-        if obs.wall is None:
+        if obs.wall is None or self.pillar.found:
             return True
         ends = obs.wall_runs + p.laser_x <= self.turn.lead + p.outer_turn_lead
         return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
@@ -92,8 +97,11 @@ class OuterCorner(Manoeuvre):
 
     def done(self, obs):
         """True on a wall along the right: an arc ends nearly parallel to it, where it was planned
-        to; circling a hit has no such end, and takes any wall."""
+        to; circling a hit has no such end, and takes any wall. A pillar's chord is no such
+        wall."""
         p = self.params
+        if self.pillar.found:
+            return False
         exit_angle = p.arc_exit_angle if self.arc is not None else p.rejoin_angle
         return obs.rejoined(exit_angle, p.rejoin_ahead)
 
@@ -108,6 +116,8 @@ class OuterCorner(Manoeuvre):
         turns it as sharply as the law asks, and comes back onto the arc.
         """
         p = self.params
+        if self.pillar.found:
+            return self.pillar.command()
         if self.arc is not None:
             if self.starting_wide or self.ending_wide:
                 return Command(p.cruise_speed, -p.max_turn_rate)
