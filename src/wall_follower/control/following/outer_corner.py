@@ -70,9 +70,10 @@ class OuterCorner(Manoeuvre):
         wide, the wall ends at the foot of the step's face, which the robot
         passes beside; the step's top stands out of the wall and runs on
         past its end (more than wall_continue_gap): there is no corner to
-        round, and FOLLOW keeps clear of the step. A wall fitted on a round
-        pillar is one of its chords: the pillar is rounded. The top of the next wall
-        at a corner can stand out too, but the wall beyond it falls away.
+        round, and FOLLOW keeps clear of the step. The top of the next wall
+        at a corner can stand out too, but the wall beyond it falls away. A
+        wall fitted on a round pillar is one of its chords: the pillar is
+        rounded.
         """
         p = self.params
         if obs.wall is None or self.pillar.found:

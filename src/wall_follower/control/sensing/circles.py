@@ -86,9 +86,9 @@ def round_pillar(points, nearest, params):
     pillar_clearance more (a wall's corner, a long box or a pillar beside a
     wall runs on past the window). Its circle is at most pillar_max_radius,
     fits its hits to pillar_fit_tolerance, and has the laser outside it.
-    Whether it is round, rather than the corner of a small box, the caller
-    decides from more than one scan: one scan's hits of a box corner can
-    fit a circle as well.
+    Whether its hits look round is the fit's round; the caller confirms it
+    over several scans, as one scan's hits of a small box's corner can
+    look round too.
     """
     if nearest is None:
         return None
