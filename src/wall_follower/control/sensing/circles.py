@@ -12,6 +12,8 @@ from collections import namedtuple
 
 import numpy as np
 
+from wall_follower.rotation import wrap_angle
+
 Circle = namedtuple('Circle', 'center radius rms')
 Circle.__doc__ = """center: (x, y) as an array; radius [m]; rms: the RMS distance [m] of the
 points it was fitted to from it."""
@@ -61,7 +63,7 @@ def bulge(points, circle):
     angles = np.arctan2(offsets[:, 1], offsets[:, 0])
     # Measured from the middle of the arc, so that it does not wrap.
     middle = math.atan2(np.sin(angles).sum(), np.cos(angles).sum())
-    along = np.arctan2(np.sin(angles - middle), np.cos(angles - middle))
+    along = wrap_angle(angles - middle)
     half = max(1e-9, float(np.abs(along).max()))
     u = along / half
     design = np.column_stack((np.ones(len(u)), u, u * u))
