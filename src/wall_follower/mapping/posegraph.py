@@ -18,6 +18,8 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.sparse import coo_matrix
 
+from wall_follower.rotation import wrap_angle
+
 __all__ = ['PoseGraph']
 
 
@@ -67,10 +69,9 @@ class PoseGraph(object):
                                  method='trf', tr_solver='lsmr',
                                  max_nfev=max_evaluations)
         relaxed = poses(solution.x)
-        relaxed[:, 2] = np.arctan2(np.sin(relaxed[:, 2]), np.cos(relaxed[:, 2]))
+        relaxed[:, 2] = wrap_angle(relaxed[:, 2])
         moved = float(np.hypot(*(relaxed[:, :2] - start[:, :2]).T).max())
-        turned = float(np.abs(np.arctan2(np.sin(relaxed[:, 2] - start[:, 2]),
-                                         np.cos(relaxed[:, 2] - start[:, 2]))).max())
+        turned = float(np.abs(wrap_angle(relaxed[:, 2] - start[:, 2])).max())
         self.poses = [tuple(float(v) for v in pose) for pose in relaxed]
         return moved, turned
 
@@ -93,7 +94,7 @@ class PoseGraph(object):
         turn = poses[j, 2] - poses[i, 2] - measured[:, 2]
         errors = np.column_stack((weights[:, 0] * (cm * lx + sm * ly),
                                   weights[:, 1] * (-sm * lx + cm * ly),
-                                  weights[:, 2] * np.arctan2(np.sin(turn), np.cos(turn))))
+                                  weights[:, 2] * wrap_angle(turn)))
         return errors.reshape(-1), (i, j, ci, si, cm, sm, dx, dy, weights)
 
     def _jacobian(self, poses):
