@@ -13,6 +13,13 @@ never comes (a sharp tip, ridden wide). A corner that comes up with no
 wall fitted (the end of a box's short side, mid-turn) is circled instead.
 A round pillar standing free is no corner but one curve: it is circled
 at the turn rate's limit for as long as it is seen (pillar.py).
+
+The turn is planned as if it began and ended outer_corner_offset farther
+out than target_distance. Wide arcs that meet half way round a square
+corner fly nearly all of it at cruise speed, but planned from
+target_distance itself they pass the tip nearer than the band allows; a
+little farther out, their meeting point moves off the tip and the turn
+starts a little later, and they clear it.
 """
 import math
 
@@ -21,8 +28,7 @@ from wall_follower.control.following.follow_wall import steer
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import (along_the_way, from_centre, in_laser_frame,
-                                                    wall_beyond)
+from wall_follower.control.sensing.wall_fit import from_centre, in_laser_frame, wall_beyond
 from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the
@@ -59,8 +65,8 @@ class OuterCorner(Manoeuvre):
         """Plan the turn from the parameters, again after they have changed."""
         p = self.params
         self.turn = OuterTurn(p.outer_corner_radius, p.cruise_speed / p.max_turn_rate,
-                              p.outer_wide_start, p.outer_wide_end, p.target_distance,
-                              p.outer_wide_tolerance)
+                              p.outer_wide_start, p.outer_wide_end,
+                              p.target_distance + p.outer_corner_offset, p.outer_wide_tolerance)
 
     def due(self, obs):
         """True unless the wall on the right goes on past where the arc round its end starts,
@@ -183,15 +189,19 @@ class OuterCorner(Manoeuvre):
         Without it (the corner comes up in the middle of a left turn, at
         the end of a short wall or a box's side) which way the corner points
         is unknown, and the robot circles the nearest hit instead. A wall
-        fitted far off parallel (beyond rejoin_angle) is not the one
-        that ended either: mid-turn onto a box's short side, it is the wall
-        the turn left behind, and an arc pinned to its end would circle a
-        point nowhere near the corner. Nor is a wall whose end meets hits
+        fitted turned away far off parallel (beyond rejoin_angle) is not the
+        one that ended either: mid-turn onto a box's short side, it is the
+        wall the turn left behind, and an arc pinned to its end would circle
+        a point nowhere near the corner. A wall the robot still heads into,
+        however steeply, is the one that ended: the corner came up before
+        FOLLOW had turned the robot parallel (just after a turn onto a
+        slanted wall), and circling the nearest hit instead drifted the
+        robot out of the band. Nor is a wall whose end meets hits
         standing out of it toward the robot by more than corner_gate (the
         face of a step up, turned onto): its end is the foot of that face,
         the corner to round is the face's top.
         """
-        if not along_the_way(obs.wall, self.params.rejoin_angle) or \
+        if obs.wall is None or obs.wall.angle <= -self.params.rejoin_angle or \
                 obs.proud > self.params.corner_gate:
             return None
         angle = obs.wall.angle

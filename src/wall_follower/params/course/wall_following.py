@@ -127,12 +127,15 @@ FOLLOWER = (
           'spot [m]', 0.0, 5.0),
     )),
     Section('outer_corner', (
-        P('outer_corner_radius', 0.27, 'radius of the arc round the tip of an outer corner, '
+        P('outer_corner_radius', 0.25, 'radius of the arc round the tip of an outer corner, '
           'between its wide arcs [m]', 0.0, 1.0),
-        P('outer_wide_start', math.radians(25.0), 'the first part of that turn, flown at cruise '
+        P('outer_wide_start', math.radians(45.0), 'the first part of that turn, flown at cruise '
           'speed on its widest arc [rad] ...', 0.0, math.pi / 2),
-        P('outer_wide_end', math.radians(40.0), '... and the last, begun where it ends at '
-          'target_distance from the next wall [rad]', 0.0, math.pi / 2),
+        P('outer_wide_end', math.radians(45.0), '... and the last, begun where it ends '
+          'outer_corner_offset past target_distance from the next wall [rad]', 0.0, math.pi / 2),
+        P('outer_corner_offset', 0.015, 'that turn is planned as if it began and ended this much '
+          'farther than target_distance from the walls: its arcs pass the tip that much farther '
+          'out [m]', -0.1, 0.1),
         P('outer_turn_lead', -0.005, 'start the turn round the end of a wall this much early '
           '(negative: late) [m]', -0.5, 0.5),
         P('outer_wide_tolerance', 0.03, 'the wide start is flown even this far inside the arc '
