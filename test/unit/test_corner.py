@@ -108,32 +108,34 @@ def fly_square_corner(turn, start, step=math.radians(0.25)):
     tip's position from the rotation centre, parallel to the wall.
 
     Returns the angles (rad) turned where the tight arc began and where the
-    wide end began (None: never), the tip's distances along the way, and the
-    arc as it ends, parallel to the next wall.
+    wide end began (None: never), the rotation centre's distance from the
+    tight arc's centre where it began, the tip's distances along the way,
+    and the arc as it ends, parallel to the next wall.
     """
     arc = CornerArc(start, (1.0, 0.0), turn.center)
-    starting, tight_from, tight_to = True, None, None
+    starting, tight_from, tight_to, met_at = True, None, None, None
     tip_distances = []
     while arc.turned() < math.pi / 2 - step / 2:
         turned, off_centre = arc.turned(), arc.offset()[0]
         starting = starting and turn.starts_wide(turned, off_centre)
         ending = turn.ends_wide(turned, arc.past_tip())
         if not starting and tight_from is None:
-            tight_from = turned
+            tight_from, met_at = turned, off_centre
         if ending and tight_to is None:
             tight_to = turned
         chord(arc, turn.wide_radius if starting or ending else turn.radius, step)
         tip_distances.append(math.hypot(*arc.tip))
-    return tight_from, tight_to, tip_distances, arc
+    return tight_from, tight_to, met_at, tip_distances, arc
 
 
 @pytest.mark.parametrize('wide_start, wide_end', [(0, 0), (25, 25), (20, 45)])
 def test_a_square_corner_flown_as_planned_ends_at_the_distance_it_started(wide_start, wide_end):
     turn = OuterTurn(0.27, 0.39, math.radians(wide_start), math.radians(wide_end), 0.25)
     # Parallel to the wall at 0.25 m, where the plan starts the turn.
-    tight_from, tight_to, tip_distances, arc = fly_square_corner(turn, (turn.lead, -0.25))
-    # The wide start meets the tight arc where the plan says.
+    tight_from, tight_to, met_at, tip_distances, arc = fly_square_corner(turn, (turn.lead, -0.25))
+    # The wide start meets the tight arc where the plan says, tangentially.
     assert tight_from == pytest.approx(math.radians(wide_start), abs=math.radians(0.5))
+    assert met_at == pytest.approx(turn.radius, abs=1e-3)
     if wide_end:
         assert tight_to == pytest.approx(math.radians(90 - wide_end), abs=math.radians(0.5))
     # Parallel to the next wall, which runs through the tip: 0.25 m to the right of it.
@@ -152,7 +154,7 @@ def test_by_default_a_square_corner_is_planned_at_cruise_speed_clear_of_the_tip(
     params = FollowerParams()
     turn = WallFollower(params).outer_corner.turn
     start = (turn.lead + params.outer_turn_lead, -params.target_distance)
-    tight_from, tight_to, tip_distances, arc = fly_square_corner(turn, start)
+    tight_from, tight_to, _, tip_distances, arc = fly_square_corner(turn, start)
     # Begun nearer than planned, the wide arcs leave a few degrees between them.
     flown_tight = (tight_to or math.pi / 2) - (tight_from or math.pi / 2)
     assert flown_tight <= math.radians(5.0)
