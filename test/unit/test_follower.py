@@ -387,7 +387,8 @@ def test_a_left_turn_starts_wide_at_cruise_speed_and_then_tightens():
     turning = [(math.degrees(pose[2]), speed)
                for (state, pose, _), speed in zip(trail, speeds) if state == WALL_AHEAD]
     start = [speed for yaw, speed in turning if yaw < 10.0]
-    middle = [speed for yaw, speed in turning if 30.0 < yaw < 60.0]
+    middle = [speed for yaw, speed in turning
+              if 30.0 < yaw < 90.0 - math.degrees(EXACT.wide_end)]
     assert start and min(start) > 0.9 * EXACT.cruise_speed
     assert middle and max(middle) < 1.1 * EXACT.inner_corner_radius * EXACT.max_turn_rate
 
@@ -522,6 +523,38 @@ def test_a_wall_that_ends_on_the_right_is_rounded_to_the_right(convention):
                                  controller=controller)
     assert controller.state == OUTER_CORNER
     assert command.angular < -0.3 and command.linear > 0.05
+
+
+def opening_before_a_wall_across(opening, right=0.25):
+    """convex_corner at the outer corner's start, and opening metres beyond the wall's end a
+    wall across the lane that ends at the robot's right: the way on is between the two."""
+    end_x = WallFollower(EXACT).outer_corner.turn.lead - 0.03
+    across = end_x + opening
+    return convex_corner(end_x, right) + [((across, -0.05), (across, 3.0))]
+
+
+def test_a_wall_that_ends_short_of_a_wall_across_the_way_is_rounded_first():
+    # Generated world 3 of seed 58, the LDS-01 laser, with a 35 deg wide end
+    # to the left turn before it: the wall on the right ended 0.4 m short of
+    # a wall across the lane. The turn onto that wall was due as well, and
+    # taken first it carried the robot away from the opening and off the
+    # wall it followed: it drove back across the room to its start and
+    # closed a lap of 18 s, 90 % in band.
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    # The turn onto the wall across is due there as well.
+    assert turn_start(EXACT) > WallFollower(EXACT).outer_corner.turn.lead - 0.03 + 0.35
+    controller, command = update(opening_before_a_wall_across(0.35), controller=controller)
+    assert controller.state == OUTER_CORNER
+    assert command.angular < -0.3
+
+
+def test_an_opening_too_narrow_to_turn_into_is_passed_by_the_left_turn():
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    controller, command = update(opening_before_a_wall_across(0.15), controller=controller)
+    assert controller.state == WALL_AHEAD
+    assert command.angular > 0.3
 
 
 def lipped_corner(lip, end_x=0.3, right=0.25):

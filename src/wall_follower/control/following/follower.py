@@ -147,13 +147,30 @@ class WallFollower(object):
     def _next_state(self, obs):
         """A wall ahead within reach interrupts any manoeuvre; else the state's own transition.
 
-        Round an outer corner only something near in the lane is within
-        reach: the right turn carries the robot away from anything farther
-        across its present heading.
+        Round an outer corner, or where the turn round the end of the wall
+        followed is due, only something near in the lane is within reach:
+        the right turn carries the robot away from anything farther across
+        its present heading.
         """
-        if self.inner_corner.needed(obs, turning_right=self.state == OUTER_CORNER):
+        if self.inner_corner.needed(obs, turning_right=self._rounding(obs)):
             return WALL_AHEAD
         return self._transitions[self.state](obs)
+
+    def _rounding(self, obs):
+        """True while rounding an outer corner, or following a fitted wall whose end is due.
+
+        A wall on the right that ends short of a wall across the way leaves
+        an opening between them, and the way on is through it: the right
+        turn comes first. Where the turn onto the wall across was due as
+        well, and taken first, it carried the robot away from the opening
+        and off the wall it had followed. An opening too narrow to turn
+        into has the wall across nearer than front_turn_distance by the
+        time the end is due, and the left turn is taken as before.
+        """
+        if self.state == OUTER_CORNER:
+            return True
+        return (self.state == FOLLOW and obs.wall is not None and not self.pillar.found
+                and self.follow_wall.done(obs) and self._near(obs))
 
     def _from_follow(self, obs):
         """Follow on until the wall ends where the turn round its end starts, then round it."""
