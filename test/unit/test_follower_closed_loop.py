@@ -310,6 +310,23 @@ def test_a_left_turn_is_not_held_on_by_the_end_of_a_wall_behind(tmp_path):
     assert 'SEARCH' not in states
 
 
+@pytest.mark.parametrize('profile, seed', [('lds01', 0), ('lds02', 2)])
+def test_the_opening_between_a_walls_end_and_a_wall_across_is_the_way_on(tmp_path, profile,
+                                                                         seed):
+    # Generated world 3 of seed 58: an alcove's side is a wall that ends
+    # 0.4 m short of the alcove's far wall, and the way on is the opening
+    # between them. With these lasers and noise seeds the turn onto the far
+    # wall came due while the turn round the side's end was, was taken first,
+    # and carried the robot back across the alcove, 0.96 m off any wall.
+    # Started where the fastest lap starts, 14 s before that wall's end; the
+    # first corner takes the robot up to 3 cm beyond the band.
+    world = generated_world(tmp_path, 58, 3, (-1.81, -0.172, math.radians(169.2)))
+    score, states = lap(world, profile, seed=seed, time_limit=20.0)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert 'OUTER_CORNER' in states
+    assert farthest <= BAND[1] + 0.035, farthest
+
+
 def test_facing_a_room_deeper_than_the_laser_reaches_the_robot_turns_to_see_its_way(tmp_path):
     # Generated world 25 of seed 21, the LDS-01 laser, which reads 0.0 past
     # 3.5 m: coming up out of a notch in the south wall, the robot faces the

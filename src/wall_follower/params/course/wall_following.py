@@ -88,7 +88,7 @@ FOLLOWER = (
           'flown at cruise speed on its widest arc [rad]; 0 for none', 0.0, math.pi / 2),
         P('inner_corner_radius', 0.09, '... then the turn goes on at this radius past the '
           'corner [m] ...', 0.0, 1.0),
-        P('wide_end', math.radians(30.0), '... and flies its last part at cruise speed again '
+        P('wide_end', math.radians(35.0), '... and flies its last part at cruise speed again '
           '[rad]; 0 for none', 0.0, math.pi / 2),
         P('wide_allowance', 0.015, 'the wide start may carry the robot this far past '
           'target_distance [m]; it rides nearer by the rest of the drift first', 0.0, 0.5),
