@@ -147,30 +147,24 @@ class WallFollower(object):
     def _next_state(self, obs):
         """A wall ahead within reach interrupts any manoeuvre; else the state's own transition.
 
-        Round an outer corner, or where the turn round the end of the wall
-        followed is due, only something near in the lane is within reach:
-        the right turn carries the robot away from anything farther across
-        its present heading.
+        Round an outer corner, or from FOLLOW into one at the end of a
+        fitted wall, only something near in the lane is within reach: the
+        right turn carries the robot away from anything farther across its
+        present heading. A wall on the right that ends short of a wall
+        across the way leaves an opening between them, and the way on is
+        through it; where the turn onto the wall across was due as well,
+        and taken first, it carried the robot away from the opening and off
+        the wall it had followed. An opening too narrow to turn into has
+        the wall across nearer than front_turn_distance by the time the end
+        is due, and the left turn is taken as before.
         """
-        if self.inner_corner.needed(obs, turning_right=self._rounding(obs)):
+        following = self._transitions[self.state](obs)
+        turning_right = self.state == OUTER_CORNER or (
+            self.state == FOLLOW and following == OUTER_CORNER and obs.wall is not None
+            and not self.pillar.found)
+        if self.inner_corner.needed(obs, turning_right=turning_right):
             return WALL_AHEAD
-        return self._transitions[self.state](obs)
-
-    def _rounding(self, obs):
-        """True while rounding an outer corner, or following a fitted wall whose end is due.
-
-        A wall on the right that ends short of a wall across the way leaves
-        an opening between them, and the way on is through it: the right
-        turn comes first. Where the turn onto the wall across was due as
-        well, and taken first, it carried the robot away from the opening
-        and off the wall it had followed. An opening too narrow to turn
-        into has the wall across nearer than front_turn_distance by the
-        time the end is due, and the left turn is taken as before.
-        """
-        if self.state == OUTER_CORNER:
-            return True
-        return (self.state == FOLLOW and obs.wall is not None and not self.pillar.found
-                and self.follow_wall.done(obs) and self._near(obs))
+        return following
 
     def _from_follow(self, obs):
         """Follow on until the wall ends where the turn round its end starts, then round it."""
