@@ -352,3 +352,41 @@ def test_a_round_pillar_is_circled_at_the_full_turn_rate(tmp_path, profile):
     score, _ = lap(world, profile, time_limit=30.0)
     assert_a_lap_in_band(score, least=0.99)
     assert score.summary()['lap_time'] <= 1.1 * 2.0 * math.pi / MAX_ANGULAR
+
+
+def test_a_small_pillar_not_yet_found_is_not_passed_wide(tmp_path):
+    # Generated world 47 of seed 63: a round pillar 0.1 m across, the robot
+    # started 0.2 m from it. Until the pillar is found, the walls fitted on
+    # it are chords too short to rejoin; the turn round the end of one began
+    # its wide start past where a wide start begins, circled a centre beyond
+    # that end, and passed the pillar 0.32 m from it, 2 s out of the band.
+    # The LDS-02 laser finds the pillar late.
+    world = generated_world(tmp_path, 63, 47, (-0.8742, 0.3291, math.radians(125.62)))
+    score, _ = lap(world, 'lds02', time_limit=30.0)
+    assert_a_lap_in_band(score)
+
+
+@pytest.mark.parametrize('seed, index, start, profile', [
+    # Generated world 3 of seed 62: an island 0.12 m wide, slanted 17 deg.
+    # Started on its south side, 0.27 m from it, 0.65 m and 0.85 m short of
+    # its west end.
+    pytest.param(62, 3, (0.22, -0.421, math.radians(-165.0)), 'stage', id='west end'),
+    pytest.param(62, 3, (0.037, -0.471, math.radians(-164.6)), 'lds01', id='west end, LDS-01'),
+    # Generated world 1 of seed 63: the same, slanted 45 deg. Started on its
+    # north-west side, 0.27 m from it, 0.5 m short of its north-east end.
+    pytest.param(63, 1, (-0.393, 0.26, math.radians(41.0)), 'stage', id='north-east end'),
+])
+def test_the_end_of_a_thin_bar_is_rounded_in_one_turn(tmp_path, seed, index, start, profile):
+    # The bar's end is a side too short to be rejoined. The turn round its
+    # first corner, taken for a square one, flew its wide end on past
+    # parallel to that side, 0.34 m from the corner's tip; turning back
+    # onto the arc round that tip, the robot crawled for 1.5 s, and came
+    # round the second corner 0.15 m from the far side: 91-93 % of the lap
+    # in band.
+    world = generated_world(tmp_path, seed, index, start)
+    # Round both corners and 0.5 m along the far side.
+    score, states = lap(world, profile, time_limit=11.0)
+    distances = [score.map.right_wall_distance(pose) for pose in score.poses]
+    assert 'OUTER_CORNER' in states
+    nearest, farthest = min(distances), max(distances)
+    assert BAND[0] <= nearest and farthest <= BAND[1], (nearest, farthest)

@@ -9,8 +9,10 @@ short side with a wall across its end, the turn onto which leaves no
 room to ride nearer first, the corner lands nearer it by that turn's dip:
 the wide end is planned to, and once the side is fitted the arc round
 the tip is pulled toward it by as much, for a corner whose wide end
-never comes (a sharp tip, ridden wide). A corner that comes up with no
-wall fitted (the end of a box's short side, mid-turn) is circled instead.
+never comes (a sharp tip, ridden wide). A side too short to rejoin (the
+end of a thin bar) ends at a corner of its own, and the arc is pinned to
+that one in turn. A corner that comes up with no wall fitted (the end of a
+box's short side, mid-turn) is circled instead.
 A round pillar standing free is no corner but one curve: it is circled
 at the turn rate's limit for as long as it is seen (pillar.py).
 
@@ -28,12 +30,18 @@ from wall_follower.control.following.follow_wall import steer
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import from_centre, in_laser_frame, wall_beyond
+from wall_follower.control.sensing.wall_fit import (along_the_way, from_centre, in_laser_frame,
+                                                    wall_beyond)
 from wall_follower.rotation import wrap_angle
 
 # A wall fitted this much further round than the robot has turned from the
 # one that ended is another wall [rad].
 OTHER_WALL_ANGLE = math.radians(15.0)
+# A wall fitted along the right once the turn is this far round is the next
+# side (see _round_short_side). The faces of a many-sided island come along
+# the right after smaller turns, and are circled on the arc round the first
+# tip [rad].
+NEXT_SIDE_TURN = math.radians(60.0)
 
 
 class OuterCorner(Manoeuvre):
@@ -88,16 +96,54 @@ class OuterCorner(Manoeuvre):
         return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
 
     def begin(self, obs, previous):
-        self.arc = self._corner_arc(obs)
-        self.starting_wide = previous == FOLLOW and not obs.proud
-        self.ending_wide = False
+        self._pin(obs, wide_start=previous == FOLLOW)
         self._track_wide(obs)
 
     def carry_on(self, obs, motion, dt):
         if self.arc is not None:
             self.arc.moved(motion.linear * dt, motion.angular * dt)
             self.arc.observe(obs.right, self.params.corner_gate)
+            if self._round_short_side(obs):
+                self._pin(obs, wide_start=self._before_wide_start(obs))
         self._track_wide(obs)
+
+    def _before_wide_start(self, obs):
+        """True when the end of the wall on the right is no more than outer_wide_tolerance
+        nearer than where the wide start round it begins.
+
+        A wide start begun farther on circles a centre beyond the tip, and
+        carries the robot outside the arc round it: past the short faces of
+        a small pillar not yet found, out of the band.
+        """
+        p = self.params
+        return (obs.wall_runs + p.laser_x
+                >= self.turn.lead + p.outer_turn_lead - p.outer_wide_tolerance)
+
+    def _pin(self, obs, wide_start):
+        """Pin a new arc to the end of the wall on the right, to be flown from its wide start
+        if wide_start (unless round a tip standing out toward the robot)."""
+        self.arc = self._corner_arc(obs)
+        self.starting_wide = wide_start and not obs.proud
+        self.ending_wide = False
+
+    def _round_short_side(self, obs):
+        """True when the turn has come round onto a side too short to rejoin, and the turn
+        round that side's own end is due: the end of a thin bar, say.
+
+        Fitted along the right once the turn is NEXT_SIDE_TURN round, the
+        side is the next wall, not the one that ended; not done(), it is too
+        short to follow. Taken for the next wall of a square corner, it
+        held the wide end on, past parallel to it and far outside the arc
+        round the first tip, until the robot crawled back onto that arc,
+        and came round the side's far end cutting inside it. That end is a
+        corner of its own, rounded as one come up from FOLLOW: from its wide
+        start, unless the robot is already past where that begins
+        (_before_wide_start). On the tight arc alone, circling each face of
+        a many-sided island cost up to 10 % of the lap.
+        """
+        p = self.params
+        return (not self.pillar.found and along_the_way(obs.wall, p.arc_exit_angle)
+                and self.arc.turned() >= NEXT_SIDE_TURN and self.due(obs))
 
     def end(self):
         self.arc = None
