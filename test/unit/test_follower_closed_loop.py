@@ -368,21 +368,21 @@ def test_a_small_pillar_not_yet_found_is_not_passed_wide(tmp_path):
 
 @pytest.mark.parametrize('seed, index, start, profile', [
     # Generated world 3 of seed 62: an island 0.12 m wide, slanted 17 deg.
-    # Started on its south side, 0.27 m from it, 0.65 m and 0.85 m short of
+    # Started on its south side, 0.27 m from it, 0.55 m and 0.35 m short of
     # its west end.
     pytest.param(62, 3, (0.22, -0.421, math.radians(-165.0)), 'stage', id='west end'),
     pytest.param(62, 3, (0.037, -0.471, math.radians(-164.6)), 'lds01', id='west end, LDS-01'),
     # Generated world 1 of seed 63: the same, slanted 45 deg. Started on its
-    # north-west side, 0.27 m from it, 0.5 m short of its north-east end.
+    # north-west side, 0.27 m from it, 0.45 m short of its north-east end.
     pytest.param(63, 1, (-0.393, 0.26, math.radians(41.0)), 'stage', id='north-east end'),
 ])
 def test_the_end_of_a_thin_bar_is_rounded_in_one_turn(tmp_path, seed, index, start, profile):
     # The bar's end is a side too short to be rejoined. The turn round its
     # first corner, taken for a square one, flew its wide end on past
-    # parallel to that side, 0.34 m from the corner's tip; turning back
+    # parallel to that side, 0.33 m from the corner's tip; turning back
     # onto the arc round that tip, the robot crawled for 1.5 s, and came
-    # round the second corner 0.15 m from the far side: 91-93 % of the lap
-    # in band.
+    # round the second corner 0.15-0.18 m from the far side: 91-93 % of the
+    # lap in band.
     world = generated_world(tmp_path, seed, index, start)
     # Round both corners and 0.5 m along the far side.
     score, states = lap(world, profile, time_limit=11.0)

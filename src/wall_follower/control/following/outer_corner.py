@@ -139,7 +139,7 @@ class OuterCorner(Manoeuvre):
         corner of its own, rounded as one come up from FOLLOW: from its wide
         start, unless the robot is already past where that begins
         (_before_wide_start). On the tight arc alone, circling each face of
-        a many-sided island cost up to 10 % of the lap.
+        a many-sided island cost up to 9 % of the lap.
         """
         p = self.params
         return (not self.pillar.found and along_the_way(obs.wall, p.arc_exit_angle)
