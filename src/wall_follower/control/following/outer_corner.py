@@ -92,8 +92,13 @@ class OuterCorner(Manoeuvre):
         p = self.params
         if obs.wall is None or self.pillar.found:
             return True
-        ends = obs.wall_runs + p.laser_x <= self.turn.lead + p.outer_turn_lead
+        ends = obs.wall_runs + p.laser_x <= self._turn_starts()
         return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
+
+    def _turn_starts(self):
+        """How far ahead of the rotation centre the end of the wall on the right lies where
+        the turn round it starts [m]."""
+        return self.turn.lead + self.params.outer_turn_lead
 
     def begin(self, obs, previous):
         self._pin(obs, wide_start=previous == FOLLOW)
@@ -116,8 +121,7 @@ class OuterCorner(Manoeuvre):
         a small pillar not yet found, out of the band.
         """
         p = self.params
-        return (obs.wall_runs + p.laser_x
-                >= self.turn.lead + p.outer_turn_lead - p.outer_wide_tolerance)
+        return obs.wall_runs + p.laser_x >= self._turn_starts() - p.outer_wide_tolerance
 
     def _pin(self, obs, wide_start):
         """Pin a new arc to the end of the wall on the right, to be flown from its wide start
