@@ -51,6 +51,9 @@ ONE_BEAM_AHEAD = Msg([1.0] + [0.0] * 30 + [1.0] * 299 + [0.0] * 30)
 # Beams 150..210: the sector within 30 deg behind.
 BLIND_BEHIND = Msg([1.0] * 150 + [0.0] * 61 + [1.0] * 149)
 DROPOUTS_AHEAD = Msg([1.0 if i % 4 else 0.0 for i in range(360)])
+# 8 of the 61 beams within 30 deg ahead read valid, all right of straight ahead: in view,
+# but by fewer than twice the tenth needed.
+NARROW_AHEAD = Msg([0.0] * 31 + [1.0] * 299 + [1.0] * 8 + [0.0] * 22)
 
 
 class Scans(object):
@@ -242,6 +245,22 @@ def test_a_command_turning_faster_than_the_blind_turn_keeps_its_own_turn():
     answered = [c for t, c in sent if c != STOP]
     assert answered and all(c == Command(0.0, 0.49) for c in answered)
     assert Clock.warnings == ['no valid reading within 30 deg ahead; not driving forward']
+
+
+def test_a_way_a_blind_turn_found_goes_straight_on_while_it_is_narrow():
+    # The answer turns away from the side the blind turn looked to.
+    script = (every_tenth(BLIND_AHEAD, 0.1, 0.5) + every_tenth(NARROW_AHEAD, 0.5, 1.0)
+              + every_tenth(GOOD, 1.0, 1.5))
+    sent = blind_run(script, until=1.5)
+    assert all(c == Command(0.0, -0.3) for t, c in sent if 0.15 <= t < 0.5)
+    assert all(c == Command(0.1, 0.0) for t, c in sent if 0.55 <= t < 1.0)
+    assert any(c == Command(0.1, 0.2) for t, c in sent if t >= 1.05)
+
+
+def test_a_narrow_view_leaves_a_command_as_it_is_without_a_blind_turn_before_it():
+    sent = blind_run(every_tenth(NARROW_AHEAD, 0.1, 0.5), until=0.5)
+    answered = [c for t, c in sent if c != STOP]
+    assert answered and all(c == Command(0.1, 0.2) for c in answered)
 
 
 def test_a_blind_turn_leaves_other_commands_as_they_are():

@@ -14,7 +14,7 @@ from generated_worlds import write_generated
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
-from wall_follower.control.unseen_ahead import BlindTurn, held_back, unseen_ahead
+from wall_follower.control.unseen_ahead import BlindTurn, held_back, narrow_ahead, unseen_ahead
 from wall_follower.evaluation.scoring.course import BAND, CourseMap, RunScore
 from wall_follower.params.course.wall_following import BLIND_TURN
 from wall_follower.params.driving import AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN
@@ -50,7 +50,8 @@ def lap(world_path, profile, seed=0, time_limit=120.0, params=None, blind_turn=-
                         scan.range_max)
         command = clamp(held_back(controller.update(view),
                                   unseen_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN), looking,
-                                  simulation.time))
+                                  simulation.time,
+                                  narrow_ahead(view, AHEAD_HALF_WIDTH, AHEAD_MIN_KNOWN)))
         score.add_command(*command)
         states.add(controller.state)
         simulation.set_command(0, *command)
@@ -338,6 +339,23 @@ def test_facing_a_room_deeper_than_the_laser_reaches_the_robot_turns_to_see_its_
     world = generated_world(tmp_path, 21, 25, (0.999, 1.597, math.radians(179.8)))
     score, _ = lap(world, 'lds01', time_limit=150.0)
     assert_a_lap_in_band(score)
+
+
+def test_at_the_end_of_a_wall_before_a_room_deeper_than_the_laser_reaches_the_robot_goes_on(
+        tmp_path):
+    # Generated world 5 of seed 65, the LDS-01 laser: a corridor's east wall
+    # ends 0.4 m ahead, where it opens into a room deeper than 3.5 m. The way
+    # ahead shows in 1 to 6 of its 61 beams; turned toward the wall, in 7. The
+    # follower then turned back to the wall's heading, at once out of view
+    # again: the robot crept 2 cm a turn, and stopped for good once its turns
+    # had added up to half a turn. Started on the wall, 0.26 m from it.
+    world = generated_world(tmp_path, 65, 5, (0.01, -2.75, math.pi / 2))
+    # Up to the wall's end, round it, and east along the room's south wall.
+    score, states = lap(world, 'lds01', time_limit=10.0)
+    x, y, _ = score.poses[-1]
+    assert 'OUTER_CORNER' in states
+    assert x >= 0.5 and y >= -1.9, (x, y)
+    assert not score.summary()['contact']
 
 
 @pytest.mark.parametrize('profile', ['stage', 'lds01'])

@@ -6,7 +6,7 @@ import pytest
 from wall_follower.control.motion import STOP, Command
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.control.unseen_ahead import (BLIND_TURN_LIMIT, BlindTurn, held_back,
-                                                unseen_ahead)
+                                                narrow_ahead, unseen_ahead)
 
 FORWARD = Command(0.19, -0.1)
 UNSEEN = 'no valid reading within 30 deg ahead'
@@ -26,6 +26,36 @@ def test_the_way_ahead_is_seen_when_a_tenth_of_its_beams_read_valid():
         'only 6 of the 61 beams within 30 deg ahead read valid (10% needed)')
     assert unseen_ahead(view([0.0] * 31 + [1.0] * 299 + [0.0] * 30),
                         math.radians(30.0), 0.1) == UNSEEN
+
+
+def test_a_view_ahead_is_narrow_below_twice_the_share_needed():
+    # 61 beams within 30 deg ahead: 12 valid are fewer than twice a tenth, 13 are not.
+    twelve = [1.0] * 12 + [0.0] * 19 + [1.0] * 299 + [0.0] * 30
+    thirteen = [1.0] * 13 + [0.0] * 18 + [1.0] * 299 + [0.0] * 30
+    assert narrow_ahead(view(twelve), math.radians(30.0), 0.1)
+    assert not narrow_ahead(view(thirteen), math.radians(30.0), 0.1)
+
+
+def test_a_way_a_blind_turn_found_is_kept_until_a_command_turns_to_its_side():
+    turn = BlindTurn(-0.3)
+    left = Command(0.19, 0.35)
+    assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+    # Found: while narrow, straight on instead of turning away from it.
+    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.19, 0.0)
+    assert held_back(left, None, turn, 0.6, narrow=False) == left
+    # Lost again: looked for the way it was found, not at the command's own turn.
+    assert held_back(left, UNSEEN, turn, 0.7) == Command(0.0, -0.3)
+    assert held_back(left, None, turn, 0.8, narrow=True) == Command(0.19, 0.0)
+    # A command that turns to the turn's side ends the keeping.
+    assert held_back(Command(0.19, -0.1), None, turn, 0.9, narrow=True) == Command(0.19, -0.1)
+    assert held_back(left, None, turn, 1.0, narrow=True) == left
+    assert held_back(left, UNSEEN, turn, 1.1) == Command(0.0, 0.35)
+
+
+def test_a_narrow_view_leaves_commands_alone_until_a_blind_turn_has_found_a_way():
+    turn = BlindTurn(-0.3)
+    assert held_back(Command(0.19, 0.35), None, turn, 0.0, narrow=True) == Command(0.19, 0.35)
+    assert held_back(Command(0.19, 0.35), None, None, 0.0, narrow=True) == Command(0.19, 0.35)
 
 
 def test_without_a_blind_turn_forward_motion_into_the_unseen_is_taken_out():

@@ -9,6 +9,13 @@ that sees nothing ahead, and a node that only asked to go straight would
 stand there for good. A wall follower knows which side its wall is on: a
 BlindTurn turns it in place toward that side, where the wall is near, until
 the way ahead comes into view, and stops it if half a turn has not shown it.
+A way it finds at the end of a wall, past which the room is out of reach,
+shows in a few beams only, on the wall's side; a follower that turned back
+to the wall's heading would lose it at once and creep on, a step at a time,
+between the two turns. So the way found is kept: while the view is narrow
+(fewer than KEPT_VIEW times the share needed), the robot goes straight on
+instead of turning away from the wall, and if the way is lost again it is
+looked for where it was found, until a command turns toward the wall.
 Backward motion (find_wall's slide, a teleop user's reverse) is held by the
 same rule on the sector behind, with no turn: nothing drives backward for
 want of a view.
@@ -21,6 +28,10 @@ BLIND_TURN_LIMIT = math.pi
 """How far [rad] a BlindTurn turns without the way ahead coming into view before it stops:
 half a turn toward the followed wall has pointed the sector ahead at that wall, so a laser
 that still shows nothing there is blind, not facing open space."""
+
+KEPT_VIEW = 2.0
+"""How many times the share of valid beams needed to drive the sector ahead must show before
+a way a BlindTurn found is in view well enough to turn away from again."""
 
 
 def unseen_ahead(view, half_width, min_known, backward=False):
@@ -40,9 +51,17 @@ def unseen_ahead(view, half_width, min_known, backward=False):
     return None
 
 
-def held_back(command, problem, blind_turn, now):
+def narrow_ahead(view, half_width, min_known):
+    """Whether a ScanView shows the way ahead by fewer than KEPT_VIEW times min_known of the
+    beams within half_width [rad] of straight ahead (held_back's narrow)."""
+    known, beams = view.known_share_in_sector(0.0, half_width)
+    return known < KEPT_VIEW * min_known * beams
+
+
+def held_back(command, problem, blind_turn, now, narrow=False):
     """What a loop sends for command when the way it drives is as problem says (unseen_ahead's
-    answer for that way; None: in view), at ROS time now.
+    answer for that way; None: in view), at ROS time now; narrow: the way is in view, but
+    by fewer than KEPT_VIEW times the share needed.
 
     A command that turns in place goes as it is; backward motion into an unseen way goes
     without its backward part. Forward motion into an unseen way
@@ -50,16 +69,15 @@ def held_back(command, problem, blind_turn, now):
     that turn while the command turns slower (its_own_turn): a node that only asked to go
     on would stand for good, one that turns knows where it is going (a left turn onto a
     dark wall ahead, which an LDS-01 reads as 0.0, goes on in place). A way in view ends
-    the turn under way.
+    the turn under way, and a way it found is kept in view while it is narrow
+    (BlindTurn.seen).
     """
     if command.linear < 0.0:
         return command if problem is None else Command(0.0, command.angular)
     if command.linear == 0.0:
         return command
     if problem is None:
-        if blind_turn is not None:
-            blind_turn.seen()
-        return command
+        return command if blind_turn is None else blind_turn.seen(command, narrow)
     if its_own_turn(command, blind_turn):
         return Command(0.0, command.angular)
     return blind_turn.turn(now)
@@ -67,8 +85,10 @@ def held_back(command, problem, blind_turn, now):
 
 def its_own_turn(command, blind_turn):
     """Whether a command held back for want of a view ahead turns in place at its own rate:
-    with no BlindTurn, or one no faster than the command's turn."""
-    return blind_turn is None or abs(command.angular) >= abs(blind_turn.rate)
+    with no BlindTurn, or one no faster than the command's turn that is not keeping a way
+    it found (which is looked for again the way it was found)."""
+    return blind_turn is None or (abs(command.angular) >= abs(blind_turn.rate)
+                                  and not blind_turn.keeping)
 
 
 class BlindTurn(object):
@@ -83,7 +103,8 @@ class BlindTurn(object):
     def __init__(self, rate, limit=BLIND_TURN_LIMIT):
         self.rate = rate
         self.limit = limit
-        self._since = None   # ROS time the turn began
+        self._since = None     # ROS time the turn began
+        self._keeping = False  # the way the last turn found is kept in view
 
     def turn(self, now):
         """The command at ROS time now while the way ahead is unseen: the turn, or STOP once
@@ -99,6 +120,23 @@ class BlindTurn(object):
             return 0.0
         return min(self.limit, abs(self.rate) * (now - self._since))
 
-    def seen(self):
-        """The way ahead is in view: the next unseen stretch starts a new turn."""
+    def seen(self, command, narrow):
+        """The command to send for a forward command while the way ahead is in view; narrow:
+        by fewer than KEPT_VIEW times the share needed. The next unseen stretch starts a new
+        turn. While the way a turn found is kept (keeping), a command that turns away from
+        the side the turn looked to goes straight on instead where the view is narrow, and
+        as it is where it is wider."""
+        if self._since is not None:
+            self._keeping = True
         self._since = None
+        if command.angular * self.rate > 0.0:
+            self._keeping = False
+        if self._keeping and narrow and command.angular * self.rate < 0.0:
+            return Command(command.linear, 0.0)
+        return command
+
+    @property
+    def keeping(self):
+        """Whether the way the last turn found is kept: from the reading that showed it until
+        a command in view turns to the side the turn looked to."""
+        return self._keeping

@@ -14,7 +14,8 @@ knows the way ahead; a laser's command is held back while fewer than
 are valid readings (a hit or a proven no-return): a laser that sees
 nothing there, or a beam or two of the sector, may be blind, not looking
 at free space; with a `blind_turn`, the robot turns in place instead, to
-bring the way ahead into view (control.unseen_ahead.BlindTurn). Nor does a
+bring the way ahead into view, and keeps a way it found in view while the
+view is narrow (control.unseen_ahead.BlindTurn). Nor does a
 laser's command drive backward into a sector behind that it does not show
 by the same rule; it turns in place instead. A clock
 that jumps back (a simulator restarted, a bag looped) drops the reading
@@ -37,7 +38,8 @@ import rospy
 
 from wall_follower.control.motion import STOP, Answer
 from wall_follower.control.stamps import arrival_time
-from wall_follower.control.unseen_ahead import BlindTurn, held_back, its_own_turn, unseen_ahead
+from wall_follower.control.unseen_ahead import (BlindTurn, held_back, its_own_turn, narrow_ahead,
+                                                unseen_ahead)
 from wall_follower.nodes.shared.velocity import VelocityCommander
 from wall_follower.params.driving import AHEAD_MIN_KNOWN
 
@@ -200,7 +202,10 @@ class DriveLoop(object):
         ahead, or behind, that the sensor does not show."""
         command, known = answered if isinstance(answered, Answer) else (answered, None)
         problem = self._unseen_way(view, known, command.linear)
-        safe = held_back(command, problem, self._blind_turn, now)
+        narrow = (self._blind_turn is not None and known is None
+                  and self.ahead_min_known is not None
+                  and narrow_ahead(view, self.ahead_half_width, self.ahead_min_known))
+        safe = held_back(command, problem, self._blind_turn, now, narrow)
         if problem is not None:
             self._warn(problem + self._holding(command, safe, now), now)
         return safe
