@@ -23,7 +23,6 @@ import shlex
 import socket
 import subprocess
 import sys
-import tempfile
 import threading
 import unittest
 import uuid
@@ -32,10 +31,10 @@ from unittest import mock
 
 import rospy
 import rostest
-
-from wall_follower.evaluation.grading import report as grade_report
+from scratch import ScratchFolders
 
 from wall_follower.evaluation.grading import grader
+from wall_follower.evaluation.grading import report as grade_report
 from wall_follower.evaluation.launching import TOKEN_VARIABLE, processes_with
 
 SOLUTIONS = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, 'solutions')
@@ -79,13 +78,13 @@ def read_grades(out):
         return None
 
 
-class GradePackage(unittest.TestCase):
+class GradePackage(ScratchFolders, unittest.TestCase):
     """As a class is graded on many machines: `grade --list`, each case's command on its
     own (two at a time here), then `grade --collect`."""
 
     @classmethod
     def setUpClass(cls):
-        cls.out = tempfile.mkdtemp(prefix='grade_package-')
+        cls.out = cls.scratch('grade_package-')
         listing = subprocess.check_output(
             ['rosrun', 'wall_follower', 'grade', 'wall_follower', 'main.launch', '--worlds',
              str(max(PACKAGE_CASES) + 1), '--seed', '1', '--out', cls.out, '--list'],
@@ -131,11 +130,11 @@ class GradePackage(unittest.TestCase):
             self.assertEqual(left_behind(pid), [])
 
 
-class GradeBroken(unittest.TestCase):
+class GradeBroken(ScratchFolders, unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        root = tempfile.mkdtemp(prefix='grade_broken-')
+        root = cls.scratch('grade_broken-')
 
         def run(name):
             launch = os.path.join(SOLUTIONS, name, 'solution.launch')
@@ -219,13 +218,13 @@ def solution_log(out):
         return stream.read()
 
 
-class GradeSandbox(unittest.TestCase):
+class GradeSandbox(ScratchFolders, unittest.TestCase):
     """A hostile solution and one named wall_follower in its own workspace, graded at once
     (each in its own sandbox)."""
 
     @classmethod
     def setUpClass(cls):
-        cls.root = tempfile.mkdtemp(prefix='grade_sandbox-')
+        cls.root = cls.scratch('grade_sandbox-')
         cls.marker = 'grade-hostile-%s' % uuid.uuid4().hex
         cls.listener = Listener()
         cls.hostile_out = os.path.join(cls.root, 'hostile')
@@ -280,12 +279,12 @@ class GradeSandbox(unittest.TestCase):
             self.assertEqual(left_behind(run[1]), [])
 
 
-class GradeReasons(unittest.TestCase):
+class GradeReasons(ScratchFolders, unittest.TestCase):
     """Solutions whose failures were once given the wrong reason, graded at once."""
 
     @classmethod
     def setUpClass(cls):
-        root = tempfile.mkdtemp(prefix='grade_reasons-')
+        root = cls.scratch('grade_reasons-')
         names = ('find_wall_after_goal', 'command_once')
 
         def run(name):
@@ -327,13 +326,13 @@ class GradeReasons(unittest.TestCase):
             self.assertEqual(left_behind(pid), [], name)
 
 
-class GradeHarness(unittest.TestCase):
+class GradeHarness(ScratchFolders, unittest.TestCase):
     """grade run in this process, so that its own harness can be broken: a time limit of 0,
     which grade_case refuses (it ends, and grade_case.launch with it, before any record)."""
 
     @classmethod
     def setUpClass(cls):
-        cls.out = tempfile.mkdtemp(prefix='grade_harness-')
+        cls.out = cls.scratch('grade_harness-')
         with mock.patch.object(grader, 'lap_limit', return_value=0.0):
             cls.status = grader.main(['wall_follower', 'main.launch', '--worlds', '1'] + SMALL +
                                      ['--out', cls.out])

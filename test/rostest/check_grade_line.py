@@ -21,7 +21,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import unittest
 import uuid
 
@@ -29,6 +28,7 @@ import rospy
 import rostest
 
 import report_browser as browser
+from scratch import ScratchFolders
 from wall_follower.evaluation.launching import marked_processes
 
 SOLUTION = ['--task', 'line', 'wall_follower', 'line_following.launch']
@@ -53,11 +53,11 @@ def read_json(path):
         return json.load(stream)
 
 
-class GradeLineClass(unittest.TestCase):
+class GradeLineClass(ScratchFolders, unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.root = tempfile.mkdtemp(prefix='grade_line-')
+        cls.root = cls.scratch('grade_line-')
         cls.pursuit = os.path.join(cls.root, 'pursuit')
         cls.pixel_p = os.path.join(cls.root, 'pixel_p')
         env = dict(os.environ, **{MARK[0]: MARK[1]})

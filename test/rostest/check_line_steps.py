@@ -9,6 +9,7 @@ snapshots of the camera's frames into ~snapshot_dir.
 """
 import glob
 import os
+import shutil
 import sys
 import threading
 import unittest
@@ -68,6 +69,7 @@ class LineSteps(unittest.TestCase):
         self.assertTrue(wait_until(blank, LIMIT), 'blue bounds still see yellow')
 
         directory = rospy.get_param('~snapshot_dir')
+        self.addCleanup(shutil.rmtree, directory, True)   # line_steps.test's own folder
         self.assertTrue(wait_until(lambda: glob.glob(os.path.join(directory, '*.png')), LIMIT),
                         'camera_view wrote no snapshot')
         snapshot = cv2.imread(sorted(glob.glob(os.path.join(directory, '*.png')))[0])

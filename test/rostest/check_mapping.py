@@ -101,6 +101,13 @@ class Mapping(unittest.TestCase):
             cls.write_figures(rospy.get_param('~json'))
 
     @classmethod
+    def tearDownClass(cls):
+        # The map is the test's own (mapping.test's map_file): scored, it is removed.
+        for path in (cls.map_file + '.yaml', cls.map_file + '.pgm'):
+            if os.path.exists(path):
+                os.remove(path)
+
+    @classmethod
     def write_figures(cls, path):
         figures = {'lap_closed': cls.saved}
         if cls.quality is not None:
