@@ -3,8 +3,10 @@
 
 Scored from ground truth: a step in which the robot moved counts as moving.
 The first ~cycles moving and standing stretches must last ~forward_period
-and ~stop_period to within one scan period; the robot then comes up to a
-wall and must stand, with the laser no nearer to the wall ahead than
+and ~stop_period to within one scan period (the first may be shorter: it
+starts with the node's first command, which the world does not wait for);
+the robot then comes up to a wall and must stand, with the laser no nearer
+to the wall ahead than
 ~stop_distance less one step of travel (the command answering a scan acts
 on the next step) and two grid cells (Stage's cell-stepping raytrace reads
 a wall up to a cell nearer, and the cells of the wall itself), without
@@ -45,11 +47,7 @@ class ForwardStopRun(GroundTruthRun):
         rospy.loginfo('forward_stop: (moving, duration) stretches %s', stretches)
         while stretches and not stretches[0][0]:
             stretches.pop(0)           # standing before the first command
-        for moving, duration in stretches[:2 * cycles]:
-            expected = forward if moving else stop
-            what = 'moved' if moving else 'stood'
-            self.assertLessEqual(abs(duration - expected), SCAN_PERIOD + SLACK,
-                                 '%s for %.1f s, not %.1f s' % (what, duration, expected))
+        assert_periods(self, stretches[:2 * cycles], forward, stop, first_command=True)
         self.assertGreater(len(stretches), 2 * cycles, 'fewer than %d cycles' % cycles)
         course = CourseMap(world_path(rospy.get_param('~world')))
         lx, ly, lyaw = course.laser_pose(truth[-1][1:])
@@ -59,6 +57,24 @@ class ForwardStopRun(GroundTruthRun):
         self.assertLess(ahead, stop_distance + 0.19 * SCAN_PERIOD + CELL,
                         'stood %.2f m from the wall: not stopped by it' % ahead)
         self.guard.assert_safe(self)
+
+
+def assert_periods(test, stretches, forward, stop, first_command=False):
+    """Fail test (a unittest.TestCase) unless each (moving, duration) of stretches lasts
+    forward (moving) or stop (standing) to within one scan period.
+
+    first_command: the first stretch began with the node's first command, which lockstep
+    does not wait for (a robot not yet driven is given only the simulator's grace), so on
+    a busy machine the world steps on before it comes: that stretch may be shorter.
+    """
+    for index, (moving, duration) in enumerate(stretches):
+        expected = forward if moving else stop
+        error = duration - expected
+        if first_command and index == 0:
+            error = max(0.0, error)
+        test.assertLessEqual(abs(error), SCAN_PERIOD + SLACK, '%s for %.1f s, not %.1f s '
+                             '(stretches %s)' % ('moved' if moving else 'stood', duration,
+                                                 expected, stretches))
 
 
 def moving_stretches(truth):
