@@ -8,7 +8,6 @@ required node) with status 0 and the map on disk, readable as map_server
 reads it. This test's own master is not used.
 """
 import os
-import shutil
 import sys
 import tempfile
 import unittest
@@ -16,6 +15,7 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from scratch import ScratchFolders
 
 from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 from wall_follower.mapping.mapfile import load_map
@@ -25,11 +25,11 @@ from wall_follower.mapping.mapfile import load_map
 BOUND = 120.0
 
 
-class MappingEnds(unittest.TestCase):
+class MappingEnds(ScratchFolders, unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.directory = tempfile.mkdtemp(prefix='mapping_ends-')
+        cls.directory = cls.scratch('mapping_ends-')
         cls.map_file = os.path.join(cls.directory, 'room')
         port = free_port()
         command = launch_command('mapping.launch', {
@@ -39,10 +39,6 @@ class MappingEnds(unittest.TestCase):
             cls.ended = launch_and_wait(command, port, log, BOUND)
             log.seek(0)
             cls.output = log.read()
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.directory)
 
     def test_launch_ends_within_bound(self):
         self.assertTrue(self.ended, 'the launch was still running after %.0f s:\n%s'

@@ -14,15 +14,14 @@ reported seeds use) were picked for what they hold: a tilted wing and two
 pillars; two chamfers, a tilted wing and an island.
 """
 import os
-import shutil
 import sys
-import tempfile
 import unittest
 
 import rospkg
 import rospy
 import rostest
 from nested_rostest import rostest_status
+from scratch import ScratchFolders
 
 from wall_follower.evaluation.benchmarks.mapping_generated import write_odom_world
 
@@ -32,17 +31,13 @@ ROOMS = (5, 8)
 BOUND = 280.0
 
 
-class GeneratedRooms(unittest.TestCase):
+class GeneratedRooms(ScratchFolders, unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.folder = tempfile.mkdtemp(prefix='mapping_generated-')
+        cls.folder = cls.scratch('mapping_generated-')
         cls.include = os.path.join(rospkg.RosPack().get_path('wall_follower'), 'worlds',
                                    'burger.inc')
-
-    @classmethod
-    def tearDownClass(cls):
-        shutil.rmtree(cls.folder, ignore_errors=True)
 
     def map_room(self, index):
         path, error = write_odom_world(SEED, index, self.folder, self.include)

@@ -16,6 +16,7 @@ import unittest
 
 import rospy
 import rostest
+from scratch import ScratchFolders
 
 from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
 
@@ -25,12 +26,11 @@ WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'open_field.wor
 BOUND = 60.0
 
 
-class ReportWithoutLap(unittest.TestCase):
+class ReportWithoutLap(ScratchFolders, unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.folder = tempfile.TemporaryDirectory(prefix='report_no_lap-')
-        cls.plot = os.path.join(cls.folder.name, 'course.png')
+        cls.plot = os.path.join(cls.scratch('report_no_lap-'), 'course.png')
         port = free_port()
         command = launch_command('main.launch', {
             'sim': 'true', 'simulator': 'builtin', 'world': WORLD, 'report': 'true',
@@ -39,10 +39,6 @@ class ReportWithoutLap(unittest.TestCase):
             cls.ended = launch_and_wait(command, port, log, BOUND)
             log.seek(0)
             cls.output = log.read()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.folder.cleanup()
 
     def test_launch_ends_within_bound(self):
         self.assertTrue(self.ended, 'the launch was still running after %.0f s:\n%s'
