@@ -13,6 +13,7 @@ from scan_queries import min_range
 from wall_follower.control.following.corner import CornerArc
 from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                                       FollowerParams, WallFollower)
+from wall_follower.control.following.inner_corner import OUT_OF_REACH
 from wall_follower.control.motion import (MAX_ANGULAR, MAX_LINEAR, Command, along_curvature, clamp,
                                           seen_after_move)
 from wall_follower.control.sensing.lines import Line
@@ -267,6 +268,22 @@ def test_a_left_turn_ends_on_the_wall_reached_while_the_next_one_is_still_far():
     controller.state = WALL_AHEAD
     update(corridor_end(start - 0.01), controller=controller)
     assert controller.state == WALL_AHEAD
+
+
+def test_a_left_turn_goes_on_while_its_wall_ahead_is_just_out_of_reach():
+    # On the wide start the wall ahead stays at the edge of reach: its
+    # distance and the gap the rest of the turn needs shrink alike. Ended
+    # whenever a scan put that wall a few millimetres beyond, the turn handed
+    # back to FOLLOW, which steered back at the wall it was leaving, and began
+    # again at the next scan: one corner of the arena lost 0.7 s that way.
+    # Scans judged where they were taken: the test puts the wall ahead.
+    params = FollowerParams(range_bias=0.0, laser_x=0.0, latency=0.0)
+    start = turn_start(params)
+    for state in (FOLLOW, WALL_AHEAD):
+        controller, _ = update(corridor_end(1.5), controller=WallFollower(params))
+        controller.state = state
+        update(corridor_end(start + OUT_OF_REACH / 2), controller=controller)
+        assert controller.state == state
 
 
 @pytest.mark.parametrize('turned', [0.1, 0.2, 0.3])

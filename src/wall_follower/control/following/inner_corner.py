@@ -21,6 +21,14 @@ from wall_follower.control.motion import Command
 from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, from_centre,
                                                     in_laser_frame, same_line, wall_runs_to)
 
+# How far beyond reach (see InnerCorner.due) the wall ahead must be for a turn
+# onto it to end [m]. All through the turn's wide start that wall stays at the
+# edge of reach, its distance and the gap the rest of the turn needs
+# shrinking alike, and a scan places it only to a few millimetres. More
+# (1 cm) held on turns that a noisy laser's early start had begun too far
+# from the wall being left, and their crossover left the band.
+OUT_OF_REACH = 0.005
+
 
 class InnerCorner(Manoeuvre):
     """The left turn onto a wall ahead, until that wall has come round to the right.
@@ -80,14 +88,15 @@ class InnerCorner(Manoeuvre):
             return True
         return not turning_right and self.due(obs)
 
-    def due(self, obs):
+    def due(self, obs, beyond=0.0):
         """True when a wall across the way is near enough that the planned turn, begun now,
-        ends inner_corner_distance from it."""
+        ends inner_corner_distance from it; or, given beyond (m), when it is no more than that
+        out of reach."""
         if not self.blocking(obs):
             return False
         p = self.params
         distance, angle = self._ahead_as_planned(obs)
-        return self.turn.gap(angle) >= distance - p.turn_lead - p.inner_corner_distance
+        return self.turn.gap(angle) >= distance - beyond - p.turn_lead - p.inner_corner_distance
 
     def done(self, obs):
         """True once a straight wall is along the right again, not one the turn is leaving,
@@ -100,11 +109,14 @@ class InnerCorner(Manoeuvre):
         A wall farther across the way (the next one of a room whose walls
         meet at wide angles) is turned onto when it comes within reach, from
         FOLLOW: a turn held on until it was gone would carry the robot round
-        off the wall it has just reached.
+        off the wall it has just reached. The wall the turn is onto must be
+        out of reach by OUT_OF_REACH: ended whenever a scan put it a few
+        millimetres beyond, the turn handed over to FOLLOW, which steered back
+        at the wall the turn was leaving, and began again at the next scan.
         """
         p = self.params
         return (obs.rejoined(p.rejoin_angle, p.rejoin_ahead) and obs.wall.angle > -p.rejoin_behind
-                and not self.due(obs))
+                and not self.due(obs, beyond=OUT_OF_REACH))
 
     def clear_of_lane_edges(self, obs):
         """True when nothing is nearer than front_turn_distance in the lane widened by
