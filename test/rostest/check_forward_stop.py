@@ -6,11 +6,10 @@ The first ~cycles moving and standing stretches must last ~forward_period
 and ~stop_period to within one scan period (the first may be shorter: it
 starts with the node's first command, which the world does not wait for);
 the robot then comes up to a wall and must stand, with the laser no nearer
-to the wall ahead than
-~stop_distance less one step of travel (the command answering a scan acts
-on the next step) and two grid cells (Stage's cell-stepping raytrace reads
-a wall up to a cell nearer, and the cells of the wall itself), without
-touching it.
+to the wall ahead than ~stop_distance less one step of travel (the command
+answering a scan acts on the next step) and two grid cells (Stage's
+cell-stepping raytrace reads a wall up to a cell nearer, and the cells of
+the wall itself), without touching it.
 """
 import math
 import sys
