@@ -590,6 +590,24 @@ def test_the_end_of_a_wall_standing_out_toward_the_robot_is_steered_clear_of():
     assert abs(flush.angular) < 0.01 and lipped.angular > 0.3
 
 
+@pytest.mark.parametrize('convention', ALL, ids=IDS)
+def test_a_tip_just_rounded_beside_the_robot_does_not_hold_it_off_the_wall_beyond(convention):
+    # Round a corner's tip onto a short side that runs straight out to the
+    # right, 0.2 m to 0.42 m, where the next wall goes on parallel. The tip
+    # lies ahead of the laser but behind the rotation centre (a Burger's
+    # laser sits behind it): held at target_distance as if still to come,
+    # it steered the robot away from that wall.
+    params = FollowerParams(range_bias=0.0)
+    tip_x = -params.laser_x / 2
+    world = [((tip_x - 0.7, -0.9), (tip_x, -0.2)), ((tip_x, -0.2), (tip_x, -0.42)),
+             ((tip_x, -0.42), (5.0, -0.42))]
+    controller = WallFollower(params)
+    controller.state = FOLLOW
+    controller, command = update(world, convention=convention, controller=controller)
+    assert controller.state == FOLLOW
+    assert command.angular < -0.3
+
+
 @pytest.mark.parametrize('outer_turn_lead', [0.0, 0.06])
 def test_the_turn_round_a_walls_end_starts_outer_turn_lead_early(outer_turn_lead):
     params = FollowerParams(range_bias=0.0, laser_x=0.0, outer_turn_lead=outer_turn_lead)

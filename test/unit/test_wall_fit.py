@@ -101,9 +101,11 @@ def test_a_step_ups_top_stands_out_as_far_ahead_as_it_is_seen_a_corners_lip_only
     hits(END, 0.0, 0.3, step=0.02) + np.array((0.0, 0.02)),   # a saw-tooth a cell deep
     np.array(((0.3, -0.15),)),                                  # one stray beam
     hits((-0.2, -0.25), 90.0, 0.1),                             # a stub already passed
-], ids=['saw-tooth', 'stray beam', 'behind'])
-def test_hits_within_a_cell_of_the_line_one_stray_beam_or_a_stub_behind_stand_out_by_nothing(
+    hits((-PARAMS.laser_x / 2, -0.25), 90.0, 0.1),              # one level with the robot
+], ids=['saw-tooth', 'stray beam', 'behind', 'level'])
+def test_hits_within_a_cell_of_the_line_one_stray_beam_or_a_stub_not_ahead_stand_out_by_nothing(
         beside):
+    # Level: ahead of the laser, but behind the rotation centre it sits behind.
     assert proud(np.vstack((along_the_wall(), beside))) == 0.0
 
 

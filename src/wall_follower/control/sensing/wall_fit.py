@@ -94,8 +94,13 @@ def proud_of(offsets, points, distance, params):
     corner, say) stands out of that line without being any nearer. The
     second farthest hit counts, and the second farthest ahead of those
     that stand out as far, so that one stray beam cannot move the robot.
+    Only points ahead of the rotation centre count (the laser sits
+    laser_x ahead of it): on any arc no tighter than a point beside the
+    centre is near, the robot comes no nearer to it. Counted, the tip of a
+    corner just rounded, with the next wall set back beyond a short side,
+    held the robot off that wall and out of the band.
     """
-    ahead = points[:, 0] > 0.0
+    ahead = points[:, 0] > -params.laser_x
     nearer_than_wall = distance + points[:, 1] + points[:, 0] * math.tan(params.wall_continue_angle)
     toward = -offsets
     standing = ahead & (nearer_than_wall > params.wall_inlier_distance) & (
