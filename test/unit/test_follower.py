@@ -124,6 +124,20 @@ def test_a_slowed_turn_parallel_is_flown_at_the_full_turn_rate():
                                      EXACT.max_turn_rate))
 
 
+def test_heading_away_the_turn_back_parallel_is_slowed_to_end_within_farthest_distance():
+    # 2 cm inside farthest_distance, 20 deg away from the wall: the arc that turns
+    # back parallel just in time has radius 0.02 / (1 - cos 20 deg), flown at the full rate.
+    controller = WallFollower(EXACT)
+    _, command = update(right_wall(EXACT.farthest_distance - 0.02), (0.0, 0.0, math.radians(20.0)),
+                        controller=controller)
+    assert controller.state == FOLLOW
+    radius = 0.02 / (1.0 - math.cos(math.radians(20.0)))
+    assert command == pytest.approx((radius * EXACT.max_turn_rate, -EXACT.max_turn_rate), abs=0.01)
+    # Heading away by a few degrees, the full rate's arc at cruise speed turns back in time.
+    _, command = update(right_wall(EXACT.farthest_distance - 0.02), (0.0, 0.0, math.radians(5.0)))
+    assert command.linear == pytest.approx(EXACT.cruise_speed)
+
+
 @pytest.mark.parametrize('laser_x', [-0.032, -0.064])
 def test_that_arc_is_the_rotation_centres_wherever_the_laser_sits(laser_x):
     # The same pose of the rotation centre as above, seen by a laser behind

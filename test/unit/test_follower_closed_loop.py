@@ -161,6 +161,20 @@ def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_af
     assert farthest <= BAND[1], farthest
 
 
+def test_round_the_end_of_a_thin_wall_a_robot_heading_away_slows_to_turn_back_in_band(
+        tmp_path):
+    # Generated world 22 of seed 70: a thin wall ends in a tip, and the way
+    # on is round it, nearly a half turn to the right. Heading away from the
+    # wall's end as it came round, FOLLOW turned back at the full rate at
+    # cruise speed, on an arc too wide for the bend: 0.33 m off the wall.
+    # Started 0.28 m south-west of the tip, heading west-north-west.
+    world = generated_world(tmp_path, 70, 22, (1.36, 0.76, math.radians(154.0)))
+    # Round the tip and up the far side of the thin wall.
+    score, _ = lap(world, 'stage', time_limit=5.0)
+    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    assert farthest <= BAND[1], farthest
+
+
 def test_the_wall_past_an_obtuse_inner_corner_is_not_taken_for_a_face_to_keep_clear_of(
         tmp_path):
     # Generated world 15 of seed 22: a slanted wall meets the north wall at

@@ -2,7 +2,8 @@
 
 The course's rule is bang-bang on one ray; a PD law on a wall fitted
 through many beams holds the band without its zig-zag. Heading into the
-wall, the robot slows to the arc that still turns parallel in time. What
+wall, the robot slows to the arc that still turns parallel in time, and
+heading away from it, to the arc that turns back parallel in time. What
 stands out of the wall toward the robot just ahead (the face of the wall
 it meets at its end) is held at target_distance too, unless a wall lies
 across the way, which the left turn onto it is planned for.
@@ -47,14 +48,24 @@ class FollowWall(Manoeuvre):
         gain = p.settle_gain if self.settling > 0.0 else 1.0
         turn = steer(p, distance - proud, angle, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
+        from_rotation_centre = from_centre(obs.wall, p.laser_x).distance
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
-            room = from_centre(obs.wall, p.laser_x).distance - p.closest_distance + dip
-            radius = max(p.min_arc_radius, arc_radius(room, angle))
-            if radius * p.max_turn_rate < speed:
-                # That arc is flown at the full turn rate, the way it was planned.
-                speed, turn = radius * p.max_turn_rate, p.max_turn_rate
+            room, way = from_rotation_centre - p.closest_distance + dip, 1.0
+        elif angle < 0.0 and turn < 0.0:
+            # Heading away from it and turning back: no faster than the arc
+            # that turns parallel before going farther than farthest_distance.
+            # At cruise speed the full turn rate's arc is too wide to follow a
+            # wall that bends away more sharply, or to catch a robot handed
+            # over heading off the wall, and it drifted out of the band.
+            room, way = p.farthest_distance - from_rotation_centre + proud, -1.0
+        else:
+            return Command(speed, turn)
+        radius = max(p.min_arc_radius, arc_radius(room, abs(angle)))
+        if radius * p.max_turn_rate < speed:
+            # That arc is flown at the full turn rate, the way it was planned.
+            speed, turn = radius * p.max_turn_rate, way * p.max_turn_rate
         return Command(speed, turn)
 
 

@@ -52,7 +52,10 @@ FOLLOWER = (
           0.0, 1.0),
         P('closest_distance', 0.215, 'heading into the wall, slow down so as to turn parallel '
           'no nearer than this [m]', 0.0, 1.0),
-        P('min_arc_radius', 0.2, '... but never onto an arc tighter than this [m]', 0.0, 1.0),
+        P('farthest_distance', 0.285, 'heading away from the wall, slow down so as to turn '
+          'parallel no farther than this [m]', 0.0, 2.0),
+        P('min_arc_radius', 0.2, '... (either way) but never onto an arc tighter than this [m]',
+          0.0, 1.0),
     )),
     Section('wall_fit', (
         P('wall_sector', math.radians(60.0), 'half width of the sector around the right '
