@@ -95,10 +95,11 @@ def proud_of(offsets, points, distance, params):
     second farthest hit counts, and the second farthest ahead of those
     that stand out as far, so that one stray beam cannot move the robot.
     Only points ahead of the rotation centre count (the laser sits
-    laser_x ahead of it): on any arc no tighter than a point beside the
-    centre is near, the robot comes no nearer to it. Counted, the tip of a
-    corner just rounded, with the next wall set back beyond a short side,
-    held the robot off that wall and out of the band.
+    laser_x ahead of it): the robot comes no nearer to a point beside or
+    behind the centre on any arc at least as wide as the point is near.
+    Counted, the tip of a corner just rounded, beside the robot with the
+    next wall set back beyond a short side, held the robot off that wall
+    and out of the band.
     """
     ahead = points[:, 0] > -params.laser_x
     nearer_than_wall = distance + points[:, 1] + points[:, 0] * math.tan(params.wall_continue_angle)
