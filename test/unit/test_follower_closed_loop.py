@@ -94,6 +94,11 @@ def assert_a_lap_in_band(score, least=0.97):
     assert figures['time_in_band'] >= least, figures['time_in_band']
 
 
+def wall_distances(score):
+    """The judge's distance to the wall on the right at each pose of the run, in order."""
+    return [score.map.right_wall_distance(pose) for pose in score.poses]
+
+
 def generated_world(directory, seed, index, start):
     """The generator's world index of seed, written into directory with its start moved to start."""
     return write_generated(directory, seed, index, start)[0]
@@ -121,7 +126,7 @@ def test_round_a_sharp_corner_the_wide_end_waits_for_the_next_wall(tmp_path):
     world = generated_world(tmp_path, 1, 27, (1.85, 0.515, math.radians(-165.0)))
     # Through the corner and up the next wall, short of the wall across its end.
     score, states = lap(world, 'stage', time_limit=5.0)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert 'OUTER_CORNER' in states
     assert farthest <= BAND[1], farthest
 
@@ -137,7 +142,7 @@ def test_round_a_sharp_tip_a_robot_carried_off_its_arc_turns_back_onto_it(tmp_pa
     world = generated_world(tmp_path, 22, 38, (-0.85, 1.14, math.radians(-138.0)))
     # Round the tip and up the spike's far side, short of the notch at its foot.
     score, states = lap(world, 'stage', time_limit=7.3)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert 'OUTER_CORNER' in states
     assert farthest <= BAND[1], farthest
 
@@ -156,7 +161,7 @@ def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_af
     world = generated_world(tmp_path, 51, 3, (-1.78, 0.32, math.radians(-104.0)))
     # Round the tip, along the side and into the left turn's crossover.
     score, states = lap(world, 'gazebo', time_limit=6.5)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert {'OUTER_CORNER', 'WALL_AHEAD'} <= states
     assert farthest <= BAND[1], farthest
 
@@ -171,7 +176,7 @@ def test_round_the_end_of_a_thin_wall_a_robot_heading_away_slows_to_turn_back_in
     world = generated_world(tmp_path, 70, 22, (1.36, 0.76, math.radians(154.0)))
     # Round the tip and up the far side of the thin wall.
     score, _ = lap(world, 'stage', time_limit=5.0)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert farthest <= BAND[1], farthest
 
 
@@ -186,7 +191,7 @@ def test_the_wall_past_an_obtuse_inner_corner_is_not_taken_for_a_face_to_keep_cl
     world = generated_world(tmp_path, 22, 15, (0.89, 1.16, math.radians(152.0)))
     # Up the slanted wall and round the corner onto the north wall.
     score, _ = lap(world, 'gazebo', time_limit=5.0)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert farthest <= BAND[1], farthest
 
 
@@ -201,7 +206,7 @@ def test_round_an_obtuse_corner_the_wide_end_is_judged_on_the_wall_beyond_the_ti
     world = generated_world(tmp_path, 25, 5, (-2.22, 0.32, math.radians(-46.0)))
     # Round the tip and down the straight wall.
     score, states = lap(world, 'stage', time_limit=5.0)
-    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    nearest = min(wall_distances(score))
     assert 'OUTER_CORNER' in states
     assert nearest >= BAND[0], nearest
 
@@ -218,7 +223,7 @@ def test_a_wall_that_bends_away_by_a_third_of_a_right_angle_is_followed_round_th
     world = generated_world(tmp_path, 1, 6, (-1.7, -0.17, 0.0))
     # Round the bend and some 0.5 m on along the next wall.
     score, states = lap(world, 'stage', time_limit=5.0)
-    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    nearest = min(wall_distances(score))
     assert states == {'FOLLOW'}
     assert nearest >= BAND[0] + 0.02, nearest
 
@@ -258,7 +263,7 @@ def test_round_the_end_of_a_wall_the_robot_stays_in_band(tmp_path, seed, index, 
     """With the Gazebo laser, on the worlds where it did not."""
     world = generated_world(tmp_path, seed, index, start)
     score, states = lap(world, 'gazebo', time_limit=time_limit)
-    nearest = min(score.map.right_wall_distance(pose) for pose in score.poses)
+    nearest = min(wall_distances(score))
     assert 'OUTER_CORNER' in states
     assert nearest >= BAND[0], nearest
 
@@ -337,7 +342,7 @@ def test_the_opening_between_a_walls_end_and_a_wall_across_is_the_way_on(tmp_pat
     # first corner takes the robot up to 3 cm beyond the band.
     world = generated_world(tmp_path, 58, 3, (-1.81, -0.172, math.radians(169.2)))
     score, states = lap(world, profile, seed=seed, time_limit=20.0)
-    farthest = max(score.map.right_wall_distance(pose) for pose in score.poses)
+    farthest = max(wall_distances(score))
     assert 'OUTER_CORNER' in states
     assert farthest <= BAND[1] + 0.035, farthest
 
@@ -418,7 +423,7 @@ def test_the_end_of_a_thin_bar_is_rounded_in_one_turn(tmp_path, seed, index, sta
     world = generated_world(tmp_path, seed, index, start)
     # Round both corners and 0.5 m along the far side.
     score, states = lap(world, profile, time_limit=11.0)
-    distances = [score.map.right_wall_distance(pose) for pose in score.poses]
+    distances = wall_distances(score)
     assert 'OUTER_CORNER' in states
     nearest, farthest = min(distances), max(distances)
     assert BAND[0] <= nearest and farthest <= BAND[1], (nearest, farthest)
