@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.control.following.corner import CornerArc, OuterTurn
+from wall_follower.control.following.corner import TOLERANCE_HEADING, CornerArc, OuterTurn
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.lines import Line
@@ -182,6 +182,18 @@ def test_within_its_tolerance_of_the_tight_arc_a_turn_still_starts_wide():
     assert turn.starts_wide(math.radians(5.0), 0.25)
     assert not turn.starts_wide(math.radians(5.0), 0.23)
     assert not turn.starts_wide(math.radians(30.0), 0.25)
+
+
+def test_a_turn_begun_heading_into_the_wall_has_less_tolerance_the_steeper_it_heads_in():
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
+    # Half TOLERANCE_HEADING in: half the tolerance, 0.015 m inside the arc.
+    half = TOLERANCE_HEADING / 2
+    assert turn.starts_wide(math.radians(5.0), 0.26, heading_in=half)
+    assert not turn.starts_wide(math.radians(5.0), 0.25, heading_in=half)
+    # That far in or more: none.
+    for heading_in in (TOLERANCE_HEADING, 2 * TOLERANCE_HEADING):
+        assert turn.starts_wide(math.radians(5.0), 0.275, heading_in=heading_in)
+        assert not turn.starts_wide(math.radians(5.0), 0.265, heading_in=heading_in)
 
 
 def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():

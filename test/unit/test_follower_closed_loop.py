@@ -241,6 +241,25 @@ def test_the_foot_of_a_step_ups_face_is_no_corner_to_round(tmp_path):
     assert states == {'FOLLOW'}
 
 
+@pytest.mark.parametrize('start', [(1.47, 0.69, 87.0), (1.46, 0.62, 87.0), (1.46, 0.69, 87.0)])
+def test_a_corner_met_still_turning_onto_a_short_wall_is_rounded_in_band(tmp_path, start):
+    # Generated world 0 of seed 4: the east wall meets a 0.48 m wall running
+    # west, which ends at an outer corner. The left turn onto that short
+    # wall handed over to FOLLOW 13 deg short of parallel, and the corner
+    # came up while the robot still headed into the wall by 10 deg. Its
+    # wide start, flown on within outer_wide_tolerance of the arc round the
+    # tip, crossed into that arc instead of meeting it, and the robot passed
+    # the tip 0.193-0.198 m from it. Started on the east wall, 0.24 m from
+    # it, heading north.
+    x, y, heading = start
+    world = generated_world(tmp_path, 4, 0, (x, y, math.radians(heading)))
+    # The left turn, the short wall and half way round the corner.
+    score, states = lap(world, 'stage', time_limit=6.5)
+    nearest = min(wall_distances(score))
+    assert {'WALL_AHEAD', 'OUTER_CORNER'} <= states
+    assert nearest >= BAND[0], nearest
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

@@ -109,6 +109,14 @@ class CornerArc(object):
         return float(math.hypot(x, y)), float(math.atan2(y, x))
 
 
+# A wide start begun heading into the wall this much or more is flown without
+# OuterTurn's tolerance [rad]: see starts_wide. It shrinks in proportion up to
+# there: a wall fit's angle is good only to a degree or so on a noisy laser,
+# and a tolerance dropped at 1 degree of heading in slowed the arena's laps on
+# lasers with noise by up to 0.5 %.
+TOLERANCE_HEADING = math.radians(8.0)
+
+
 class OuterTurn(object):
     """The right turn round a square corner: wide at first, round the tip, wide at the end.
 
@@ -138,7 +146,7 @@ class OuterTurn(object):
                        distance - self.wide_radius + shift * math.cos(self.wide_start))
         self.lead = shift * math.sin(self.wide_start) - self.center[0]
 
-    def starts_wide(self, turned, off_centre):
+    def starts_wide(self, turned, off_centre, heading_in=0.0):
         """True while the wide start goes on: turned (rad) short of wide_start.
 
         off_centre: the rotation centre's distance from the tight arc's
@@ -146,10 +154,17 @@ class OuterTurn(object):
         well nearer the wall than planned tightens early. Within tolerance
         of it, a start goes on wide: the tip is seen only to a cell or so of
         Stage's grid, and a start that much nearer than planned only passes
-        the tip that much nearer.
+        the tip that much nearer. That holds for a turn begun parallel to
+        the wall, whose wide arc meets the tight one tangentially. One begun
+        heading into the wall by heading_in (rad: FOLLOW still turning onto
+        a short wall just turned onto) crosses into the tight arc instead;
+        flown on wide while within the tolerance, it cut inside the arc round
+        the tip and out of the band. The tolerance shrinks with that angle,
+        and is gone at TOLERANCE_HEADING.
         """
+        tolerance = self.tolerance * max(0.0, 1.0 - heading_in / TOLERANCE_HEADING)
         return (0.0 < self.wide_start and turned < self.wide_start
-                and off_centre > self.radius - self.tolerance)
+                and off_centre > self.radius - tolerance)
 
     def ends_wide(self, turned, past_tip, nearer=0.0):
         """True where the wide end goes on, turned (rad) so far and past_tip from the next wall.

@@ -55,6 +55,8 @@ class OuterCorner(Manoeuvre):
     which lies nearer than the wide start is planned for).
     ending_wide: whether it has begun its wide end (which, once begun, goes
     on: the tip's position jitters by a grid cell from scan to scan).
+    heading_in: how far (rad) the robot headed into the wall as the arc was
+    pinned to its end.
     inner_corner: the left turn, whose approach dip a wall across the way
     just past the corner leaves no room for. pillar: the RoundPillar, the
     follower's, circled instead while one is found.
@@ -68,6 +70,7 @@ class OuterCorner(Manoeuvre):
         self.arc = None
         self.starting_wide = False
         self.ending_wide = False
+        self.heading_in = 0.0
 
     def configure(self):
         """Plan the turn from the parameters, again after they have changed."""
@@ -125,10 +128,12 @@ class OuterCorner(Manoeuvre):
 
     def _pin(self, obs, wide_start):
         """Pin a new arc to the end of the wall on the right, to be flown from its wide start
-        if wide_start (unless round a tip standing out toward the robot)."""
+        if wide_start (unless round a tip standing out toward the robot), noting how far the
+        robot heads into that wall as it begins (see OuterTurn.starts_wide)."""
         self.arc = self._corner_arc(obs)
         self.starting_wide = wide_start and not obs.proud
         self.ending_wide = False
+        self.heading_in = max(0.0, obs.wall.angle) if self.arc is not None else 0.0
 
     def _round_short_side(self, obs):
         """True when the turn has come round onto a side too short to rejoin, and the turn
@@ -196,7 +201,7 @@ class OuterCorner(Manoeuvre):
         if self.arc is None:
             return
         self.starting_wide = self.starting_wide and self.turn.starts_wide(
-            self.arc.turned(), self.arc.offset()[0])
+            self.arc.turned(), self.arc.offset()[0], self.heading_in)
         # A wall across the way just past the corner (beyond a pillar's
         # short side) leaves no room to ride nearer before the turn onto
         # it: the corner lands that much nearer the side instead. The turn
