@@ -588,6 +588,41 @@ def test_an_opening_too_narrow_to_turn_into_is_passed_by_the_left_turn():
     assert command.angular > 0.3
 
 
+def test_a_wall_that_ends_before_a_wall_across_comes_near_is_followed_to_its_end_first():
+    # Generated world 43 of seed 82, the LDS-01 laser: the turn onto a wall
+    # across the lane came due 7 cm before the wall on the right ended, 0.55
+    # m short of it. Taken first, it swung the robot toward the far side of
+    # the opening, where it dithered between the two turns.
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    lead = controller.outer_corner.turn.lead
+    across = turn_start(EXACT) - 0.01
+    # The wall ends 6 cm before the turn round it is due, sooner than the
+    # wall across comes within front_turn_distance ...
+    assert 0.06 < across - EXACT.front_turn_distance
+    world = convex_corner(lead + 0.06) + [((across, -0.05), (across, 3.0))]
+    view = scan_view(world, (0.0, 0.0, 0.0), STAGE)
+    # ... and the turn onto the wall across is due already.
+    assert controller.inner_corner.due(Observation(view, EXACT))
+    command = controller.update(view)
+    assert controller.state == FOLLOW
+    assert command.angular <= 0.0
+
+
+def test_a_wall_seen_to_the_edge_of_its_sector_is_not_taken_to_end_there():
+    # The wall on the right runs on past where its sector is searched: its
+    # hits stop at that edge, not at its end, and the turn onto the wall
+    # across the way is taken where it comes due.
+    start = turn_start(EXACT)
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    controller, _ = update(corridor_end(start - 0.01), controller=controller)
+    assert controller.state == WALL_AHEAD
+    ends = math.tan(EXACT.wall_sector) * 0.25
+    assert controller.outer_corner.due_within(
+        Observation(scan_view(right_wall(0.25), (0.0, 0.0, 0.0), STAGE), EXACT), ends) is False
+
+
 def lipped_corner(lip, end_x=0.3, right=0.25):
     """convex_corner(end_x) whose next wall's top stands lip out of the wall, toward the robot."""
     top = -right + lip

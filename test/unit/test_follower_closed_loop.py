@@ -166,6 +166,25 @@ def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_af
     assert farthest <= BAND[1], farthest
 
 
+def test_a_wall_that_ends_short_of_a_wall_across_is_rounded_before_the_turn_onto_that_one(
+        tmp_path):
+    # Generated world 43 of seed 82: the east wall of a corridor ends, and
+    # the way on is round its end to the east; 0.55 m beyond the end a slanted
+    # wall crosses the lane. The left turn onto that wall came due 7 cm before
+    # the corner: taken first, it swung the robot toward the slanted wall's
+    # tip, where it dithered between the two turns for 7 s, the corridor's
+    # wall 1.3 m away (88 % in band over the lap with the LDS-01 laser).
+    # Started 0.25 m from that wall, heading north, 0.74 m short of its end.
+    world = generated_world(tmp_path, 82, 43, (1.45, -0.6, math.pi / 2))
+    # Round the end and along the wall beyond it.
+    score, states = lap(world, 'stage', time_limit=6.0)
+    farthest = max(wall_distances(score))
+    assert 'WALL_AHEAD' not in states
+    assert farthest <= BAND[1], farthest
+    x, _, heading = score.poses[-1]
+    assert x > 1.6 and abs(heading) < math.radians(30.0), score.poses[-1]
+
+
 def test_round_the_end_of_a_thin_wall_a_robot_heading_away_slows_to_turn_back_in_band(
         tmp_path):
     # Generated world 22 of seed 70: a thin wall ends in a tip, and the way

@@ -154,14 +154,18 @@ class WallFollower(object):
         across the way leaves an opening between them, and the way on is
         through it; where the turn onto the wall across was due as well,
         and taken first, it carried the robot away from the opening and off
-        the wall it had followed. An opening too narrow to turn into has
-        the wall across nearer than front_turn_distance by the time the end
-        is due, and the left turn is taken as before.
+        the wall it had followed. So it was where that turn came due a few
+        centimetres before the end: it swung the robot toward the opening's
+        far side, and the robot dithered there between the two turns. The
+        turn round the end comes first wherever it is due before anything
+        in the lane comes within front_turn_distance. An opening too narrow
+        to turn into has the wall across nearer than that by the time the
+        end is due, and the left turn is taken as before.
         """
         following = self._transitions[self.state](obs)
         turning_right = self.state == OUTER_CORNER or (
-            self.state == FOLLOW and following == OUTER_CORNER and obs.wall is not None
-            and not self.pillar.found)
+            self.state == FOLLOW and self.outer_corner.due_within(
+                obs, max(0.0, obs.front - self.params.front_turn_distance)))
         if self.inner_corner.needed(obs, turning_right=turning_right):
             return WALL_AHEAD
         return following

@@ -92,11 +92,38 @@ class OuterCorner(Manoeuvre):
         wall fitted on a round pillar is one of its chords: the pillar is
         rounded.
         """
-        p = self.params
         if obs.wall is None or self.pillar.found:
             return True
-        ends = obs.wall_runs + p.laser_x <= self._turn_starts()
+        return self.due_within(obs, 0.0)
+
+    def due_within(self, obs, travel):
+        """True when a fitted wall on the right (no pillar found) ends where the turn round
+        its end is due (see due) within travel (m) more of the way.
+
+        Only an end actually seen counts for a turn still to come: a wall
+        runs on to the edge of the sector it is looked for in
+        (wall_sector, and no farther than wall_fit_range), and may run on
+        past it, unseen.
+        """
+        p = self.params
+        if obs.wall is None or self.pillar.found:
+            return False
+        if travel > 0.0 and obs.wall_runs + p.wall_continue_gap >= self._seen_to(obs.wall):
+            return False
+        ends = obs.wall_runs + p.laser_x <= self._turn_starts() + travel
         return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
+
+    def _seen_to(self, wall):
+        """How far ahead of the laser [m] the sector the wall on the right is looked for in
+        reaches along that wall."""
+        p = self.params
+        edge = RIGHT + p.wall_sector
+        line = in_laser_frame(wall)
+        towards = math.cos(edge - line.angle)
+        reach = p.wall_fit_range
+        if towards > 0.0:
+            reach = min(reach, line.distance / towards)
+        return reach * math.cos(edge)
 
     def _turn_starts(self):
         """How far ahead of the rotation centre the end of the wall on the right lies where
