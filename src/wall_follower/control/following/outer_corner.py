@@ -92,9 +92,7 @@ class OuterCorner(Manoeuvre):
         wall fitted on a round pillar is one of its chords: the pillar is
         rounded.
         """
-        if obs.wall is None or self.pillar.found:
-            return True
-        return self.due_within(obs, 0.0)
+        return obs.wall is None or self.pillar.found or self.due_within(obs, 0.0)
 
     def due_within(self, obs, travel):
         """True when a fitted wall on the right (no pillar found) ends where the turn round
