@@ -10,6 +10,7 @@ import json
 import math
 import os
 import re
+import threading
 from types import SimpleNamespace
 
 import numpy as np
@@ -27,7 +28,8 @@ from wall_follower.evaluation.pictures.course_plot import plot_course, plt, poin
 from wall_follower.evaluation.scoring.course import CourseMap
 from wall_follower.msg import (OdomRecordActionFeedback, OdomRecordActionGoal,
                                OdomRecordActionResult)
-from wall_follower.nodes.evaluation.grade_case import SolutionSeen, case_record
+from wall_follower.nodes.evaluation import grade_case as grade_case_node
+from wall_follower.nodes.evaluation.grade_case import FindWallWatch, SolutionSeen, case_record
 from wall_follower.nodes.shared.case_graph import _json_safe
 from wall_follower.nodes.shared.course_monitor import CourseMonitor
 
@@ -380,7 +382,7 @@ def test_the_connections_to_a_services_port_are_told_by_their_peers():
 def test_a_call_that_ended_before_its_service_was_seen_is_kept():
     watch = PortWatch()
     for time, peers in ((0.0, {}), (1.0, {40000: {'call'}, 50000: {'x'}}), (5.0, {})):
-        watch.look(time, peers, (0.0, 0.0, 0.0))
+        watch.look(peers, (time, (0.0, 0.0, 0.0)))
     assert [(c['start'], c['end']) for c in watch.of(40000).calls] == [(1.0, 5.0)]
     assert watch.of(None).judged() is None
 
@@ -391,7 +393,7 @@ def test_a_call_is_a_connection_that_came_and_went_and_the_first_that_lasted_is_
     for time, peers, pose in ((0.0, {topic}, 'a'), (1.0, {topic, 'probe'}, 'b'),
                               (1.0, {topic}, 'c'), (2.0, {topic, 'call'}, 'd'),
                               (9.0, {topic}, 'e'), (10.0, {topic, 'late'}, 'f')):
-        watch.look(time, peers, pose)
+        watch.look(peers, (time, pose))
     calls = [(c['start'], c['end']) for c in watch.calls]
     assert calls == [(1.0, 1.0), (2.0, 9.0)]
     assert watch.judged()['end_pose'] == 'e'
@@ -404,7 +406,7 @@ def test_a_probe_whose_closing_poll_came_late_is_not_taken_for_the_call():
     watch = CallWatch()
     for time, peers, pose in ((3.5, {'probe'}, 'a'), (3.6, {'call'}, 'b'), (9.0, {'call'}, 'c'),
                               (16.3, set(), 'd')):
-        watch.look(time, peers, pose)
+        watch.look(peers, (time, pose))
     assert [(c['start'], c['end']) for c in watch.calls] == [(3.5, 3.6), (3.6, 16.3)]
     assert (watch.judged()['start'], watch.judged()['end_pose']) == (3.6, 'd')
 
@@ -415,12 +417,67 @@ def test_a_reply_seen_late_is_judged_where_the_robot_stood_before_it_drove_away(
     watch = CallWatch()
     for time, peers, pose in ((9.0, {'call'}, (0.0, 0.0, 1.0)), (20.0, {'call'}, (1.0, 0.0, 0.0)),
                               (21.7, set(), (1.2, 0.1, 0.6))):
-        watch.look(time, peers, pose)
+        watch.look(peers, (time, pose))
     headings = {0.0: math.radians(2.0), 0.6: math.radians(35.0), 1.0: math.radians(60.0)}
     time, pose, aligned = reply_moment(watch.judged(),
                                        lambda pose: (0.28, headings[pose[2]]))
     assert (time, pose) == (20.0, (1.0, 0.0, 0.0))
     assert aligned == (0.28, math.radians(2.0))
+
+
+def test_a_poll_stamps_what_it_saw_open_before_its_read_and_what_it_found_gone_after():
+    watch = CallWatch()
+    watch.look({'call'}, (2.0, 'a'), (2.1, 'b'))
+    watch.look({'call'}, (3.0, 'c'), (4.2, 'd'))
+    watch.look(set(), (4.3, 'e'), (5.0, 'f'))
+    call, = watch.calls
+    assert (call['start'], call['start_pose']) == (2.0, 'a')
+    assert (call['last_open'], call['last_open_pose']) == (3.0, 'c')
+    assert (call['end'], call['end_pose']) == (5.0, 'f')
+
+
+class SlowTable(object):
+    """connected_peers on a busy machine, scripted: each read gives the next of tables as
+    it stood when the read began, and a second of simulated time passes before the
+    poller runs again; the robot's pose is the time it was taken at."""
+
+    def __init__(self, tables):
+        self.time = 0.0
+        self.tables = list(tables)
+        self.read_all = threading.Event()
+
+    def read(self):
+        """The next table; once all have been read (and so all looked at), an empty one."""
+        if not self.tables:
+            self.read_all.set()
+        table = self.tables.pop(0) if self.tables else {}
+        self.time += 1.0
+        return table
+
+    def now(self):
+        return self.time
+
+    @property
+    def pose(self):
+        return ('at', self.time)
+
+
+def test_a_call_seen_open_by_a_slow_read_is_not_taken_to_have_lasted_past_it(monkeypatch):
+    # Open at the reads that began at 0 s and 1 s, gone by the one that began at 2 s: the
+    # reply came between 1 and 2 s. A watch that stamped its reads when they came back
+    # would put the call open until 2 s, and judge the robot where it had driven on to.
+    port = 40000
+    table = SlowTable([{port: {'call'}}, {port: {'call'}}, {}])
+    monkeypatch.setattr(grade_case_node, 'connected_peers', table.read)
+    monkeypatch.setattr(grade_case_node.rospy, 'get_time', table.now)
+    watch = FindWallWatch(table)
+    try:
+        assert table.read_all.wait(10.0)
+    finally:
+        watch.stop()
+    call, = watch.watch.of(port).calls
+    assert (call['start'], call['last_open'], call['end']) == (0.0, 1.0, 3.0)
+    assert (call['last_open_pose'], call['end_pose']) == (('at', 1.0), ('at', 3.0))
 
 
 def test_a_reply_seen_late_is_judged_where_the_robot_stood_between_the_polls():

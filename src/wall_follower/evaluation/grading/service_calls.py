@@ -52,10 +52,11 @@ class PortWatch(object):
     def __init__(self):
         self.ports = {}
 
-    def look(self, time, peers, pose):
-        """A poll at time: peers as connected_peers gives them, the robot at pose."""
+    def look(self, peers, before, after=None):
+        """A poll: peers as connected_peers gives them, read between the moments before and
+        after (CallWatch.look)."""
         for port in set(self.ports) | set(peers):
-            self.ports.setdefault(port, CallWatch()).look(time, peers.get(port, ()), pose)
+            self.ports.setdefault(port, CallWatch()).look(peers.get(port, ()), before, after)
 
     def of(self, port):
         return self.ports.get(port) or CallWatch()
@@ -77,16 +78,26 @@ class CallWatch(object):
         self.calls = []
         self._open = {}
 
-    def look(self, time, peers, pose):
-        """What a poll saw at time: the peers connected to the service's port, the robot
-        at pose."""
+    def look(self, peers, before, after=None):
+        """What a poll saw: the peers connected to the service's port, read from the table
+        between the moments before and after ((simulated time, the robot's pose) each;
+        after defaults to before).
+
+        A connection seen open was still open at the read, so it is stamped
+        with the moment before it; one found gone had closed by the read, so
+        it is stamped with the moment after. On a busy machine the read can
+        take a second of simulated time: stamped after it, a call seen open
+        would seem to have been open past its reply, and be judged where the
+        solution had already driven on.
+        """
+        after = before if after is None else after
         for peer in set(self._open) - set(peers):
             call = self._open.pop(peer)
-            call.update(end=time, end_pose=pose)
+            call.update(end=after[0], end_pose=after[1])
             self.calls.append(call)
         for peer in peers:
-            call = self._open.setdefault(peer, {'start': time, 'start_pose': pose})
-            call.update(last_open=time, last_open_pose=pose)
+            call = self._open.setdefault(peer, {'start': before[0], 'start_pose': before[1]})
+            call.update(last_open=before[0], last_open_pose=before[1])
 
     def judged(self):
         """The call to judge find_wall by: the first seen open for LASTING, else the longest;

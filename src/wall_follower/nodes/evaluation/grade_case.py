@@ -134,9 +134,15 @@ class FindWallWatch(object):
 
     def _run(self):
         while not self._stop.wait(CALL_POLL):
+            before = self._moment()
             peers = connected_peers()
+            after = self._moment()
             with self._lock:
-                self.watch.look(rospy.get_time(), peers, self._monitor.pose)
+                self.watch.look(peers, before, after)
+
+    def _moment(self):
+        """(simulated time, the robot's latest true pose) now."""
+        return rospy.get_time(), self._monitor.pose
 
     def stop(self):
         self._stop.set()
