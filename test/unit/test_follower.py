@@ -20,6 +20,7 @@ from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.observation import Observation, unbiased
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.control.sensing.wall_fit import as_planned
+from wall_follower.evaluation.scoring.course import BAND, RIGHT_SECTOR
 
 ALL = CONVENTIONS + [REVERSED]
 IDS = [c.name for c in ALL]
@@ -683,6 +684,19 @@ def rounding(tip_distance, turned_deg, ending_wide=False):
     controller.outer_corner.arc = CornerArc(tip, along, controller.outer_corner.turn.center)
     controller.outer_corner.ending_wide = ending_wide
     return controller, (x, y, heading)
+
+
+def test_the_wide_end_begins_where_the_laser_reads_the_new_wall_in_band():
+    # Flown to parallel, the wide end lands inner_corner_distance from the
+    # new wall, so it begins wide_radius * (1 - cos wide_end) farther off.
+    # The laser, behind the rotation centre, is farther still, and the judge
+    # reads that wall through the edge of its sector, past which the wall's
+    # normal then lies.
+    params = FollowerParams()
+    wide_radius = params.cruise_speed / params.max_turn_rate
+    centre = params.inner_corner_distance + wide_radius * (1.0 - math.cos(params.wide_end))
+    laser = centre - params.laser_x * math.sin(params.wide_end)
+    assert laser / math.cos(max(0.0, params.wide_end - RIGHT_SECTOR)) <= BAND[1]
 
 
 def test_a_wide_end_once_begun_goes_on():

@@ -73,6 +73,16 @@ def test_a_lap_of_the_room_in_band_without_contact():
     assert 'WALL_AHEAD' in states
 
 
+def test_the_left_turns_of_the_room_hand_the_band_over_from_wall_to_wall():
+    # Halfway round a left turn the judge reads the wall being left through
+    # the trailing edge of its sector, and then the new one through the
+    # leading edge. With a wide end begun 35 degrees from parallel, each of
+    # the room's turns read beyond the band for a scan or two there.
+    score, _ = lap(ROOM, 'stage')
+    assert score.summary()['lap_closed']
+    assert max(wall_distances(score)) <= BAND[1]
+
+
 def test_a_waffle_keeps_its_tail_off_the_walls_at_inner_corners():
     # A Waffle's rear corners reach 0.26 m from its rotation centre: riding
     # nearer the wall before a left turn, as a Burger does, swings its tail
