@@ -92,8 +92,8 @@ FOLLOWER = (
         P('inner_corner_radius', 0.09, '... then the turn goes on at this radius past the '
           'corner [m] ...', 0.0, 1.0),
         P('wide_end', math.radians(32.0), '... and flies its last part at cruise speed again '
-          '[rad]; 0 for none. Begun more than about 32 degrees from parallel, it begins where the '
-          'laser reads the new wall beyond the band', 0.0, math.pi / 2),
+          '[rad]; 0 for none. Much more than 32 degrees, and it begins where the laser reads the '
+          'new wall beyond the band', 0.0, math.pi / 2),
         P('wide_allowance', 0.015, 'the wide start may carry the robot this far past '
           'target_distance [m]; it rides nearer by the rest of the drift first', 0.0, 0.5),
         P('short_turn_cut', math.radians(5.0), 'a wide start cut by more than this (no room to '
