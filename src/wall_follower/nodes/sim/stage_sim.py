@@ -129,7 +129,26 @@ class RobotTopics(object):
         msg.twist.twist.angular.z = odometry.wz
         return msg
 
-    def transforms(self, stamp, robot):
+    def publish(self, stamp, robot, with_tf):
+        """One step's topics of this robot, each if subscribed; returns its transforms
+        (none without `with_tf`). The camera's subscribers are read once, so that a
+        subscriber leaving mid-step cannot part an image from its camera_info and tf."""
+        if robot.scan is not None and self.scan.get_num_connections():
+            self.scan.publish(self.scan_msg(stamp, robot.scan))
+        if self.odom.get_num_connections():
+            self.odom.publish(self.odometry_msg(stamp, robot.odom))
+        if self.truth.get_num_connections():
+            self.truth.publish(self.odometry_msg(stamp, robot.ground_truth))
+        if self.stalled.get_num_connections():
+            self.stalled.publish(Bool(robot.stalled))
+        wanted = CameraTopics.NONE
+        if robot.image is not None and self.camera is not None:
+            wanted = self.camera.subscribed()
+            if any(wanted):
+                self.camera.publish(stamp, robot.image, wanted)
+        return self.transforms(stamp, robot, any(wanted)) if with_tf else []
+
+    def transforms(self, stamp, robot, with_camera):
         odom = robot.odom
         laser = robot.laser
         chain = [(self.odom_frame, self.footprint_frame, odom.x, odom.y, 0.0,
@@ -138,7 +157,7 @@ class RobotTopics(object):
         if laser is not None:
             chain.append((self.base_frame, self.laser_frame, laser.x, laser.y, laser.z,
                           (0.0, 0.0) + quaternion_of_yaw(laser.yaw)))
-        if robot.image is not None and self.camera is not None and self.camera.wanted():
+        if with_camera:
             mount = self.camera.mount
             chain.append((self.base_frame, self.camera.frame, mount.x, mount.y, mount.z,
                           mount.rotation))
@@ -177,9 +196,13 @@ class CameraTopics(object):
         self.info = rospy.Publisher(prefix + 'camera_info', CameraInfo, queue_size=10)
         self.info_msg = self._info(spec.camera)
 
-    def wanted(self):
-        """stageros renders and publishes only while image or depth has a subscriber."""
-        return self.image.get_num_connections() > 0 or self.depth.get_num_connections() > 0
+    # subscribed() of a camera nobody watches.
+    NONE = (False, False)
+
+    def subscribed(self):
+        """Whether image and depth have a subscriber now, as a pair: stageros renders
+        and publishes only while one of them has."""
+        return self.image.get_num_connections() > 0, self.depth.get_num_connections() > 0
 
     def _info(self, camera):
         fx, fy, cx, cy = camera_intrinsics(camera)
@@ -192,12 +215,13 @@ class CameraTopics(object):
         msg.P = [fx, 0.0, cx, 0.0, 0.0, fy, cy, 0.0, 0.0, 0.0, 1.0, 0.0]
         return msg
 
-    def publish(self, stamp, frame):
-        """One step's image, depth (each if subscribed) and camera_info."""
+    def publish(self, stamp, frame, subscribed):
+        """One step's image and depth (each if `subscribed` says so) and camera_info."""
         height, width = frame.depth.shape
-        if self.image.get_num_connections():
+        with_image, with_depth = subscribed
+        if with_image:
             self.image.publish(self._image(stamp, width, height, 'rgba8', 4, frame.rgba))
-        if self.depth.get_num_connections():
+        if with_depth:
             self.depth.publish(self._image(stamp, width, height, '32FC1', 4, frame.depth))
         self.info_msg.header.stamp = stamp
         self.info.publish(self.info_msg)
@@ -317,7 +341,7 @@ class StageSimNode(object):
             if not self._pacer.wait_turn(driven):
                 return
             with_scans = any(topics.scan.get_num_connections() for topics in self._robots)
-            with_images = any(topics.camera is not None and topics.camera.wanted()
+            with_images = any(topics.camera is not None and any(topics.camera.subscribed())
                               for topics in self._robots)
             if first_step is None:
                 first_step = time.time()
@@ -341,18 +365,7 @@ class StageSimNode(object):
         transforms = []
         with_tf = self._tf.pub_tf.get_num_connections() > 0
         for topics, robot in zip(self._robots, frame.robots):
-            if robot.scan is not None and topics.scan.get_num_connections():
-                topics.scan.publish(topics.scan_msg(stamp, robot.scan))
-            if topics.odom.get_num_connections():
-                topics.odom.publish(topics.odometry_msg(stamp, robot.odom))
-            if topics.truth.get_num_connections():
-                topics.truth.publish(topics.odometry_msg(stamp, robot.ground_truth))
-            if topics.stalled.get_num_connections():
-                topics.stalled.publish(Bool(robot.stalled))
-            if robot.image is not None and topics.camera is not None and topics.camera.wanted():
-                topics.camera.publish(stamp, robot.image)
-            if with_tf:
-                transforms.extend(topics.transforms(stamp, robot))
+            transforms.extend(topics.publish(stamp, robot, with_tf))
         if with_tf:
             self._tf.sendTransform(transforms)
         self._clock.publish(Clock(clock=stamp))
