@@ -316,6 +316,18 @@ def test_commands_sent_once_are_named_as_the_watchdog_stopping_them():
     assert note in graded['criteria']['find_wall']['reason']
 
 
+def test_a_command_heard_a_step_late_is_not_taken_for_one_the_watchdog_cut():
+    log = CommandLog(0.2)
+    # The answer to the step at 38.0 s, heard on time; the answer to 38.1 heard at
+    # 38.2, then 38.2's and 38.3's on time: 38.2 - 38.0 is a few 1e-15 s over 0.2.
+    for stamp in (38.0, 38.2, 38.2, 38.3):
+        log.add(stamp, 0.19, 0.0)
+    assert log.record()['cut_by_watchdog'] == 0
+    # Nothing heard for the steps at 38.4 and 38.5: the watchdog stopped the robot.
+    log.add(38.6, 0.19, 0.0)
+    assert log.record()['cut_by_watchdog'] == 1
+
+
 def test_commands_sent_continuously_get_no_watchdog_note(genuine):
     case = run(lap_rule=False)
     assert case['commands']['cut_by_watchdog'] == 0
