@@ -188,6 +188,9 @@ class CameraTopics(object):
     """A robot's camera topics, as stageros names them for one camera per robot: image,
     depth and camera_info in frame `camera` (with the robot's prefix)."""
 
+    # subscribed() of a camera nobody watches.
+    NONE = (False, False)
+
     def __init__(self, prefix, spec):
         self.frame = prefix + 'camera'
         self.mount = camera_mount(spec)
@@ -195,9 +198,6 @@ class CameraTopics(object):
         self.depth = rospy.Publisher(prefix + 'depth', Image, queue_size=10)
         self.info = rospy.Publisher(prefix + 'camera_info', CameraInfo, queue_size=10)
         self.info_msg = self._info(spec.camera)
-
-    # subscribed() of a camera nobody watches.
-    NONE = (False, False)
 
     def subscribed(self):
         """Whether image and depth have a subscriber now, as a pair: stageros renders
