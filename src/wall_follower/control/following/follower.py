@@ -124,6 +124,7 @@ class WallFollower(object):
         self._stamp = stamp
         obs = Observation(view, p, self.command)
         self.pillar.observe(obs, self.command, dt)
+        self.inner_corner.observe(obs, self.command, dt)
         if self.state != WALL_AHEAD:
             # Until it is flown, the turn onto a wall ahead is planned afresh at every scan.
             self.inner_corner.plan(obs)

@@ -3,7 +3,9 @@
 The turn is flown at the full turn rate: wide at first, nearly pivoting
 past the corner, and wide again onto parallel (see left_turn.py). Its
 speed is re-planned from the wall ahead at every scan, so the turn is
-closed-loop, not timed. Its wide end is planned on the new wall to the
+closed-loop, not timed; that wall is tracked from scan to scan by the
+robot's own motion (landing_track.py), as a grid's ranges move its fit in
+steps. Its wide end is planned on the new wall to the
 last: once that wall has come round to the right and left the lane ahead,
 it is the wall on the right the robot still heads into, and the turn goes
 on until the lane's edges are clear of it. While such a wall comes up,
@@ -15,6 +17,7 @@ tight arc rather than a pivot.
 import math
 
 from wall_follower.control.following.body import Body
+from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.left_turn import LeftTurn
 from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
@@ -28,6 +31,13 @@ from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, f
 # (1 cm) held on turns that a noisy laser's early start had begun too far
 # from the wall being left, and their crossover left the band.
 OUT_OF_REACH = 0.005
+# How much farther out than planned the turn lands [m]. It lands on the
+# wall as tracked (landing_track.py), which runs through the middle of the
+# fit's grid steps, while the turn's start (due) is judged on the fit
+# itself. Landed on the track as planned, turns came out nearer than those
+# landed on the fit, whose steps down slowed them to a near pivot, and
+# FOLLOW spent twice the time nearer than the band after them.
+LANDING_MARGIN = 0.005
 
 
 class InnerCorner(Manoeuvre):
@@ -42,6 +52,13 @@ class InnerCorner(Manoeuvre):
         super().__init__(params)
         self.configure()
         self.turn = self.left_turn
+        self.track = LandingTrack()
+        self._tracked = None
+
+    def observe(self, obs, motion, dt):
+        """Track the wall a left turn lands on through this update's Observation (see
+        landing_track.py): motion is the Command driven for the dt seconds since the last."""
+        self._tracked = (obs, self.track.update(self._fitted_landing_wall(obs), motion, dt))
 
     def configure(self):
         """Plan the turns from the parameters, again after they have changed.
@@ -176,19 +193,20 @@ class InnerCorner(Manoeuvre):
         than landing_run leaves no room for that before the turn round its
         end, which is planned from target_distance, and a landing nearer
         would carry the robot past that end's tip nearer still. On such a
-        side the turn lands at target_distance.
+        side the turn lands at target_distance. Either wall is the one
+        tracked (observe), and the landing LANDING_MARGIN farther out.
         """
         p = self.params
-        if obs.ahead is not None:
-            distance, angle = self._ahead_as_planned(obs)
-            return distance - p.inner_corner_distance, angle
-        if not (along_the_way(obs.wall, p.rejoin_angle) and obs.wall.angle > 0.0):
-            return None
-        distance, angle = from_centre(obs.wall, p.laser_x)
-        line = in_laser_frame(obs.wall)
-        runs = wall_runs_to(line, line.offsets(obs.right), obs.wall_tip, obs.right, p)[0]
-        landing = p.inner_corner_distance if runs >= p.landing_run else p.target_distance
-        return distance - landing, angle
+        landing = p.inner_corner_distance
+        if obs.ahead is None:
+            if not self._onto_right_wall(obs):
+                return None
+            line = in_laser_frame(obs.wall)
+            runs = wall_runs_to(line, line.offsets(obs.right), obs.wall_tip, obs.right, p)[0]
+            if runs < p.landing_run:
+                landing = p.target_distance
+        distance, angle = self._landing_wall(obs)
+        return distance - landing - LANDING_MARGIN, angle
 
     def dip(self, obs, still_turning=0.0):
         """How much nearer to ride while a wall across the way is within approach_range.
@@ -216,8 +234,36 @@ class InnerCorner(Manoeuvre):
         return obs.wall is None or not same_line(obs.ahead, obs.wall)
 
     def _ahead_as_planned(self, obs):
-        """The wall ahead as the left turn is planned for it: see as_planned and from_centre."""
+        """The wall ahead as fitted, as the left turn is planned for it: see as_planned and
+        from_centre."""
         return from_centre(self._ahead_square_to_right(obs), self.params.laser_x)
+
+    def _landing_wall(self, obs):
+        """The wall a left turn lands on, as tracked through obs (observe), or as fitted on
+        an Observation that was not."""
+        if self._tracked is not None and self._tracked[0] is obs:
+            return self._tracked[1]
+        return self._fitted_landing_wall(obs)
+
+    def _fitted_landing_wall(self, obs):
+        """The wall a left turn lands on, as fitted on obs and seen from the rotation centre
+        (from_centre); None if there is none.
+
+        That is the wall ahead, as the turn is planned for it (as_planned),
+        while there is one; past the corner, the wall on the right while the
+        robot still heads into it (a positive angle, within rejoin_angle of
+        parallel).
+        """
+        if obs.ahead is not None:
+            return self._ahead_as_planned(obs)
+        if self._onto_right_wall(obs):
+            return from_centre(obs.wall, self.params.laser_x)
+        return None
+
+    def _onto_right_wall(self, obs):
+        """True when the wall on the right is one the robot still turns onto: within
+        rejoin_angle of parallel, heading into it."""
+        return along_the_way(obs.wall, self.params.rejoin_angle) and obs.wall.angle > 0.0
 
     def _ahead_square_to_right(self, obs):
         """as_planned of the wall ahead, squared to the wall on the right if that is along the way.

@@ -27,8 +27,9 @@ import math
 
 from wall_follower.control.following.corner import CornerArc, OuterTurn
 from wall_follower.control.following.follow_wall import steer
+from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
-from wall_follower.control.motion import Command
+from wall_follower.control.motion import STOP, Command
 from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.control.sensing.wall_fit import (along_the_way, from_centre, in_laser_frame,
                                                     wall_beyond)
@@ -71,6 +72,7 @@ class OuterCorner(Manoeuvre):
         self.starting_wide = False
         self.ending_wide = False
         self.heading_in = 0.0
+        self.landing = LandingTrack()
 
     def configure(self):
         """Plan the turn from the parameters, again after they have changed."""
@@ -130,7 +132,8 @@ class OuterCorner(Manoeuvre):
 
     def begin(self, obs, previous):
         self._pin(obs, wide_start=previous == FOLLOW)
-        self._track_wide(obs)
+        self.landing = LandingTrack()
+        self._track_wide(obs, STOP, 0.0)
 
     def carry_on(self, obs, motion, dt):
         if self.arc is not None:
@@ -138,7 +141,7 @@ class OuterCorner(Manoeuvre):
             self.arc.observe(obs.right, self.params.corner_gate)
             if self._round_short_side(obs):
                 self._pin(obs, wide_start=self._before_wide_start(obs))
-        self._track_wide(obs)
+        self._track_wide(obs, motion, dt)
 
     def _before_wide_start(self, obs):
         """True when the end of the wall on the right is no more than outer_wide_tolerance
@@ -221,8 +224,18 @@ class OuterCorner(Manoeuvre):
             speed *= p.max_turn_rate / abs(turn)
         return Command(speed, turn)
 
-    def _track_wide(self, obs):
-        """End the wide start, or begin the wide end, where the arc has got to."""
+    def _track_wide(self, obs, motion, dt):
+        """End the wide start, or begin the wide end, where the arc has got to; motion is the
+        Command driven for the dt seconds since the last update.
+
+        The next wall, once fitted, is tracked (landing_track.py): its fit
+        steps by a grid cell as the robot turns, and judged on the steps
+        alone the wide end began, stopped and began again, scan after scan.
+        """
+        next_wall = self._next_wall(obs) if self.arc is not None else None
+        landing = self.landing.update(
+            None if next_wall is None else from_centre(next_wall, self.params.laser_x),
+            motion, dt)
         if self.arc is None:
             return
         self.starting_wide = self.starting_wide and self.turn.starts_wide(
@@ -232,12 +245,10 @@ class OuterCorner(Manoeuvre):
         # it: the corner lands that much nearer the side instead. The turn
         # onto that wall starts once this one is over: the rest of this
         # one adds to its angle.
-        next_wall = self._next_wall(obs)
         if next_wall is not None:
             nearer = self.inner_corner.dip(obs, -next_wall.angle)
             self.arc.pull(nearer, in_laser_frame(next_wall).normal)
-            self.ending_wide = self.turn.lands_within(
-                from_centre(next_wall, self.params.laser_x).distance, -next_wall.angle, nearer)
+            self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle, nearer)
         else:
             nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
             self.ending_wide = self.ending_wide or self.turn.ends_wide(
