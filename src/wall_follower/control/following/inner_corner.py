@@ -5,10 +5,10 @@ past the corner, and wide again onto parallel (see left_turn.py). Its
 speed is re-planned from the wall ahead at every scan, so the turn is
 closed-loop, not timed; that wall is tracked from scan to scan by the
 robot's own motion (landing_track.py), as a grid's ranges move its fit in
-steps. Its wide end is planned on the new wall to the
-last: once that wall has come round to the right and left the lane ahead,
-it is the wall on the right the robot still heads into, and the turn goes
-on until the lane's edges are clear of it. While such a wall comes up,
+steps. Its wide end is planned on the new wall to the last: once that
+wall has come round to the right and left the lane ahead, it is the wall
+on the right the robot still heads into, and the turn goes on until the
+lane's edges are clear of it. While such a wall comes up,
 the robot rides a little nearer the old wall, by as much as the wide start
 will carry it off beyond wide_allowance; a turn begun without that room
 (after a short wall) flies short_turn instead: a shorter wide start and a
