@@ -53,12 +53,13 @@ class InnerCorner(Manoeuvre):
         self.configure()
         self.turn = self.left_turn
         self.track = LandingTrack()
-        self._tracked = None
+        self._observed = None
 
     def observe(self, obs, motion, dt):
         """Track the wall a left turn lands on through this update's Observation (see
         landing_track.py): motion is the Command driven for the dt seconds since the last."""
-        self._tracked = (obs, self.track.update(self._fitted_landing_wall(obs), motion, dt))
+        self._observed = obs
+        self.track.update(self._fitted_landing_wall(obs), motion, dt)
 
     def configure(self):
         """Plan the turns from the parameters, again after they have changed.
@@ -241,8 +242,8 @@ class InnerCorner(Manoeuvre):
     def _landing_wall(self, obs):
         """The wall a left turn lands on, as tracked through obs (observe), or as fitted on
         an Observation that was not."""
-        if self._tracked is not None and self._tracked[0] is obs:
-            return self._tracked[1]
+        if obs is self._observed:
+            return self.track.wall
         return self._fitted_landing_wall(obs)
 
     def _fitted_landing_wall(self, obs):
