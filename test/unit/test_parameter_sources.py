@@ -8,6 +8,7 @@ the <param>s the launch files set (with their <arg> defaults) and the
 README's tables of defaults. Changing any of them alone makes a test fail.
 """
 import ast
+import functools
 import glob
 import importlib
 import logging
@@ -119,12 +120,14 @@ def test_a_config_file_holds_only_known_values_that_differ_from_the_defaults(nod
     assert not repeated, 'config/%s.yaml repeats the default of %s' % (node, ', '.join(repeated))
 
 
+@functools.lru_cache(maxsize=None)
 def launch_parameters(path, args=()):
     """(node, parameter, value) of every parameter a launch file gives the package's nodes.
 
     roslaunch's own loader reads the file, with every <arg> at its default
     but those of args ('name:=value'), its includes and the config files its
-    rosparam elements load.
+    rosparam elements load. Each file is read once (up to 2 s for one that
+    includes others), however many tests look at it.
     """
     logging.getLogger('roslaunch').setLevel(logging.WARNING)
     config = roslaunch.config.load_config_default([(path, list(args))], None, verbose=False)
@@ -138,7 +141,7 @@ def launch_parameters(path, args=()):
             if key.startswith(prefix):
                 _nest(values, key[len(prefix):].split('/'), param.value)
         found.extend((EXECUTABLES[node.type], name, value) for name, value in values.items())
-    return found
+    return tuple(found)
 
 
 def _nest(values, path, value):
