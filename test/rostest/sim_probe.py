@@ -90,9 +90,12 @@ class SimProbe(object):
                 raise AssertionError('timed out waiting for ' + what)
 
     def wait_ready(self):
-        """Waits until the simulator hears our cmd_vel and we hear its ground truth."""
+        """Waits until the simulator hears our commands and we have heard each
+        of its streams: every subscription connects on its own, so ground
+        truth arriving says nothing of the scans."""
         self.wait_for(lambda: self._cmd.get_num_connections() > 0 and
-                      self._pose.get_num_connections() > 0 and self.truths,
+                      self._pose.get_num_connections() > 0 and
+                      self.scans and self.odoms and self.truths and self.transforms,
                       'the simulator to connect')
 
     def wait_ticks(self, count):
