@@ -123,11 +123,12 @@ class WallFollower(object):
         dt = p.latency if stamp is None or self._stamp is None else stamp - self._stamp
         self._stamp = stamp
         obs = Observation(view, p, self.command)
+        if self.state != WALL_AHEAD:
+            # Until it is flown, the turn onto a wall ahead is planned afresh at every scan,
+            # and how far out of its reach the wall is, is tracked against that plan.
+            self.inner_corner.plan(obs)
         self.pillar.observe(obs, self.command, dt)
         self.inner_corner.observe(obs, self.command, dt)
-        if self.state != WALL_AHEAD:
-            # Until it is flown, the turn onto a wall ahead is planned afresh at every scan.
-            self.inner_corner.plan(obs)
         previous, self.state = self.state, self._next_state(obs)
         self.follow_wall.elapse(dt, turning=self.state == WALL_AHEAD)
         self._hand_over(previous, obs, dt)

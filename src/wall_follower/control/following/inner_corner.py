@@ -20,6 +20,7 @@ from wall_follower.control.following.body import Body
 from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.left_turn import LeftTurn
 from wall_follower.control.following.manoeuvre import Manoeuvre
+from wall_follower.control.following.reach_track import ReachTrack
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, from_centre,
                                                     in_laser_frame, same_line, wall_runs_to)
@@ -53,13 +54,16 @@ class InnerCorner(Manoeuvre):
         self.configure()
         self.turn = self.left_turn
         self.track = LandingTrack()
+        self.reach = ReachTrack()
         self._observed = None
 
     def observe(self, obs, motion, dt):
-        """Track the wall a left turn lands on through this update's Observation (see
-        landing_track.py): motion is the Command driven for the dt seconds since the last."""
+        """Track the wall a left turn lands on (landing_track.py) and how far beyond the turn's
+        reach the wall across the way lies (reach_track.py) through this update's
+        Observation: motion is the Command driven for the dt seconds since the last."""
         self._observed = obs
         self.track.update(self._fitted_landing_wall(obs), motion, dt)
+        self.reach.update(self._slack(obs), self._slack_change(obs, motion, dt))
 
     def configure(self):
         """Plan the turns from the parameters, again after they have changed.
@@ -109,12 +113,35 @@ class InnerCorner(Manoeuvre):
     def due(self, obs, beyond=0.0):
         """True when a wall across the way is near enough that the planned turn, begun now,
         ends inner_corner_distance from it; or, given beyond (m), when it is no more than that
-        out of reach."""
+        out of reach. For the Observation last observed, judged on how far out of reach the
+        wall is as tracked through the scans (reach_track.py), not on that one scan's fit."""
         if not self.blocking(obs):
             return False
+        slack = self.reach.slack if obs is self._observed else self._slack(obs)
+        return slack <= beyond
+
+    def _slack(self, obs):
+        """How far [m] the wall across the way lies beyond the reach of the planned turn begun
+        now (< 0 within it); None without such a wall."""
+        if not self.blocking(obs):
+            return None
         p = self.params
         distance, angle = self._ahead_as_planned(obs)
-        return self.turn.gap(angle) >= distance - beyond - p.turn_lead - p.inner_corner_distance
+        return distance - self.turn.gap(angle) - p.turn_lead - p.inner_corner_distance
+
+    def _slack_change(self, obs, motion, dt):
+        """How much the command driven for dt seconds (motion) changed the slack of the wall
+        across the way (_slack), by the turn as planned; 0 without such a wall.
+
+        The robot came nearer the wall by its arc's length times the sine
+        of the angle, taken half way along, and turned by as much less to go.
+        """
+        if not self.blocking(obs):
+            return 0.0
+        angle = self._ahead_as_planned(obs).angle
+        turned = motion.angular * dt
+        nearer = motion.linear * dt * math.sin(angle + 0.5 * turned)
+        return self.turn.gap(angle + turned) - self.turn.gap(angle) - nearer
 
     def done(self, obs):
         """True once a straight wall is along the right again, not one the turn is leaving,

@@ -43,6 +43,9 @@ OTHER_WALL_ANGLE = math.radians(15.0)
 # the right after smaller turns, and are circled on the arc round the first
 # tip [rad].
 NEXT_SIDE_TURN = math.radians(60.0)
+# A wide end under way goes on while it lands no more than this beyond
+# where it was planned to (see _track_wide) [m].
+WIDE_END_HOLD = 0.003
 
 
 class OuterCorner(Manoeuvre):
@@ -201,9 +204,13 @@ class OuterCorner(Manoeuvre):
         The arc round the tip is flown at the full turn rate, which leaves no
         turn to spare for the PD law: a robot carried outside it (by a wide
         end begun before the next wall was seen and then cut short, round a
-        sharp tip) would drift on outward. Farther outside than
-        outer_wide_tolerance, it slows down so that the turn rate allowed
-        turns it as sharply as the law asks, and comes back onto the arc.
+        sharp tip) would drift on outward. Outside it, the robot slows down
+        so that the turn rate allowed turns it as sharply as the law asks,
+        and comes back onto the arc: by as little as it is outside, so a
+        tip that jitters by a grid cell costs little speed, while holding
+        back the slowdown until a cell or more outside left the robot to
+        drift out that far first (round a sharp tip before a short side,
+        which it then rode wide into the turn across that side's end).
         """
         p = self.params
         if self.pillar.found:
@@ -220,7 +227,7 @@ class OuterCorner(Manoeuvre):
         # The arc's curvature as a feed-forward, and the PD law on its
         # centre as if that were a wall tangent to the arc.
         turn = -speed / radius + steer(p, distance, float(wrap_angle(bearing - RIGHT)), radius)
-        if abs(turn) > p.max_turn_rate and distance > radius + p.outer_wide_tolerance:
+        if abs(turn) > p.max_turn_rate and distance > radius:
             speed *= p.max_turn_rate / abs(turn)
         return Command(speed, turn)
 
@@ -231,6 +238,11 @@ class OuterCorner(Manoeuvre):
         The next wall, once fitted, is tracked (landing_track.py): its fit
         steps by a grid cell as the robot turns, and judged on the steps
         alone the wide end began, stopped and began again, scan after scan.
+        Along the wide arc, where it lands is the same at every point (the
+        arc turns it off the wall as much as it nears it), so a wide end
+        begun sits on its threshold: a wide end under way goes on while it
+        lands within WIDE_END_HOLD of it. Stopped by a millimetre's jitter,
+        it left the robot outside the arc round the tip, crawling back.
         """
         next_wall = self._next_wall(obs) if self.arc is not None else None
         landing = self.landing.update(
@@ -248,7 +260,9 @@ class OuterCorner(Manoeuvre):
         if next_wall is not None:
             nearer = self.inner_corner.dip(obs, -next_wall.angle)
             self.arc.pull(nearer, in_laser_frame(next_wall).normal)
-            self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle, nearer)
+            hold = WIDE_END_HOLD if self.ending_wide else 0.0
+            self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle,
+                                                      nearer - hold)
         else:
             nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
             self.ending_wide = self.ending_wide or self.turn.ends_wide(

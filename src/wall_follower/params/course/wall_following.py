@@ -143,8 +143,7 @@ FOLLOWER = (
         P('outer_turn_lead', -0.005, 'start the turn round the end of a wall this much early '
           '(negative: late) [m]', -0.5, 0.5),
         P('outer_wide_tolerance', 0.03, 'the wide start is flown even this far inside the arc '
-          'round the tip, and the robot slows down to turn back onto that arc only from farther '
-          'outside it (the tip is seen to a grid cell or so) [m]', 0.0, 0.5),
+          'round the tip (the tip is seen to a grid cell or so) [m]', 0.0, 0.5),
         P('circling_speed_share', 0.9, 'a corner with no wall to pin an arc to is circled at '
           'this share of target_distance times max_turn_rate (turn headroom)', 0.0, 1.0),
         P('corner_gate', 0.1, 'the tip of a corner is looked for this near where it is expected '
