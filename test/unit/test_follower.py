@@ -751,10 +751,10 @@ def test_a_wide_end_begins_where_it_lands_at_the_target_distance():
 def test_a_robot_carried_outside_the_arc_round_a_tip_slows_to_turn_back_onto_it():
     # The arc is flown at the full turn rate, with no turn left for the PD
     # law: a robot 6 cm outside it (a wide end cut short round a sharp tip)
-    # drifted on outward. It slows down instead, by as much as it is
-    # outside: a little on the arc, more a grid cell outside it, and under
-    # half the arc's speed 6 cm outside. Held back until 3 cm outside, the
-    # slowdown let the robot drift out that far first.
+    # drifted on outward. It slows down instead, but not on the arc, where
+    # a noisy laser's fit of the tip moves it by up to OFF_ARC. Held back
+    # until 3 cm outside, the slowdown let the robot drift out that far
+    # first: 1.5 cm out, it slows.
     arc_speed = EXACT.outer_corner_radius * EXACT.max_turn_rate
     outside, speeds = [], []
     for tip_distance in (0.215, 0.23, 0.28):
@@ -764,9 +764,10 @@ def test_a_robot_carried_outside_the_arc_round_a_tip_slows_to_turn_back_onto_it(
         assert command.angular == pytest.approx(-EXACT.max_turn_rate)
         speeds.append(command.linear)
     assert outside == pytest.approx([0.0, 0.015, 0.065], abs=0.002)
-    assert 0.8 * arc_speed < speeds[0]
-    assert speeds[0] > speeds[1] > speeds[2]
-    assert speeds[2] < 0.5 * arc_speed
+    on_arc, a_little_out, far_out = speeds
+    assert on_arc == pytest.approx(arc_speed)
+    assert a_little_out < 0.8 * arc_speed
+    assert far_out < 0.5 * arc_speed
 
 
 @pytest.mark.parametrize('period', [0.1, 0.2])

@@ -46,6 +46,12 @@ NEXT_SIDE_TURN = math.radians(60.0)
 # A wide end under way goes on while it lands no more than this beyond
 # where it was planned to (see _track_wide) [m].
 WIDE_END_HOLD = 0.003
+# Round a tip, a robot this far outside its arc slows down to turn back
+# onto it (see command) [m]. A noisy laser's fit moves the tip by about as
+# much: slowed for less, the robot cut inside the arc, near the tip. Held
+# back until 3 cm out, it drifted out that far first, round a sharp tip
+# before a short side, and rode wide into the turn across that side's end.
+OFF_ARC = 0.01
 
 
 class OuterCorner(Manoeuvre):
@@ -204,13 +210,9 @@ class OuterCorner(Manoeuvre):
         The arc round the tip is flown at the full turn rate, which leaves no
         turn to spare for the PD law: a robot carried outside it (by a wide
         end begun before the next wall was seen and then cut short, round a
-        sharp tip) would drift on outward. Outside it, the robot slows down
-        so that the turn rate allowed turns it as sharply as the law asks,
-        and comes back onto the arc: by as little as it is outside, so a
-        tip that jitters by a grid cell costs little speed, while holding
-        back the slowdown until a cell or more outside left the robot to
-        drift out that far first (round a sharp tip before a short side,
-        which it then rode wide into the turn across that side's end).
+        sharp tip) would drift on outward. Farther outside than OFF_ARC, it
+        slows down so that the turn rate allowed turns it as sharply as the
+        law asks, and comes back onto the arc.
         """
         p = self.params
         if self.pillar.found:
@@ -227,7 +229,7 @@ class OuterCorner(Manoeuvre):
         # The arc's curvature as a feed-forward, and the PD law on its
         # centre as if that were a wall tangent to the arc.
         turn = -speed / radius + steer(p, distance, float(wrap_angle(bearing - RIGHT)), radius)
-        if abs(turn) > p.max_turn_rate and distance > radius:
+        if abs(turn) > p.max_turn_rate and distance > radius + OFF_ARC:
             speed *= p.max_turn_rate / abs(turn)
         return Command(speed, turn)
 
