@@ -63,7 +63,11 @@ class InnerCorner(Manoeuvre):
         Observation: motion is the Command driven for the dt seconds since the last."""
         self._observed = obs
         self.track.update(self._fitted_landing_wall(obs), motion, dt)
-        self.reach.update(self._slack(obs), self._slack_change(obs, motion, dt))
+        if self.blocking(obs):
+            ahead = self._ahead_as_planned(obs)
+            self.reach.update(self._slack(ahead), self._slack_change(ahead, motion, dt))
+        else:
+            self.reach.update(None, 0.0)
 
     def configure(self):
         """Plan the turns from the parameters, again after they have changed.
@@ -117,31 +121,26 @@ class InnerCorner(Manoeuvre):
         wall is as tracked through the scans (reach_track.py), not on that one scan's fit."""
         if not self.blocking(obs):
             return False
-        slack = self.reach.slack if obs is self._observed else self._slack(obs)
-        return slack <= beyond
+        if obs is self._observed:
+            return self.reach.slack <= beyond
+        return self._slack(self._ahead_as_planned(obs)) <= beyond
 
-    def _slack(self, obs):
-        """How far [m] the wall across the way lies beyond the reach of the planned turn begun
-        now (< 0 within it); None without such a wall."""
-        if not self.blocking(obs):
-            return None
+    def _slack(self, ahead):
+        """How far [m] the wall across the way (ahead, as _ahead_as_planned gives it) lies
+        beyond the reach of the planned turn begun now (< 0 within it)."""
         p = self.params
-        distance, angle = self._ahead_as_planned(obs)
-        return distance - self.turn.gap(angle) - p.turn_lead - p.inner_corner_distance
+        return ahead.distance - self.turn.gap(ahead.angle) - p.turn_lead - p.inner_corner_distance
 
-    def _slack_change(self, obs, motion, dt):
+    def _slack_change(self, ahead, motion, dt):
         """How much the command driven for dt seconds (motion) changed the slack of the wall
-        across the way (_slack), by the turn as planned; 0 without such a wall.
+        across the way (_slack; ahead as there), by the turn as planned.
 
         The robot came nearer the wall by its arc's length times the sine
         of the angle, taken half way along, and turned by as much less to go.
         """
-        if not self.blocking(obs):
-            return 0.0
-        angle = self._ahead_as_planned(obs).angle
         turned = motion.angular * dt
-        nearer = motion.linear * dt * math.sin(angle + 0.5 * turned)
-        return self.turn.gap(angle + turned) - self.turn.gap(angle) - nearer
+        nearer = motion.linear * dt * math.sin(ahead.angle + 0.5 * turned)
+        return self.turn.gap(ahead.angle + turned) - self.turn.gap(ahead.angle) - nearer
 
     def done(self, obs):
         """True once a straight wall is along the right again, not one the turn is leaving,
