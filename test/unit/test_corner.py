@@ -196,6 +196,45 @@ def test_a_turn_begun_heading_into_the_wall_has_less_tolerance_the_steeper_it_he
         assert not turn.starts_wide(math.radians(5.0), 0.265, heading_in=heading_in)
 
 
+def wide_start_centres(turn, distance, heading_in):
+    """The centres of the wide start and of the tight arc, from the rotation centre, for a
+    turn begun where lead_from says: distance (m) off the wall, heading into it (rad)."""
+    ahead = turn.lead_from(distance, heading_in)
+    # The tip lies on the wall's line: turned heading_in to the left of the heading.
+    tip = (ahead, ahead * math.tan(heading_in) - distance / math.cos(heading_in))
+    arc = CornerArc(tip, (math.cos(heading_in), math.sin(heading_in)), turn.center)
+    return np.array((0.0, -turn.wide_radius)), arc.center
+
+
+def test_a_turn_begun_parallel_at_the_planned_distance_starts_where_planned():
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    assert turn.lead_from(0.265) == pytest.approx(turn.lead)
+
+
+@pytest.mark.parametrize('distance, heading_in', [(0.265, 0.0), (0.245, 0.0), (0.29, 0.0),
+                                                  (0.265, math.radians(4)),
+                                                  (0.245, math.radians(8))])
+def test_a_turn_starts_where_its_wide_start_meets_the_tight_arc(distance, heading_in):
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    wide, tight = wide_start_centres(turn, distance, heading_in)
+    # Tangent inside it: the centres lie the difference of the radii apart.
+    assert np.hypot(*(tight - wide)) == pytest.approx(turn.wide_radius - turn.radius)
+
+
+def test_nearer_the_wall_or_heading_into_it_a_turn_starts_later():
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    # As after a left turn onto a short side: 2 cm nearer, and 4 degrees in.
+    assert turn.lead_from(0.245) < turn.lead - 0.02
+    assert turn.lead_from(0.265, math.radians(4)) < turn.lead - 0.005
+    assert turn.lead_from(0.285) > turn.lead
+
+
+def test_so_near_the_wall_that_the_wide_start_cannot_meet_the_tight_arc_a_turn_starts_abreast():
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    wide, tight = wide_start_centres(turn, 0.15, 0.0)
+    assert tight[0] == pytest.approx(wide[0])
+
+
 def test_the_wide_end_begins_where_it_will_end_at_the_planned_distance():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
     # With 25 degrees left to turn, the wide arc carries the robot

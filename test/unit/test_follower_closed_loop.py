@@ -198,6 +198,22 @@ def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_af
     assert farthest <= BAND[1], farthest
 
 
+def test_a_corner_met_nearer_the_wall_than_planned_starts_later_and_clears_its_tip(tmp_path):
+    # Generated world 37 of seed 97: a slanted wall meets a short side at a
+    # left turn of some 60 degrees, and 0.3 m on the side ends in a square
+    # tip. The left turn lands the robot nearer the side, still heading into
+    # it, and the turn round the tip came up before FOLLOW had brought it
+    # back out: begun where it is planned for a robot parallel at
+    # target_distance, its wide start cut into the arc round the tip and
+    # passed it at 0.19 m. Started on the slanted wall, 0.24 m from it.
+    world = generated_world(tmp_path, 97, 37, (1.35, -0.99, 0.515))
+    # Into the left turn, along the side and round the tip.
+    score, states = lap(world, 'stage', time_limit=6.0)
+    nearest = min(wall_distances(score))
+    assert {'WALL_AHEAD', 'OUTER_CORNER'} <= states
+    assert nearest >= BAND[0], nearest
+
+
 def test_a_wall_that_ends_short_of_a_wall_across_is_rounded_before_the_turn_onto_that_one(
         tmp_path):
     # Generated world 43 of seed 82: the east wall of a corridor ends, and

@@ -146,6 +146,24 @@ class OuterTurn(object):
                        distance - self.wide_radius + shift * math.cos(self.wide_start))
         self.lead = shift * math.sin(self.wide_start) - self.center[0]
 
+    def lead_from(self, distance, heading_in=0.0):
+        """How far ahead of the rotation centre (along its heading) the tip lies where a turn
+        begun from distance (m, off the wall that ends) heading into it by heading_in (rad)
+        starts.
+
+        That is where the wide start meets the tight arc tangentially, as it
+        does from the planned distance, parallel, at `lead`. Nearer the wall,
+        or heading into it, a wide start begun there crossed into the tight
+        arc and cut in toward the tip; begun later, it meets the arc.
+        So near that the wide arc cannot meet it, the turn starts with the
+        two centres abreast.
+        """
+        wide, across = self.wide_radius, self.wide_radius - self.radius
+        off = distance - wide * math.cos(heading_in) - self.center[1]
+        behind = math.sqrt(max(0.0, across * across - off * off))
+        along = behind - self.center[0] - wide * math.sin(heading_in)
+        return along * math.cos(heading_in) + distance * math.sin(heading_in)
+
     def starts_wide(self, turned, off_centre, heading_in=0.0):
         """True while the wide start goes on: turned (rad) short of wide_start.
 

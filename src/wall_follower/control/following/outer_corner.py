@@ -119,7 +119,7 @@ class OuterCorner(Manoeuvre):
             return False
         if travel > 0.0 and obs.wall_runs + p.wall_continue_gap >= self._seen_to(obs.wall):
             return False
-        ends = obs.wall_runs + p.laser_x <= self._turn_starts() + travel
+        ends = obs.wall_runs + p.laser_x <= self._turn_starts(obs) + travel
         return ends and obs.proud_reach <= obs.wall_runs + p.wall_continue_gap
 
     def _seen_to(self, wall):
@@ -134,10 +134,13 @@ class OuterCorner(Manoeuvre):
             reach = min(reach, line.distance / towards)
         return reach * math.cos(edge)
 
-    def _turn_starts(self):
+    def _turn_starts(self, obs):
         """How far ahead of the rotation centre the end of the wall on the right lies where
-        the turn round it starts [m]."""
-        return self.turn.lead + self.params.outer_turn_lead
+        the turn round it starts [m], from where the robot is off that wall (taken
+        outer_corner_offset farther out, as the whole turn is planned) and how it heads."""
+        wall = from_centre(obs.wall, self.params.laser_x)
+        return (self.turn.lead_from(wall.distance + self.params.outer_corner_offset, wall.angle)
+                + self.params.outer_turn_lead)
 
     def begin(self, obs, previous):
         self._pin(obs, wide_start=previous == FOLLOW)
@@ -161,7 +164,7 @@ class OuterCorner(Manoeuvre):
         a small pillar not yet found, out of the band.
         """
         p = self.params
-        return obs.wall_runs + p.laser_x >= self._turn_starts() - p.outer_wide_tolerance
+        return obs.wall_runs + p.laser_x >= self._turn_starts(obs) - p.outer_wide_tolerance
 
     def _pin(self, obs, wide_start):
         """Pin a new arc to the end of the wall on the right, to be flown from its wide start
