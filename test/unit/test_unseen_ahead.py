@@ -73,6 +73,17 @@ def test_a_command_that_turns_faster_than_the_blind_turn_turns_in_place_at_its_o
     assert held_back(Command(0.19, 0.29), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
 
 
+def test_a_blind_turn_under_way_goes_on_through_commands_that_turn_away_faster():
+    # Round a wall's end into a room deeper than an LDS-01 reaches, the arc
+    # round the tip asked for a left turn now slower, now faster than the
+    # blind turn: each fast one undid the blind turn in place, and the robot
+    # turned to and fro on the spot for good (gen_s98_039).
+    turn = BlindTurn(-0.3)
+    assert held_back(Command(0.12, 0.2), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+    assert held_back(Command(0.12, 0.4), UNSEEN, turn, 0.1) == Command(0.0, -0.3)
+    assert held_back(Command(0.12, 0.4), None, turn, 0.2) == Command(0.12, 0.4)
+
+
 def test_a_turn_in_place_goes_as_it_is():
     turn = BlindTurn(-0.3)
     assert held_back(Command(0.0, 0.4), UNSEEN, turn, 0.0) == Command(0.0, 0.4)

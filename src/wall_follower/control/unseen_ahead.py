@@ -86,9 +86,15 @@ def held_back(command, problem, blind_turn, now, narrow=False):
 def its_own_turn(command, blind_turn):
     """Whether a command held back for want of a view ahead turns in place at its own rate:
     with no BlindTurn, or one no faster than the command's turn that is not keeping a way
-    it found (which is looked for again the way it was found)."""
+    it found (which is looked for again the way it was found) nor under way.
+
+    A blind turn under way goes on until the way is in view: round a wall's
+    end into a room deeper than the laser reaches, the arc round the tip
+    asked for a left turn now slower, now faster than the blind turn, and
+    each faster one undid it; the robot turned to and fro on the spot.
+    """
     return blind_turn is None or (abs(command.angular) >= abs(blind_turn.rate)
-                                  and not blind_turn.keeping)
+                                  and not blind_turn.keeping and not blind_turn.turning)
 
 
 class BlindTurn(object):
@@ -134,6 +140,12 @@ class BlindTurn(object):
         if self._keeping and narrow and command.angular * self.rate < 0.0:
             return Command(command.linear, 0.0)
         return command
+
+    @property
+    def turning(self):
+        """Whether a turn is under way: from the first reading that showed nothing ahead until
+        one shows the way."""
+        return self._since is not None
 
     @property
     def keeping(self):

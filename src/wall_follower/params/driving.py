@@ -70,8 +70,9 @@ def loop(scan_timeout, scan_timeout_meaning=STALE_SCAN_STOPS, blind_turn=None, a
     blind = () if blind_turn is None else (
         P('blind_turn', blind_turn, 'while too few beams ahead read valid to drive forward '
           '(a room deeper than the laser reaches), turn in place at this rate to bring the way '
-          'ahead into view (a command turning faster turns at its own), and stop if half a '
-          "turn has not [rad/s, positive left]; 0: keep the command's own turn",
+          'ahead into view (a command turning faster turns at its own, unless such a turn is '
+          'already under way), and stop if half a turn has not [rad/s, positive left]; 0: '
+          "keep the command's own turn",
           -MAX_ANGULAR, MAX_ANGULAR),)
     return Section('drive_loop', (
         RATE, KEEPALIVE,
