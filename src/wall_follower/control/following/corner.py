@@ -144,7 +144,12 @@ class OuterTurn(object):
         # wide start, the next wall (its offset ahead) for the wide end.
         self.center = (distance - self.wide_radius + shift * math.cos(self.wide_end),
                        distance - self.wide_radius + shift * math.cos(self.wide_start))
-        self.lead = shift * math.sin(self.wide_start) - self.center[0]
+
+    @property
+    def lead(self):
+        """How far ahead of the rotation centre the tip lies where the turn starts as planned:
+        from `distance`, parallel to the wall."""
+        return self.lead_from(self.distance)
 
     def lead_from(self, distance, heading_in=0.0):
         """How far ahead of the rotation centre (along its heading) the tip lies where a turn
