@@ -513,3 +513,32 @@ def test_the_end_of_a_thin_bar_is_rounded_in_one_turn(tmp_path, seed, index, sta
     assert 'OUTER_CORNER' in states
     nearest, farthest = min(distances), max(distances)
     assert BAND[0] <= nearest and farthest <= BAND[1], (nearest, farthest)
+
+
+def test_the_same_scans_give_the_same_commands_whenever_the_run_began():
+    # The scans of the arena's first corners, given again a step later by a
+    # simulator's clock: in lockstep a follower that came up a step later on
+    # a busy machine saw the same scans, stamped 0.1 s later, and the steps
+    # between them differed in their last bits; its lap went another way
+    # round a corner, 60.0 s instead of 60.9 s. The clock is the steps added
+    # up, as a simulator keeps it, and cut to whole nanoseconds, as a
+    # header carries it.
+    simulation = Simulation(load_world(os.path.join(WORLDS, 'arena.world')), laser_profile='stage')
+    follower = WallFollower()
+    views = []
+    while simulation.time < 25.0:
+        scan = simulation.step().robots[0].scan
+        views.append(ScanView(scan.ranges, scan.angle_min, scan.angle_increment, scan.range_min,
+                              scan.range_max))
+        simulation.set_command(0, *clamp(follower.update(views[-1])))
+    commands = []
+    for steps_later in (0, 1):
+        follower, clock, answered = WallFollower(), 0.0, []
+        for _ in range(steps_later):
+            clock += 0.1
+        for view in views:
+            clock += 0.1
+            seconds = int(clock)
+            answered.append(follower.update(view, seconds + int((clock - seconds) * 1e9) * 1e-9))
+        commands.append(answered)
+    assert commands[0] == commands[1]

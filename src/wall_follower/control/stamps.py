@@ -27,14 +27,36 @@ A node that looks up tf at a message's stamp must also keep away from
 stamps its buffer cannot hold, either way (outside_problem): tf2 aborts
 on those too.
 
+The time between two stamps (elapsed) is taken to the microsecond: as
+floats, two stamps a step apart differ by the step give or take rounding
+that depends on how far the clock has run.
+
 Seconds as floats, no ROS: callers pass stamp.to_sec() and rospy.get_time().
 Floats hold any stamp a header can carry, where the difference of two
 such stamps need not fit a Duration's 32-bit seconds.
 """
 AHEAD_LIMIT = 24 * 3600.0   # s a stamp may lie ahead of the node's clock
 
+# Places of decimals of a second to which elapsed() takes the time between stamps.
+ELAPSED_PLACES = 6
 _DAY = 24 * 3600.0
 _YEAR = 365.25 * _DAY
+
+
+def elapsed(later, earlier):
+    """Seconds from stamp `earlier` to stamp `later` (both in s), to the microsecond.
+
+    A simulator's clock is its steps added up in floating point and cut
+    to whole nanoseconds in a header, and a stamp as a float is rounded
+    according to its size: the same 0.1 s step reads 0.09999999899999779 s
+    between one pair of stamps and 0.09999999999999964 s between another.
+    A controller that integrates the steps then depends on when it began:
+    in lockstep simulation a node started a step later on a busy machine,
+    and its lap round the arena went another way round a corner (60.0 s
+    instead of 60.9 s) from the same start. Scans and odometry are timed
+    far more coarsely than a microsecond, so nothing real is lost.
+    """
+    return round(later - earlier, ELAPSED_PLACES)
 
 
 def arrival_time(now, stamp, simulated):

@@ -41,6 +41,7 @@ from wall_follower.control.following.search import Search
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.observation import Observation
 from wall_follower.control.sensing.scan import RIGHT
+from wall_follower.control.stamps import elapsed
 from wall_follower.params import checked
 from wall_follower.params.course.wall_following import FOLLOWER
 from wall_follower.rotation import wrap_angle
@@ -120,7 +121,7 @@ class WallFollower(object):
         robot's limits.
         """
         p = self.params
-        dt = p.latency if stamp is None or self._stamp is None else stamp - self._stamp
+        dt = p.latency if stamp is None or self._stamp is None else elapsed(stamp, self._stamp)
         self._stamp = stamp
         obs = Observation(view, p, self.command)
         if self.state != WALL_AHEAD:
