@@ -82,6 +82,20 @@ def test_run_score_of_a_lap_along_the_bottom_wall(room):
     assert 0.45 < figures['time_in_band'] < 0.55
 
 
+@pytest.mark.parametrize('standing', [1, 3])
+def test_a_lap_is_timed_from_when_the_robot_leaves_where_it_was_first_heard(room, standing):
+    # A controller that comes up a few steps after the simulator leaves the
+    # robot standing meanwhile, for more steps on a busy machine: the same
+    # lap must read the same.
+    moving = drive_square(RunScore(room), side=1.9).summary()
+    score = RunScore(room)
+    for step in range(standing):
+        score.add_pose(-0.1 * (standing - step), (-0.8, -0.95, 0.0))
+    stood = drive_square(score, side=1.9).summary()
+    for name in ('lap_time', 'time_in_band', 'rms_error', 'path_length'):
+        assert stood[name] == pytest.approx(moving[name], abs=1e-9), name
+
+
 def test_a_summary_taken_while_a_pose_is_half_added_counts_the_complete_ones(room):
     # A monitor's subscriber thread adds a pose's weight before the pose;
     # a summary taken in between must not pair the weights with the poses

@@ -106,6 +106,12 @@ class RunScore(object):
     length; commands give the highest speeds sent. The lap ends by the same
     rule the recorder uses, applied to ground truth, or where finish() says
     (the recorder's own verdict), whichever comes first.
+
+    The run's clock starts at begin() (a goal's time), or else once the
+    robot leaves the pose it was first heard at. A controller that comes up
+    a few steps after the simulator leaves the robot standing meanwhile, a
+    step or two longer on a busy machine, and timed from the first pose
+    heard, the same lap read 0.1 s longer or shorter from run to run.
     """
 
     def __init__(self, course_map, band=BAND, target=TARGET, **lap_params):
@@ -124,6 +130,7 @@ class RunScore(object):
         self.stalled = False
         self._last = None
         self._end = None
+        self._timed_from_pose = False
 
     def add_pose(self, stamp, pose):
         """Feed the ground-truth pose (x, y, yaw) at time stamp (s); ignored once the lap is over.
@@ -136,8 +143,12 @@ class RunScore(object):
             return
         if self._end is not None and stamp > self._end:
             return
+        if self._timed_from_pose and len(self.poses) == 1 and tuple(self.poses[0]) == tuple(pose):
+            self.start_time = self._last = self.end_time = stamp
+            return
         if self.start_time is None:
             self.start_time = stamp
+            self._timed_from_pose = True
         weight = 0.0 if self._last is None else stamp - self._last
         self._last = self.end_time = stamp
         self.weights.append(weight)
