@@ -149,3 +149,12 @@ def test_aligned_beside_a_walls_end_it_slides_along_until_the_grader_reads_the_w
     # either side of the right, read past its end a wall 0.97 m away: 0.21 m and
     # 40 degrees off. The search now slides on along the wall before it ends.
     assert_found(*generated(tmp_path, 41, 19))
+
+
+def test_it_does_not_take_the_mouth_of_a_wing_for_the_wall_in_line_with_it(tmp_path):
+    # Generated world 13 of seed 102: the nearest wall runs on, in line, either
+    # side of a wing's mouth straight across from the start. Refitted to every
+    # hit along its line, the wall seemed seen across the mouth; the search
+    # drove into it, found no wall straight across there and failed, on
+    # every laser.
+    assert_found(*generated(tmp_path, 102, 13))

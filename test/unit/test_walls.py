@@ -110,6 +110,24 @@ def test_the_nearest_seen_point_of_a_wall_seen_across_is_its_foot():
     assert nearest_seen_point(wall, 0.2) == pytest.approx((0.0, 1.2), abs=0.01)
 
 
+def test_refine_does_not_gather_a_wall_in_line_beyond_an_opening():
+    # The wall ahead has an opening 0.6 m wide straight ahead of the laser (the
+    # mouth of a wing 1.5 m deep), with wall in line on either side of it.
+    # Refitted to every hit near its line, the piece below the opening took
+    # in the piece above it, and the opening read as seen wall: a search
+    # driving to the nearest seen point of that wall drove into the wing.
+    world = [((1.0, -1.5), (1.0, -0.2)), ((1.0, 0.4), (1.0, 1.5)),
+             ((1.0, -0.2), (2.5, -0.2)), ((2.5, -0.2), (2.5, 0.4)), ((2.5, 0.4), (1.0, 0.4))]
+    view = scan_view(world, (0.0, 0.0, 0.0), STAGE)
+    below = [w for w in extract_walls(view, min_length=0.5)
+             if abs(degrees(w)) < 2.0 and w.distance < 1.5 and w.foot > w.end]
+    assert below
+    wall = refine(view, below[0])
+    assert wall.distance == pytest.approx(1.0, abs=0.005)
+    assert not wall.foot_inside()
+    assert nearest_seen_point(wall, 0.2)[1] == pytest.approx(-0.4, abs=0.03)
+
+
 def test_closest_match_keeps_the_same_wall_and_ignores_the_next_one():
     before = extract_walls(scan_view(ROOM, (1.0, 1.0, 0.0), STAGE))
     after = extract_walls(scan_view(ROOM, (1.0, 1.0, 0.05), STAGE))

@@ -240,22 +240,44 @@ def _fit(points):
                 end_open=False)
 
 
-def refine(view, wall, gate=0.05, min_points=6):
-    """The wall refitted to every valid hit within gate (m) of its line.
+def refine(view, wall, gate=0.05, min_points=6, max_gap=0.1, gap_beams=3.0):
+    """The wall refitted to the valid hits within gate (m) of its line that run on from
+    its own without a break (extract_walls' max_gap and gap_beams).
 
     A noisy wall may come out of extract_walls in pieces; refitting to all
     the hits near the line gathers the pieces again, and with them all the
-    evidence there is for the wall's distance and direction.
+    evidence there is for the wall's distance and direction. A wall in line
+    beyond an opening (the mouth of a wing, a doorway) is another wall:
+    gathered in, it made the opening look like seen wall, and a search
+    that drove to the nearest seen point of the wall drove into the opening.
     """
     points = view.points()
     if len(points) == 0:
         return wall
+    beam_step = max(2.0 * view.half_step, 1e-6)
     for _ in range(2):
         near = points[np.abs(wall.line.offsets(points)) <= gate]
+        if len(near) >= min_points:
+            near = _running_on(near, wall, beam_step, max_gap, gap_beams)
         if len(near) < min_points:
             return wall
         wall = _fit(near)
     return wall
+
+
+def _running_on(points, wall, beam_step, max_gap, gap_beams):
+    """The points in the runs (split as extract_walls splits them) that hold a point of
+    wall's own extent, from start to end along its line."""
+    angles = np.arctan2(points[:, 1], points[:, 0])
+    order = np.argsort(angles, kind='mergesort')
+    points, angles = points[order], angles[order]
+    ranges = np.hypot(points[:, 0], points[:, 1])
+    normal = np.asarray(wall.normal, dtype=float)
+    along = points.dot(np.array((-normal[1], normal[0]))) + wall.foot
+    own = (along >= wall.start) & (along <= wall.end)
+    runs = _runs(_breaks(angles, ranges, beam_step, max_gap, gap_beams), ranges)
+    kept = [run for run in runs if own[run].any()]
+    return points[np.concatenate(kept)] if kept else points[:0]
 
 
 def path_is_clear(view, wall, half_width, margin=0.08, origin=(0.0, 0.0)):
