@@ -38,9 +38,10 @@ POSES = {
 }
 
 
-def find_wall(pose, profile, world=WORLD):
-    """Run one search; returns (finder, seconds, final true pose, stalled, commands)."""
-    sim = Simulation(load_world(world), laser_profile=profile, seed=3, poses={0: pose})
+def find_wall(pose, profile, world=WORLD, seed=3):
+    """Run one search (seed: the simulator's, for the laser's noise); returns (finder,
+    seconds, final true pose, stalled, commands)."""
+    sim = Simulation(load_world(world), laser_profile=profile, seed=seed, poses={0: pose})
     finder = WallFinder(laser_x=LASER_X)
     finder.start()
     stalled, commands = False, []
@@ -105,9 +106,10 @@ def generated(directory, seed, index):
     return path, world.start
 
 
-def assert_found(path, start):
-    """A search from start in the world at path ends beside a wall as the grader asks."""
-    finder, elapsed, pose, stalled, _ = find_wall(start, 'stage', path)
+def assert_found(path, start, profile='stage', seed=3):
+    """A search from start in the world at path, with the laser profile and the simulator's
+    seed, ends beside a wall as the grader asks."""
+    finder, elapsed, pose, stalled, _ = find_wall(start, profile, path, seed)
     assert finder.success, finder.failure_reason or 'no answer within %.0f s' % elapsed
     distance, heading_error = CourseMap(path).right_wall_alignment(pose)
     low, high = FIND_WALL_DISTANCE
@@ -151,10 +153,16 @@ def test_aligned_beside_a_walls_end_it_slides_along_until_the_grader_reads_the_w
     assert_found(*generated(tmp_path, 41, 19))
 
 
-def test_it_does_not_take_the_mouth_of_a_wing_for_the_wall_in_line_with_it(tmp_path):
+@pytest.mark.parametrize('profile, seed', [('stage', 3), ('lds01', 4), ('lds01', 7)])
+def test_it_does_not_take_the_mouth_of_a_wing_for_the_wall_in_line_with_it(
+        tmp_path, profile, seed):
     # Generated world 13 of seed 102: the nearest wall runs on, in line, either
     # side of a wing's mouth straight across from the start. Refitted to every
     # hit along its line, the wall seemed seen across the mouth; the search
     # drove into it, found no wall straight across there and failed, on
-    # every laser.
-    assert_found(*generated(tmp_path, 102, 13))
+    # every laser. Seen as it is, the wall ends at the mouth; driving towards
+    # a point of it end_margin inside that end, the search then stopped as
+    # soon as the end came straight across, and with the LDS-01's noise
+    # (these seeds among others) ended so near the end that the grader's
+    # sector read into the wing.
+    assert_found(*generated(tmp_path, 102, 13), profile=profile, seed=seed)

@@ -199,20 +199,33 @@ class WallFinder(object):
 
     def _nearer(self, view, tracked=False):
         """Towards the nearest seen point of the chosen wall until some wall is seen straight
-        across, then choose again; at wall_distance from that point with none, give up."""
+        across with end_margin of it either side, then choose again; at wall_distance from
+        that point, choose any wall seen straight across, and with none give up.
+
+        A wall seen straight across just inside its end is no place to stop
+        driving: the search would end beside that end, where the grader's
+        sector, ahead of the right, reads past it.
+        """
         p = self.params
+        across = []
         if not tracked:
-            if self._across(view, extract_walls(view, min_length=p['min_wall_length'])):
-                self.state = CHOOSE_WALL
-                return self._choose_wall(view)
+            across = self._across(view, extract_walls(view, min_length=p['min_wall_length']))
+            if any(self._ends_inside(wall) for wall in across):
+                return self._choose_again(view)
             if not self._track(view):
-                return self._on_lost()
+                return self._choose_again(view) if across else self._on_lost()
         target = nearest_seen_point(self.wall, p['end_margin'])
         remaining = math.hypot(*target) - p['wall_distance']
         if remaining <= p['distance_tolerance']:
+            if across:
+                return self._choose_again(view)
             return self._fail('no wall seen straight across even %.2f m from the nearest one'
                               % p['wall_distance'])
         return self._drive(remaining, math.atan2(target[1], target[0]))
+
+    def _choose_again(self, view):
+        self.state = CHOOSE_WALL
+        return self._choose_wall(view)
 
     def _start_align(self, view):
         self.state = ALIGN

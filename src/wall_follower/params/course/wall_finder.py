@@ -31,7 +31,9 @@ FINDER = (
         P('corridor_half_width', 0.15, 'a wall is chosen only if nothing lies within this of '
           'the straight path to it [m]', 0.0, 1.0),
         P('end_margin', 0.2, 'walls seen to go on at least this far both sides of the point '
-          'straight across from the robot are preferred [m]', 0.0, 5.0),
+          'straight across from the robot are preferred; with none in sight, the robot drives '
+          'towards the point of the nearest wall this far inside its seen end until one is '
+          '[m]', 0.0, 5.0),
         P('right_sector', 0.6, 'once aligned, the wall must read on every beam but one this '
           'far either side of straight right [rad]; where it does not on one side (the wall '
           'ends there), the robot slides along it away from that side until it does', 0.0,
