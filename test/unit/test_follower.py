@@ -271,6 +271,19 @@ def test_a_distant_wall_ahead_is_not_turned_for_yet():
     assert abs(command.angular) < 0.01
 
 
+def test_a_left_turn_passes_a_stub_on_its_right_no_nearer_than_closest_distance():
+    # The turn is planned on the wall ahead alone; a stub standing out of the
+    # wall on the right, just ahead, is passed on the right as the robot
+    # turns left, and the turn's wide start at cruise speed cut inside it.
+    corner = (0.2, -0.16)
+    controller, command = update(corridor_end(0.45) + box(corner[0], -0.25, 0.24, corner[1]))
+    assert controller.state == WALL_AHEAD
+    radius = command.linear / command.angular
+    passes = math.hypot(corner[0], corner[1] - radius) - radius
+    # To within a beam's spacing of the stub's corner.
+    assert passes >= EXACT.closest_distance - 0.01, passes
+
+
 def test_a_left_turn_ends_on_the_wall_reached_while_the_next_one_is_still_far():
     # A room whose walls meet at wide angles: the turn onto one wall ends
     # with the next already across the way, farther than the turn onto it

@@ -402,6 +402,21 @@ def test_a_turn_from_a_slanted_wall_landed_near_does_not_go_on_until_it_is_lost(
     assert_a_lap_in_band(score)
 
 
+@pytest.mark.parametrize('seed', [1, 2])
+def test_a_left_turn_does_not_cut_the_foot_of_a_step_it_passes_on_its_right(tmp_path, seed):
+    # Generated world 16 of seed 103, the LDS-01 laser: the north wall ends in
+    # a step 0.32 m deep, whose foot is the tip of a slanted wall 0.44 m long
+    # that meets the next wall at about a right angle. The left turn at the
+    # step goes on onto that next wall, and passes the step's foot on the
+    # right. Planned on the wall ahead alone, its wide start at cruise speed
+    # passed the foot at 0.19 m. Started on the north wall, 0.7 m before it.
+    world = generated_world(tmp_path, 103, 16, (-1.9, 0.415, math.pi))
+    score, states = lap(world, 'lds01', seed=seed, time_limit=8.0)
+    nearest = min(wall_distances(score))
+    assert 'WALL_AHEAD' in states
+    assert nearest >= BAND[0], nearest
+
+
 def test_a_left_turn_is_not_held_on_by_the_end_of_a_wall_behind(tmp_path):
     # Generated world 11 of seed 14, the LDS-01 laser: past the peak of a
     # slanted wall a left turn had the lane ahead clear, no wall along the

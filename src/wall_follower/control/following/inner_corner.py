@@ -12,9 +12,12 @@ lane's edges are clear of it. While such a wall comes up,
 the robot rides a little nearer the old wall, by as much as the wide start
 will carry it off beyond wide_allowance; a turn begun without that room
 (after a short wall) flies short_turn instead: a shorter wide start and a
-tight arc rather than a pivot.
+tight arc rather than a pivot. Whatever else stands ahead on the right (the
+foot of a step the turn passes) it passes no nearer than closest_distance.
 """
 import math
+
+import numpy as np
 
 from wall_follower.control.following.body import Body
 from wall_follower.control.following.landing_track import LandingTrack
@@ -22,6 +25,7 @@ from wall_follower.control.following.left_turn import LeftTurn
 from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.following.reach_track import ReachTrack
 from wall_follower.control.motion import Command
+from wall_follower.control.sensing.observation import second_smallest
 from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, from_centre,
                                                     in_laser_frame, same_line, wall_runs_to)
 
@@ -201,9 +205,40 @@ class InnerCorner(Manoeuvre):
         landing = self._landing(obs)
         if landing is not None:
             radius = self.turn.radius_within(*landing)
+        radius = min(radius, self._clear_radius(obs))
         if obs.front < p.front_stop_distance:
             radius = 0.0
         return Command(radius * p.max_turn_rate, p.max_turn_rate)
+
+    def _clear_radius(self, obs):
+        """The widest left arc that passes every hit ahead on the right, but those of the wall
+        it lands on, no nearer than closest_distance (inf when none is in the way).
+
+        The turn is planned on the wall it lands on alone. The foot of a
+        step or the tip of a stub beside the way, which the robot passes on
+        its right while it turns left, is not in that plan, and the wide
+        start, flown at cruise speed, cut inside it. An arc of radius r,
+        centred r to the left of the rotation centre, passes a point x ahead
+        of that centre and y to its right (y < closest_distance) at least
+        closest_distance away while r <= (x^2 + y^2 - closest_distance^2) /
+        (2 (closest_distance - y)). Only hits within 45 degrees of ahead
+        count: one abeam is being passed already, at whatever radius. The
+        wall landed on is the plan's to keep clear of (its hits bounded the
+        wide start, and turns landed wide of their walls); the second
+        tightest bound is kept, so that one spurious beam does not slow the
+        turn.
+        """
+        p = self.params
+        points = obs.right
+        landed_on = self._wall_landed_on(obs)
+        if landed_on is not None:
+            points = points[in_laser_frame(landed_on).offsets(points) < -p.wall_inlier_distance]
+        x, across = points[:, 0] + p.laser_x, -points[:, 1]
+        near = (x >= across) & (across < p.closest_distance)
+        x, across = x[near], across[near]
+        clear = p.closest_distance
+        return second_smallest(np.maximum(
+            0.0, (x * x + across * across - clear * clear) / (2.0 * (clear - across))))
 
     def _landing(self, obs):
         """(gap, angle): how much nearer the wall the turn lands on the rest of the turn may
@@ -273,19 +308,25 @@ class InnerCorner(Manoeuvre):
         return self._fitted_landing_wall(obs)
 
     def _fitted_landing_wall(self, obs):
-        """The wall a left turn lands on, as fitted on obs and seen from the rotation centre
-        (from_centre); None if there is none.
+        """The wall a left turn lands on (_wall_landed_on), as fitted on obs and seen from the
+        rotation centre (from_centre); None if there is none.
 
-        That is the wall ahead, as the turn is planned for it (as_planned),
-        while there is one; past the corner, the wall on the right while the
-        robot still heads into it (a positive angle, within rejoin_angle of
-        parallel).
+        The wall ahead is taken as the turn is planned for it (as_planned).
         """
-        if obs.ahead is not None:
+        wall = self._wall_landed_on(obs)
+        if wall is None:
+            return None
+        if wall is obs.ahead:
             return self._ahead_as_planned(obs)
-        if self._onto_right_wall(obs):
-            return from_centre(obs.wall, self.params.laser_x)
-        return None
+        return from_centre(wall, self.params.laser_x)
+
+    def _wall_landed_on(self, obs):
+        """The wall a left turn lands on, as obs fits it: the wall ahead while there is one;
+        past the corner, the wall on the right while the robot still heads into it (a positive
+        angle, within rejoin_angle of parallel); else None."""
+        if obs.ahead is not None:
+            return obs.ahead
+        return obs.wall if self._onto_right_wall(obs) else None
 
     def _onto_right_wall(self, obs):
         """True when the wall on the right is one the robot still turns onto: within
