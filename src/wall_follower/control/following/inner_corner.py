@@ -229,14 +229,14 @@ class InnerCorner(Manoeuvre):
         turn.
         """
         p = self.params
+        clear = p.closest_distance
         points = obs.right
         landed_on = self._wall_landed_on(obs)
         if landed_on is not None:
             points = points[in_laser_frame(landed_on).offsets(points) < -p.wall_inlier_distance]
         x, across = points[:, 0] + p.laser_x, -points[:, 1]
-        near = (x >= across) & (across < p.closest_distance)
+        near = (x >= across) & (across < clear)
         x, across = x[near], across[near]
-        clear = p.closest_distance
         return second_smallest(np.maximum(
             0.0, (x * x + across * across - clear * clear) / (2.0 * (clear - across))))
 
