@@ -478,6 +478,25 @@ def test_at_the_end_of_a_wall_before_a_room_deeper_than_the_laser_reaches_the_ro
     assert not score.summary()['contact']
 
 
+def test_at_the_tip_of_a_wall_before_a_room_deeper_than_the_laser_reaches_the_robot_goes_round(
+        tmp_path):
+    # Generated world 35 of seed 109, the LDS-01 laser, noise seed 7: coming
+    # south down a notch's west wall, the robot faces a room 5.5 m deep.
+    # The way its turn toward the wall found was kept, the robot crept on
+    # to 0.13 m from the wall's tip, and the tip stood in its lane: the
+    # follower turned away from it in place, the first step forward brought
+    # back the turn toward the wall, and the two took turns on the spot for
+    # a minute of the benchmark's lap. Started on the wall, 0.19 m from it,
+    # 0.35 m short of its tip.
+    world = generated_world(tmp_path, 109, 35, (0.187, 2.28, math.radians(-88.0)))
+    # Round the tip and west along the room's north wall.
+    score, states = lap(world, 'lds01', seed=7, time_limit=12.0)
+    x, y, _ = score.poses[-1]
+    assert 'OUTER_CORNER' in states
+    assert x <= -0.5 and y <= 1.8, (x, y)
+    assert not score.summary()['contact']
+
+
 @pytest.mark.parametrize('profile', ['stage', 'lds01'])
 def test_a_round_pillar_is_circled_at_the_full_turn_rate(tmp_path, profile):
     # Generated world 8 of seed 2: a round pillar 7 cm in radius stands

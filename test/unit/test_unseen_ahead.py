@@ -52,6 +52,21 @@ def test_a_way_a_blind_turn_found_is_kept_until_a_command_turns_to_its_side():
     assert held_back(left, UNSEEN, turn, 1.1) == Command(0.0, 0.35)
 
 
+def test_a_command_that_turns_in_place_away_from_a_kept_way_gives_it_up():
+    turn = BlindTurn(-0.3)
+    left = Command(0.19, 0.49)
+    assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.19, 0.0)
+    # An in-place turn toward the turn's side keeps the way ...
+    assert held_back(Command(0.0, -0.49), UNSEEN, turn, 0.6) == Command(0.0, -0.49)
+    assert held_back(left, UNSEEN, turn, 0.7) == Command(0.0, -0.3)
+    assert held_back(left, None, turn, 0.8, narrow=True) == Command(0.19, 0.0)
+    # ... one away from it gives it up: the command's own turn goes on, in place.
+    assert held_back(Command(0.0, 0.49), UNSEEN, turn, 0.9) == Command(0.0, 0.49)
+    assert not turn.keeping
+    assert held_back(left, UNSEEN, turn, 1.0) == Command(0.0, 0.49)
+
+
 def test_a_narrow_view_leaves_commands_alone_until_a_blind_turn_has_found_a_way():
     turn = BlindTurn(-0.3)
     assert held_back(Command(0.19, 0.35), None, turn, 0.0, narrow=True) == Command(0.19, 0.35)

@@ -15,7 +15,8 @@ to the wall's heading would lose it at once and creep on, a step at a time,
 between the two turns. So the way found is kept: while the view is narrow
 (fewer than KEPT_VIEW times the share needed), the robot goes straight on
 instead of turning away from the wall, and if the way is lost again it is
-looked for where it was found, until a command turns toward the wall.
+looked for where it was found, until a command turns toward the wall, or
+turns away from it in place, which gives that way up.
 Backward motion (find_wall's slide, a teleop user's reverse) is held by the
 same rule on the sector behind, with no turn: nothing drives backward for
 want of a view.
@@ -70,11 +71,14 @@ def held_back(command, problem, blind_turn, now, narrow=False):
     on would stand for good, one that turns knows where it is going (a left turn onto a
     dark wall ahead, which an LDS-01 reads as 0.0, goes on in place). A way in view ends
     the turn under way, and a way it found is kept in view while it is narrow
-    (BlindTurn.seen).
+    (BlindTurn.seen) until the command itself turns in place away from it
+    (BlindTurn.turned_in_place).
     """
     if command.linear < 0.0:
         return command if problem is None else Command(0.0, command.angular)
     if command.linear == 0.0:
+        if blind_turn is not None:
+            blind_turn.turned_in_place(command)
         return command
     if problem is None:
         return command if blind_turn is None else blind_turn.seen(command, narrow)
@@ -140,6 +144,19 @@ class BlindTurn(object):
         if self._keeping and narrow and command.angular * self.rate < 0.0:
             return Command(command.linear, 0.0)
         return command
+
+    def turned_in_place(self, command):
+        """Note a command that turns in place at its own will: one that turns away from the
+        side the turn looks to gives up the way the last turn found.
+
+        Crept up to the end of its wall, the robot faced that wall's tip in
+        its lane and turned away from it in place; the kept way then held the
+        first forward step, the turn looked for the way toward the wall again
+        and faced the tip, and the two turns took turns on the spot for a
+        minute (generated world 35 of seed 109, LDS-01).
+        """
+        if command.angular * self.rate < 0.0:
+            self._keeping = False
 
     @property
     def turning(self):
