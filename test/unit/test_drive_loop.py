@@ -54,6 +54,8 @@ DROPOUTS_AHEAD = Msg([1.0 if i % 4 else 0.0 for i in range(360)])
 # 8 of the 61 beams within 30 deg ahead read valid, all right of straight ahead: in view,
 # but by fewer than twice the tenth needed.
 NARROW_AHEAD = Msg([0.0] * 31 + [1.0] * 299 + [1.0] * 8 + [0.0] * 22)
+# The same, with the wall on the right (beams 240..300, within 30 deg of beam 270) at 0.2 m.
+NARROW_AHEAD_WALL_NEAR = Msg(NARROW_AHEAD.ranges[:240] + [0.2] * 61 + NARROW_AHEAD.ranges[301:])
 
 
 class Scans(object):
@@ -255,6 +257,16 @@ def test_a_way_a_blind_turn_found_goes_straight_on_while_it_is_narrow():
     assert all(c == Command(0.0, -0.3) for t, c in sent if 0.15 <= t < 0.5)
     assert all(c == Command(0.1, 0.0) for t, c in sent if 0.55 <= t < 1.0)
     assert any(c == Command(0.1, 0.2) for t, c in sent if t >= 1.05)
+
+
+def test_a_way_a_blind_turn_found_is_given_up_by_a_turn_away_from_a_near_wall():
+    # The answer turns away from the side the blind turn looked to, where the wall comes
+    # within 0.215 m.
+    script = (every_tenth(BLIND_AHEAD, 0.1, 0.5) + every_tenth(NARROW_AHEAD, 0.5, 0.8)
+              + every_tenth(NARROW_AHEAD_WALL_NEAR, 0.8, 1.2))
+    sent = blind_run(script, until=1.2)
+    assert all(c == Command(0.1, 0.0) for t, c in sent if 0.55 <= t < 0.8)
+    assert all(c == Command(0.1, 0.2) for t, c in sent if 0.85 <= t < 1.2)
 
 
 def test_a_narrow_view_leaves_a_command_as_it_is_without_a_blind_turn_before_it():

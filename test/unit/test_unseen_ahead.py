@@ -67,6 +67,44 @@ def test_a_command_that_turns_in_place_away_from_a_kept_way_gives_it_up():
     assert held_back(left, UNSEEN, turn, 1.0) == Command(0.0, 0.49)
 
 
+def test_a_command_that_turns_away_from_a_near_wall_gives_a_kept_way_up():
+    # Each look for the way again had turned the robot further into its
+    # wall, and held straight on it closed on the wall while the follower
+    # asked to turn away (generated world 35 of seed 109, LDS-01).
+    turn = BlindTurn(-0.3)
+    left = Command(0.1, 0.49)
+    assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
+    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.1, 0.0)
+    # A near wall alone, with nothing turning away from it, keeps the way ...
+    assert held_back(Command(0.1, 0.0), None, turn, 0.6, narrow=True, near=True) == (
+        Command(0.1, 0.0))
+    assert turn.keeping
+    # ... a turn away from it gives it up: the command goes as it is.
+    assert held_back(left, None, turn, 0.7, narrow=True, near=True) == left
+    assert not turn.keeping
+    assert held_back(left, None, turn, 0.8, narrow=True) == left
+
+
+def test_the_wall_a_blind_turn_looks_toward_is_near_on_its_second_nearest_hit():
+    # An LDS-01 scan, beam 270 straight right: the wall on the right at 0.3 m,
+    # with hits at 0.2 m in beams 250 and 290, 20 deg either side of it.
+    ranges = [2.0] * 360
+    ranges[240:301] = [0.3] * 61
+    turn = BlindTurn(-0.3)
+    one_near, two_near = list(ranges), list(ranges)
+    one_near[250] = two_near[250] = two_near[290] = 0.2
+    assert not turn.wall_near(view(ranges))
+    assert not turn.wall_near(view(one_near))
+    assert turn.wall_near(view(two_near))
+    assert not BlindTurn(-0.3, clearance=0.19).wall_near(view(two_near))
+    # Toward the left for a turn to the left, where nothing is near.
+    assert not BlindTurn(0.3).wall_near(view(two_near))
+    # Beyond 30 deg of the right, the hits do not count.
+    wide = list(ranges)
+    wide[235] = wide[305] = 0.2
+    assert not turn.wall_near(view(wide))
+
+
 def test_a_narrow_view_leaves_commands_alone_until_a_blind_turn_has_found_a_way():
     turn = BlindTurn(-0.3)
     assert held_back(Command(0.19, 0.35), None, turn, 0.0, narrow=True) == Command(0.19, 0.35)

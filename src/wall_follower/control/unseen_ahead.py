@@ -16,7 +16,10 @@ between the two turns. So the way found is kept: while the view is narrow
 (fewer than KEPT_VIEW times the share needed), the robot goes straight on
 instead of turning away from the wall, and if the way is lost again it is
 looked for where it was found, until a command turns toward the wall, or
-turns away from it in place, which gives that way up.
+turns away from it in place, which gives that way up; so does one that turns
+away from the wall while the wall reads nearer than KEPT_CLEARANCE, for each
+look turns the robot further into its wall, and held straight on it closes
+on it.
 Backward motion (find_wall's slide, a teleop user's reverse) is held by the
 same rule on the sector behind, with no turn: nothing drives backward for
 want of a view.
@@ -24,6 +27,8 @@ want of a view.
 import math
 
 from wall_follower.control.motion import STOP, Command
+from wall_follower.control.sensing.observation import second_smallest
+from wall_follower.control.sensing.scan import LEFT, RIGHT
 
 BLIND_TURN_LIMIT = math.pi
 """How far [rad] a BlindTurn turns without the way ahead coming into view before it stops:
@@ -33,6 +38,15 @@ that still shows nothing there is blind, not facing open space."""
 KEPT_VIEW = 2.0
 """How many times the share of valid beams needed to drive the sector ahead must show before
 a way a BlindTurn found is in view well enough to turn away from again."""
+
+KEPT_CLEARANCE = 0.215
+"""How near [m] the wall a BlindTurn looks toward may read before a command that turns away from
+it gives up the way kept: the course's band begins at 0.2 m, and the turn away has the rest to
+bring the robot round in."""
+
+WALL_SECTOR = math.radians(30.0)
+"""Where the wall a BlindTurn looks toward is read: within this angle [rad] either side of
+straight toward it, the course's own reading of the wall on the right."""
 
 
 def unseen_ahead(view, half_width, min_known, backward=False):
@@ -59,10 +73,11 @@ def narrow_ahead(view, half_width, min_known):
     return known < KEPT_VIEW * min_known * beams
 
 
-def held_back(command, problem, blind_turn, now, narrow=False):
+def held_back(command, problem, blind_turn, now, narrow=False, near=False):
     """What a loop sends for command when the way it drives is as problem says (unseen_ahead's
     answer for that way; None: in view), at ROS time now; narrow: the way is in view, but
-    by fewer than KEPT_VIEW times the share needed.
+    by fewer than KEPT_VIEW times the share needed; near: the wall the BlindTurn looks toward
+    reads nearer than its clearance (BlindTurn.wall_near).
 
     A command that turns in place goes as it is; backward motion into an unseen way goes
     without its backward part. Forward motion into an unseen way
@@ -72,7 +87,7 @@ def held_back(command, problem, blind_turn, now, narrow=False):
     dark wall ahead, which an LDS-01 reads as 0.0, goes on in place). A way in view ends
     the turn under way, and a way it found is kept in view while it is narrow
     (BlindTurn.seen) until the command itself turns in place away from it
-    (BlindTurn.turned_in_place).
+    (BlindTurn.turned_in_place), or away from a wall that is near.
     """
     if command.linear < 0.0:
         return command if problem is None else Command(0.0, command.angular)
@@ -81,7 +96,7 @@ def held_back(command, problem, blind_turn, now, narrow=False):
             blind_turn.turned_in_place(command)
         return command
     if problem is None:
-        return command if blind_turn is None else blind_turn.seen(command, narrow)
+        return command if blind_turn is None else blind_turn.seen(command, narrow, near)
     if its_own_turn(command, blind_turn):
         return Command(0.0, command.angular)
     return blind_turn.turn(now)
@@ -107,12 +122,14 @@ class BlindTurn(object):
     turn(now) gives the command for each reading that shows nothing ahead
     (now: its ROS time in s), seen() ends the turn when one shows the way. A
     turn of more than `limit` [rad] without the way coming into view gives
-    STOP: the laser is taken to be blind there.
+    STOP: the laser is taken to be blind there. clearance [m]: how near the
+    wall on the turn's side may read while a way found is kept (wall_near).
     """
 
-    def __init__(self, rate, limit=BLIND_TURN_LIMIT):
+    def __init__(self, rate, limit=BLIND_TURN_LIMIT, clearance=KEPT_CLEARANCE):
         self.rate = rate
         self.limit = limit
+        self.clearance = clearance
         self._since = None     # ROS time the turn began
         self._keeping = False  # the way the last turn found is kept in view
 
@@ -130,20 +147,38 @@ class BlindTurn(object):
             return 0.0
         return min(self.limit, abs(self.rate) * (now - self._since))
 
-    def seen(self, command, narrow):
+    def seen(self, command, narrow, near=False):
         """The command to send for a forward command while the way ahead is in view; narrow:
-        by fewer than KEPT_VIEW times the share needed. The next unseen stretch starts a new
-        turn. While the way a turn found is kept (keeping), a command that turns away from
-        the side the turn looked to goes straight on instead where the view is narrow, and
-        as it is where it is wider."""
+        by fewer than KEPT_VIEW times the share needed; near: the wall on the turn's side
+        reads nearer than clearance. The next unseen stretch starts a new turn. While the way
+        a turn found is kept (keeping), a command that turns away from the side the turn
+        looked to goes straight on instead where the view is narrow, and as it is where it is
+        wider.
+
+        A command that turns away from a near wall gives the way up. At the
+        end of a wall the view shrinks as the robot goes on, and each look
+        for it again turned the robot further into its wall: held straight
+        on at 12 degrees to it, the robot came from 0.23 to 0.16 m of it
+        while the follower asked to turn away at its full rate (generated
+        world 35 of seed 109, LDS-01).
+        """
         if self._since is not None:
             self._keeping = True
         self._since = None
-        if command.angular * self.rate > 0.0:
+        turning_away = command.angular * self.rate < 0.0
+        if command.angular * self.rate > 0.0 or (near and turning_away):
             self._keeping = False
-        if self._keeping and narrow and command.angular * self.rate < 0.0:
+        if self._keeping and narrow and turning_away:
             return Command(command.linear, 0.0)
         return command
+
+    def wall_near(self, view):
+        """Whether the wall the turn looks toward reads nearer than clearance on a ScanView:
+        its second-nearest hit within WALL_SECTOR of that side (one spurious beam does not
+        count)."""
+        side = LEFT if self.rate > 0.0 else RIGHT
+        hits = view.ranges[view.in_sector(side, WALL_SECTOR) & view.valid]
+        return second_smallest(hits) < self.clearance
 
     def turned_in_place(self, command):
         """Note a command that turns in place at its own will: one that turns away from the

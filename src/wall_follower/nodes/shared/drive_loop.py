@@ -15,7 +15,7 @@ are valid readings (a hit or a proven no-return): a laser that sees
 nothing there, or a beam or two of the sector, may be blind, not looking
 at free space; with a `blind_turn`, the robot turns in place instead, to
 bring the way ahead into view, and keeps a way it found in view while the
-view is narrow (control.unseen_ahead.BlindTurn). Nor does a
+view is narrow and its wall not near (control.unseen_ahead.BlindTurn). Nor does a
 laser's command drive backward into a sector behind that it does not show
 by the same rule; it turns in place instead. A clock
 that jumps back (a simulator restarted, a bag looped) drops the reading
@@ -205,7 +205,8 @@ class DriveLoop(object):
         narrow = (self._blind_turn is not None and known is None
                   and self.ahead_min_known is not None
                   and narrow_ahead(view, self.ahead_half_width, self.ahead_min_known))
-        safe = held_back(command, problem, self._blind_turn, now, narrow)
+        near = self._blind_turn is not None and self._blind_turn.wall_near(view)
+        safe = held_back(command, problem, self._blind_turn, now, narrow, near)
         if problem is not None:
             self._warn(problem + self._holding(command, safe, now), now)
         return safe
