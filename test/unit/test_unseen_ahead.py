@@ -36,12 +36,19 @@ def test_a_view_ahead_is_narrow_below_twice_the_share_needed():
     assert not narrow_ahead(view(thirteen), math.radians(30.0), 0.1)
 
 
-def test_a_way_a_blind_turn_found_is_kept_until_a_command_turns_to_its_side():
+def a_kept_way(left):
+    """A BlindTurn to the right that has turned for want of a view at 0 s and, at 0.5 s,
+    found a way it keeps: while the view is narrow, left (a command turning away from the
+    turn's side) goes straight on."""
     turn = BlindTurn(-0.3)
-    left = Command(0.19, 0.35)
     assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
-    # Found: while narrow, straight on instead of turning away from it.
-    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.19, 0.0)
+    assert held_back(left, None, turn, 0.5, narrow=True) == Command(left.linear, 0.0)
+    return turn
+
+
+def test_a_way_a_blind_turn_found_is_kept_until_a_command_turns_to_its_side():
+    left = Command(0.19, 0.35)
+    turn = a_kept_way(left)
     assert held_back(left, None, turn, 0.6, narrow=False) == left
     # Lost again: looked for the way it was found, not at the command's own turn.
     assert held_back(left, UNSEEN, turn, 0.7) == Command(0.0, -0.3)
@@ -53,10 +60,8 @@ def test_a_way_a_blind_turn_found_is_kept_until_a_command_turns_to_its_side():
 
 
 def test_a_command_that_turns_in_place_away_from_a_kept_way_gives_it_up():
-    turn = BlindTurn(-0.3)
     left = Command(0.19, 0.49)
-    assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
-    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.19, 0.0)
+    turn = a_kept_way(left)
     # An in-place turn toward the turn's side keeps the way ...
     assert held_back(Command(0.0, -0.49), UNSEEN, turn, 0.6) == Command(0.0, -0.49)
     assert held_back(left, UNSEEN, turn, 0.7) == Command(0.0, -0.3)
@@ -71,10 +76,8 @@ def test_a_command_that_turns_away_from_a_near_wall_gives_a_kept_way_up():
     # Each look for the way again had turned the robot further into its
     # wall, and held straight on it closed on the wall while the follower
     # asked to turn away (generated world 35 of seed 109, LDS-01).
-    turn = BlindTurn(-0.3)
     left = Command(0.1, 0.49)
-    assert held_back(Command(0.19, 0.1), UNSEEN, turn, 0.0) == Command(0.0, -0.3)
-    assert held_back(left, None, turn, 0.5, narrow=True) == Command(0.1, 0.0)
+    turn = a_kept_way(left)
     # A near wall alone, with nothing turning away from it, keeps the way ...
     assert held_back(Command(0.1, 0.0), None, turn, 0.6, narrow=True, near=True) == (
         Command(0.1, 0.0))
