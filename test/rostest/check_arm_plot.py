@@ -10,9 +10,13 @@ write (under /proc) is named in an error and the picture saved in another place,
 the log names, instead of ending in a traceback with the recording lost.
 
 Each arm_plot is a child process of this test, started by its path as roslaunch starts
-a node. Before it is stopped it has taken two joint_states for certain: the second is
-sent only once its statistics (getBusStats) count the first as read, and a subscriber's
-thread reads the next message only after the callback of the one before has returned.
+a node. Before it is stopped it has taken two joint_states for certain: the first is
+sent only once this test's publisher is connected to that very arm_plot (by this node's
+getBusInfo), the second only once its statistics (getBusStats) count the first as read,
+and a subscriber's thread reads the next message only after the callback of the one
+before has returned. A connection count would not do: the connection to the arm_plot of
+the test before stays counted until rospy next looks for closed sockets (every 0.5 wall
+seconds, later on a loaded machine), and a message sent on it alone is lost.
 """
 import os
 import re
@@ -67,11 +71,16 @@ class Plot(object):
         try:
             code = self.process.wait(RUN_LIMIT)
         except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
+            self.kill()
             code = None
         self._reader.join(RUN_LIMIT)
         return code
+
+    def kill(self):
+        """End it at once, unless it has ended."""
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
 
     def line(self, fragment):
         """The first output line holding fragment, or None."""
@@ -80,6 +89,13 @@ class Plot(object):
     def wall_time(self, fragment):
         """The wall time [s] stamped on the first log line holding fragment."""
         return float(WALL_STAMP.match(self.line(fragment)).group(1))
+
+    def connected(self):
+        """Whether this test's publisher of TOPIC has a connection to this very node."""
+        caller = rospy.get_name()
+        _, _, connections = ServerProxy(rospy.get_node_uri()).getBusInfo(caller)
+        return any(destination == self.name and topic == TOPIC
+                   for _, destination, _, _, topic, _, _ in connections)
 
     def messages_taken(self):
         """How many messages of TOPIC the node has read, by its bus statistics; 0 before it
@@ -104,13 +120,20 @@ class ArmPlotTest(unittest.TestCase):
     def setUp(self):
         self.directory = tempfile.mkdtemp(prefix='check_arm_plot')
 
+    def start(self, *arguments):
+        """A new Plot, killed after the test if still running: one left from a failed test
+        would take the joint_states, and the name, of the tests after it."""
+        plot = Plot(*arguments)
+        self.addCleanup(plot.kill)
+        return plot
+
     def tearDown(self):
         shutil.rmtree(self.directory)
 
     def feed(self, plot, count=2):
         """Send plot count joint_states stamped 0, each once it has read the one before."""
         for number in range(count):
-            self.assertTrue(wait_until(lambda: self.states.get_num_connections() > 0 and
+            self.assertTrue(wait_until(lambda: plot.connected() and
                                        plot.messages_taken() >= number, RUN_LIMIT),
                             'arm_plot took no joint_states: %s' % plot.output)
             self.states.publish(JointState(name=['hip', 'elbow'], position=[0.1 * number, 0.2],
@@ -122,15 +145,15 @@ class ArmPlotTest(unittest.TestCase):
             self.assertEqual(image.format, 'PNG')
 
     def test_with_no_joint_states_and_no_clock_it_ends_after_its_duration(self):
-        plot = Plot('_duration:=%g' % DURATION, '_file:=' + self.directory,
-                    'joint_states:=/nothing_comes')
+        plot = self.start('_duration:=%g' % DURATION, '_file:=' + self.directory,
+                          'joint_states:=/nothing_comes')
         self.assertEqual(plot.end(), 0, 'arm_plot did not end by itself: %s' % plot.output)
         self.assertGreaterEqual(plot.wall_time('no joint_states came') -
                                 plot.wall_time('recording joint_states'), DURATION)
         self.assertEqual(os.listdir(self.directory), [])
 
     def test_a_directory_as_the_file_holds_joint_states_png(self):
-        plot = Plot('_file:=' + self.directory)
+        plot = self.start('_file:=' + self.directory)
         self.feed(plot)
         self.assertEqual(plot.end(interrupt=True), 0, plot.output)
         picture = os.path.join(self.directory, 'joint_states.png')
@@ -140,7 +163,7 @@ class ArmPlotTest(unittest.TestCase):
 
     def test_a_file_it_cannot_write_is_said_and_the_picture_saved_elsewhere(self):
         unwritable = '/proc/check_arm_plot.png'
-        plot = Plot('_file:=' + unwritable)
+        plot = self.start('_file:=' + unwritable)
         self.feed(plot)
         self.assertEqual(plot.end(interrupt=True), 0, plot.output)
         self.assertTrue(plot.line('cannot write %s' % unwritable), plot.output)
