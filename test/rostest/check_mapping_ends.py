@@ -9,7 +9,6 @@ reads it. This test's own master is not used.
 """
 import os
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -17,7 +16,7 @@ import rospy
 import rostest
 from scratch import ScratchFolders
 
-from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_read, launch_command
 from wall_follower.mapping.mapfile import load_map
 
 # Wall seconds for the whole launch: start-up, a lap of the room (about a minute
@@ -35,10 +34,7 @@ class MappingEnds(ScratchFolders, unittest.TestCase):
         command = launch_command('mapping.launch', {
             'sim': 'true', 'simulator': 'builtin', 'world': 'room_odom', 'lockstep': 'true',
             'speedup': '0', 'map_file': cls.map_file}, port)
-        with tempfile.TemporaryFile('w+') as log:
-            cls.ended = launch_and_wait(command, port, log, BOUND)
-            log.seek(0)
-            cls.output = log.read()
+        cls.ended, cls.output = launch_and_read(command, port, BOUND)
 
     def test_launch_ends_within_bound(self):
         self.assertTrue(self.ended, 'the launch was still running after %.0f s:\n%s'

@@ -20,7 +20,7 @@ import rospy
 import rostest
 
 from installed import real_stage_suite
-from wall_follower.evaluation.launching import (display_wrapper, free_port, launch_and_wait,
+from wall_follower.evaluation.launching import (display_wrapper, free_port, launch_and_read,
                                                 launch_command)
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
@@ -42,10 +42,7 @@ class RealStageCourse(unittest.TestCase):
             command = display_wrapper() + launch_command('main.launch', {
                 'sim': 'true', 'simulator': 'stage', 'gui': 'true', 'world': WORLD,
                 'report': 'true', 'json': output}, port)
-            with tempfile.TemporaryFile('w+') as log:
-                launch_and_wait(command, port, log, BOUND)
-                log.seek(0)
-                cls.output = log.read()
+            cls.output = launch_and_read(command, port, BOUND)[1]
             if os.path.exists(output):
                 with open(output) as stream:
                     cls.figures = json.load(stream)

@@ -11,14 +11,13 @@ user would start it; this test's own master is not used.
 import os
 import re
 import sys
-import tempfile
 import unittest
 
 import rospy
 import rostest
 from scratch import ScratchFolders
 
-from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_read, launch_command
 
 WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'open_field.world')
 # Wall seconds for the whole launch: start-up, find_wall's answer, and the
@@ -35,10 +34,7 @@ class ReportWithoutLap(ScratchFolders, unittest.TestCase):
         command = launch_command('main.launch', {
             'sim': 'true', 'simulator': 'builtin', 'world': WORLD, 'report': 'true',
             'lockstep': 'true', 'speedup': '0', 'plot': cls.plot}, port)
-        with tempfile.TemporaryFile('w+') as log:
-            cls.ended = launch_and_wait(command, port, log, BOUND)
-            log.seek(0)
-            cls.output = log.read()
+        cls.ended, cls.output = launch_and_read(command, port, BOUND)
 
     def test_launch_ends_within_bound(self):
         self.assertTrue(self.ended, 'the launch was still running after %.0f s:\n%s'

@@ -3,14 +3,13 @@ default; the built-in controller or, with controller:=gazebo, a clear error befo
 starts where Gazebo is missing; sliders instead of a controller with gui:=true. Needs the
 package built (require_package is run with rosrun)."""
 import os
-import tempfile
 
 import pytest
 import rospkg
 import roslaunch.config
 from roslaunch.core import RLException
 
-from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_read, launch_command
 
 LAUNCH = os.path.join(os.path.dirname(__file__), '..', '..', 'launch', 'arm.launch')
 # Wall seconds for roslaunch to read the launch file and give up.
@@ -71,11 +70,8 @@ def test_missing_gazebo_fails_the_launch_saying_what_to_do(gazebo_missing, capfd
 
 def test_missing_gazebo_stops_roslaunch_before_any_node_starts(gazebo_missing):
     port = free_port()
-    with tempfile.TemporaryFile('w+') as log:
-        ended = launch_and_wait(launch_command('arm.launch', {'controller': 'gazebo'}, port),
-                                port, log, LAUNCH_BOUND)
-        log.seek(0)
-        output = log.read()
+    ended, output = launch_and_read(launch_command('arm.launch', {'controller': 'gazebo'}, port),
+                                    port, LAUNCH_BOUND)
     assert ended, output
     assert 'the ROS package gazebo_ros is not installed' in output
     assert 'process[' not in output and 'started with pid' not in output

@@ -10,14 +10,13 @@ gmapping package, or every real one taken off the path. Needs the package
 built (require_package is run with rosrun).
 """
 import os
-import tempfile
 
 import pytest
 import rospkg
 import roslaunch.config
 from roslaunch.core import RLException
 
-from wall_follower.evaluation.launching import free_port, launch_and_wait, launch_command
+from wall_follower.evaluation.launching import free_port, launch_and_read, launch_command
 
 LAUNCH = os.path.join(os.path.dirname(__file__), '..', '..', 'launch')
 HOW_TO_GET_IT = ('sudo apt install ros-noetic-gmapping', 'tools/build-real-gmapping')
@@ -103,11 +102,8 @@ def test_missing_gmapping_stops_roslaunch_before_any_node_starts(gmapping_missin
     """The whole course with a simulator, as typed: roslaunch ends by itself (it would run
     until stopped otherwise) with the error, and no master, simulator or robot node ran."""
     port = free_port()
-    with tempfile.TemporaryFile('w+') as log:
-        ended = launch_and_wait(launch_command('mapping.launch', {
-            'sim': 'true', 'slam_methods': 'gmapping'}, port), port, log, LAUNCH_BOUND)
-        log.seek(0)
-        output = log.read()
+    ended, output = launch_and_read(launch_command('mapping.launch', {
+        'sim': 'true', 'slam_methods': 'gmapping'}, port), port, LAUNCH_BOUND)
     assert ended, output
     assert 'the ROS package gmapping is not installed' in output
     assert 'tools/build-real-gmapping' in output

@@ -280,6 +280,15 @@ def launch_and_wait(command, port, log, timeout):
             return False
 
 
+def launch_and_read(command, port, timeout):
+    """(ended, output): launch_and_wait, its output kept in a temporary file and read back
+    once everything it started has ended (what a check of a launch's words needs)."""
+    with tempfile.TemporaryFile('w+') as log:
+        ended = launch_and_wait(command, port, log, timeout)
+        log.seek(0)
+        return ended, log.read()
+
+
 def run_launch(launch_file, args, timeout=600.0, wrapper=()):
     """roslaunch wall_follower launch_file args json:=FILE; returns FILE's JSON or None.
 
