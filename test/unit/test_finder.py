@@ -1,5 +1,6 @@
 """The find-wall state machine on synthetic scans, in every laser convention."""
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.scoring.course import RIGHT_SECTOR
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
+from wall_follower.rotation import wrap_angle
 
 LASER_X = -0.032  # TurtleBot3 Burger: the laser 32 mm behind the axle
 ROOM = box(-2.0, -1.5, 2.0, 1.5)
@@ -189,6 +191,24 @@ def test_already_in_place_it_answers_at_once():
     assert walker.update(aligned) == STOP
     assert walker.state == finder.DONE and walker.success
     assert walker.failure_reason is None
+
+
+def test_dropouts_among_the_beams_that_read_the_wall_are_no_end_to_slide_from(monkeypatch):
+    # An LDS-01 reads 0.0 for a beam that drops out, a few of the tens
+    # within right_sector of the right at a time. Aligned beside a wall that
+    # goes on for metres, two such behind the right once sent the robot
+    # sliding forward, away from an end that was not there.
+    def with_dropouts(segments, pose, convention, cast_view=scan_view):
+        view = cast_view(segments, pose, convention)
+        ranges = np.array(view.ranges)
+        for behind in (math.radians(-100.0), math.radians(-110.0)):
+            ranges[np.argmin(np.abs(wrap_angle(view.angles - behind)))] = 0.0
+        return ScanView(ranges, convention.angle_min, convention.increment,
+                        convention.range_min, convention.range_max)
+    monkeypatch.setattr(sys.modules[__name__], 'scan_view', with_dropouts)
+    walker, states, _, _, _ = drive(ROOM, (0.0, -1.5 + WALL_DISTANCE, 0.2), LDS01)
+    assert walker.success, walker.failure_reason
+    assert finder.ALIGN in states and finder.SLIDE not in states
 
 
 @pytest.mark.parametrize('off, in_place', [(0.015, True), (-0.015, True), (0.03, False)])

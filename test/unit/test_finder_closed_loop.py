@@ -166,3 +166,15 @@ def test_it_does_not_take_the_mouth_of_a_wing_for_the_wall_in_line_with_it(
     # (these seeds among others) ended so near the end that the grader's
     # sector read into the wing.
     assert_found(*generated(tmp_path, 102, 13), profile=profile, seed=seed)
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01'])
+def test_it_slides_on_until_the_wall_reads_past_the_graders_sector_on_a_grid(tmp_path, profile):
+    # Generated world 13 of seed 112: the wall chosen ends 0.2 m ahead of
+    # where the search came to rest, at a corner that Stage's grid, 2 cm a
+    # cell, draws a little longer than the wall is. The laser's beams read
+    # the wall all through right_sector there, while the grader's rays, 30
+    # degrees either side of the right, graze past the corner itself and read
+    # the far end of the corridor beyond it: 0.18 m and 54 degrees off, on
+    # every laser.
+    assert_found(*generated(tmp_path, 112, 13), profile=profile)

@@ -46,8 +46,8 @@ IDLE = 'IDLE'
 # A beam reads the chosen wall when its hit lies within this of the wall's line [m]: a
 # noisy laser, or Stage's grid seen at a slant, spreads a wall's hits over a few centimetres.
 WALL_GATE = 0.05
-# Beams on one side of right_sector that may miss the wall without a slide: a spurious
-# reading or a dropout.
+# Beams in a row at one edge of right_sector that may miss the wall without a slide: a
+# spurious reading or a dropout there.
 STRAY_BEAMS = 1
 
 
@@ -301,13 +301,19 @@ class WallFinder(object):
 
         A beam misses the wall when it reads nothing, or a hit more than
         WALL_GATE off the wall's line: past the wall's end, the wall beyond
-        it or nothing at all.
+        it or nothing at all. Past an end every beam misses, out to the
+        sector's edge, so only the misses in a row from each edge count: a
+        dropout among beams that read the wall is no end, and over a sector
+        a few tens of beams wide an LDS-01 drops a few such at once.
         """
         angles, points, valid = view.beams(RIGHT, self.params['right_sector'])
         with np.errstate(invalid='ignore'):
             reads = valid & (np.abs(self.wall.line.offsets(points)) <= WALL_GATE)
-        behind = np.count_nonzero(~reads & (angles < RIGHT)) > STRAY_BEAMS
-        ahead = np.count_nonzero(~reads & (angles > RIGHT)) > STRAY_BEAMS
+        offsets = wrap_angle(angles - RIGHT)
+        order = np.argsort(offsets)
+        misses, offsets = ~reads[order], offsets[order]
+        behind = _leading(misses[offsets < 0.0]) > STRAY_BEAMS
+        ahead = _leading(misses[offsets > 0.0][::-1]) > STRAY_BEAMS
         return float(behind) - float(ahead)
 
     # Helpers
@@ -396,6 +402,11 @@ class WallFinder(object):
         if abs(heading_error) <= p['heading_tolerance'] / 2.0:
             return 0.0
         return _speed(heading_error, p['max_angular'], p['angular_gain'], p['min_angular'])
+
+
+def _leading(flags):
+    """How many of flags (booleans) are true in a row from the first one."""
+    return len(flags) if flags.all() else int(np.argmin(flags))
 
 
 def _speed(remaining, max_speed, gain, min_speed):

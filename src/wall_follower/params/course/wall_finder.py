@@ -34,10 +34,11 @@ FINDER = (
           'straight across from the robot are preferred; with none in sight, the robot drives '
           'towards the point of the nearest wall this far inside its seen end until one is '
           '[m]', 0.0, 5.0),
-        P('right_sector', 0.6, 'once aligned, the wall must read on every beam but one this '
-          'far either side of straight right [rad]; where it does not on one side (the wall '
-          'ends there), the robot slides along it away from that side until it does', 0.0,
-          math.pi / 2),
+        P('right_sector', 0.7, 'once aligned, the wall must read out to this far either side '
+          'of straight right, but for one beam at the edge [rad]; where it does not on one '
+          'side (the wall ends there), the robot slides along it away from that side until it '
+          'does. A grader reads 30 degrees either side; Stage draws a corner up to a grid cell '
+          'long, which the margin covers', 0.0, math.pi / 2),
         P('slide_speed', 0.05, 'speed of that slide [m/s]', 0.0, 0.19),
         P('min_linear', 0.02, 'slowest useful speed: the last millimetres are covered at it '
           '[m/s]', 0.0, 0.19),
