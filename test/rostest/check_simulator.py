@@ -13,9 +13,12 @@ import unittest
 import numpy as np
 import rospy
 import rostest
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
 from std_srvs.srv import Empty
 
 from sim_probe import SimProbe, pose_of, yaw_of
+from wire_reader import WireReader
 
 DT = 0.1
 START = (0.8, 0.0, 0.0)
@@ -27,6 +30,9 @@ EXACT = 1e-6
 # publish, then a window in which a paused world must publish nothing.
 PAUSE_SETTLE = 0.2
 PAUSE_WATCH = 0.5                      # float32 twists and 7-digit reasoning need no more
+# Steps a controller answers on the wire: enough that a clock sent before its scan, which
+# rospy's per-connection send threads did a few times in a hundred steps, would show.
+WIRE_STEPS = 500
 
 
 def moves(truths):
@@ -138,6 +144,30 @@ class SimulatorInterface(unittest.TestCase):
                                       in zip(pose_of(self.sim.truths[-1]), target)),
                           'ground truth at the cmd_pose target')
         self.sim.reset()
+
+    def test_a_steps_scan_is_on_the_wire_before_its_clock(self):
+        """A controller woken by /clock acts on the newest scan it has, so each step's
+        scan must be sent before its clock, on every step, however busy the simulator's
+        threads are. Answering each clock at once keeps the lockstep as fast as it goes."""
+        caller = rospy.get_name() + '_wire'   # a publisher keeps one connection per caller
+        clock = WireReader(caller, '/clock', Clock)
+        scan = WireReader(caller, 'scan', LaserScan)
+        try:
+            newest = scan.next().header.stamp.to_sec()
+            late = []
+            for _ in range(WIRE_STEPS):
+                tick = clock.next()
+                self.assertIsNotNone(tick, 'the clock stopped')
+                stamps = [msg.header.stamp.to_sec() for msg in scan.pending()]
+                newest = max([newest] + stamps)
+                if newest < tick.clock.to_sec() - EXACT:
+                    late.append((tick.clock.to_sec(), newest))
+                self.sim.send_once(0.0, 0.3)
+        finally:
+            self.sim.send_once(0.0, 0.0)
+            clock.close()
+            scan.close()
+        self.assertEqual(late, [], '(clock, newest scan on the wire) when the clock came')
 
     def test_pause_physics_holds_every_step_until_unpaused(self):
         pause = rospy.ServiceProxy('pause_physics', Empty)

@@ -46,6 +46,7 @@ import signal
 import sys
 import threading
 import time
+import warnings
 
 import rospkg
 import rospy
@@ -72,11 +73,24 @@ from wall_follower.sim.start_check import start_problems
 from wall_follower.sim.step_pacer import StepPacer
 from wall_follower.sim.worldfile import WorldFileError, load_world
 
-# Outgoing queue of the topics whose every message counts (a recorder sums odometry, a
-# monitor scores ground truth): rospy sends from a thread per connection, which the
-# stepping loop can starve for a while at high speed-ups, and a full queue drops the
-# oldest messages. Scans are only ever wanted fresh and keep a short queue.
-EVERY_STEP_QUEUE = 1000
+
+def readings_publisher(name, data_class):
+    """A publisher of a step's readings that has written them to every subscriber's
+    socket when publish() returns.
+
+    rospy's queued publishers (queue_size set) hand each message to a thread per
+    connection, and the stepping loop can starve those threads: a step's /clock then
+    went out before its scan, and a controller woken by the clock acted on a scan
+    several steps old (the lockstep, which waits only for a command, let the world
+    step on it). Written in the stepping thread, before /clock is queued, every
+    reading is on the wire ahead of its step's clock, and none is dropped however fast
+    the world steps. A subscriber that stops reading holds the world only once its
+    socket's buffers (megabytes: hundreds of steps) are full.
+    """
+    with warnings.catch_warnings():
+        # rospy warns of synchronous publishing, which is the point here
+        warnings.simplefilter('ignore', SyntaxWarning)
+        return rospy.Publisher(name, data_class, queue_size=None)
 
 
 def stamp_of(seconds):
@@ -96,11 +110,10 @@ class RobotTopics(object):
         self.base_frame = prefix + 'base_link'
         self.laser_frame = prefix + 'base_laser_link'
         self.camera = CameraTopics(prefix, spec) if spec.camera is not None else None
-        self.scan = rospy.Publisher(prefix + 'base_scan', LaserScan, queue_size=10)
-        self.odom = rospy.Publisher(prefix + 'odom', Odometry, queue_size=EVERY_STEP_QUEUE)
-        self.truth = rospy.Publisher(prefix + 'base_pose_ground_truth', Odometry,
-                                     queue_size=EVERY_STEP_QUEUE)
-        self.stalled = rospy.Publisher(prefix + 'stalled', Bool, queue_size=EVERY_STEP_QUEUE)
+        self.scan = readings_publisher(prefix + 'base_scan', LaserScan)
+        self.odom = readings_publisher(prefix + 'odom', Odometry)
+        self.truth = readings_publisher(prefix + 'base_pose_ground_truth', Odometry)
+        self.stalled = readings_publisher(prefix + 'stalled', Bool)
 
     def scan_msg(self, stamp, scan):
         msg = LaserScan()
