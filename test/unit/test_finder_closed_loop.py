@@ -178,3 +178,14 @@ def test_it_slides_on_until_the_wall_reads_past_the_graders_sector_on_a_grid(tmp
     # the far end of the corridor beyond it: 0.18 m and 54 degrees off, on
     # every laser.
     assert_found(*generated(tmp_path, 112, 13), profile=profile)
+
+
+@pytest.mark.parametrize('seed', [0, 1, 116])
+def test_a_far_wall_in_line_with_the_wall_ahead_does_not_take_its_place(tmp_path, seed):
+    # Generated world 21 of seed 116, under the 720-beam laser: approaching the
+    # wall ahead, the search also saw, 2.5 m to its right, a short piece of a far
+    # wall lying on the same line. Matched by the line's angle and distance alone,
+    # the piece fitted the wall being tracked better than the wall itself; tracked
+    # from then on, it was soon lost, and with these seeds the search gave up:
+    # "lost sight of the chosen wall 4 times".
+    assert_found(*generated(tmp_path, 116, 21), profile='course720', seed=seed)

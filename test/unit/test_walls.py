@@ -5,9 +5,11 @@ import numpy as np
 import pytest
 
 from laser_conventions import CONVENTIONS, STAGE, box, cast, scan_view
+from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.control.sensing.walls import (
-    closest_match, extract_walls, nearest_seen_point, path_is_clear, path_to_is_clear, refine)
+    Wall, closest_match, extract_walls, nearest_seen_point, path_is_clear, path_to_is_clear,
+    refine)
 
 ROOM = box(-2.0, -1.5, 2.0, 1.5)
 
@@ -137,3 +139,25 @@ def test_closest_match_keeps_the_same_wall_and_ignores_the_next_one():
     assert degrees(match) == pytest.approx(90.0 - math.degrees(0.05), abs=0.5)
     turned = tracked._replace(line=tracked.line._replace(angle=0.0))
     assert closest_match(after, turned, math.radians(25.0), 0.05) is None
+
+
+def straight_ahead(distance, low, high):
+    """A wall on the line x = distance in the laser frame, seen from y = low to y = high."""
+    middle = (low + high) / 2.0
+    return Wall(line=Line(distance, 0.0), length=high - low, rms=0.005, count=50,
+                start=low - middle, end=high - middle, foot=-middle,
+                start_open=False, end_open=False)
+
+
+def test_closest_match_ignores_a_piece_of_a_far_wall_in_line_with_the_tracked_one():
+    tracked = straight_ahead(0.778, -1.0, 0.8)
+    # The same wall a step later, and 2.5 m to its right a piece of another wall that
+    # lies on the same line and matches the line even better (generated world 116/21).
+    same = straight_ahead(0.759, -1.0, 0.8)
+    far_piece = straight_ahead(0.763, -3.0, -2.5)
+    assert closest_match([far_piece, same], tracked, math.radians(25.0), 0.2) is same
+    assert closest_match([far_piece], tracked, math.radians(25.0), 0.2) is None
+    assert far_piece.point_at(far_piece.start) == pytest.approx((0.763, -3.0))
+    # A piece of the wall itself, anywhere along it, still matches.
+    piece = straight_ahead(0.763, -0.2, 0.25)
+    assert closest_match([piece], tracked, math.radians(25.0), 0.2) is piece

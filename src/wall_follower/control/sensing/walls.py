@@ -54,6 +54,19 @@ class Wall(namedtuple('Wall', ['line', 'length', 'rms', 'count', 'start', 'end',
         normal = self.line.normal
         return self.foot - normal[1] * point[0] + normal[0] * point[1]
 
+    def point_at(self, along):
+        """(x, y) in the laser frame of the point of the line at position along (m)."""
+        normal = self.line.normal
+        offset = along - self.foot
+        return (self.distance * normal[0] - offset * normal[1],
+                self.distance * normal[1] + offset * normal[0])
+
+    def overlaps(self, other, margin=0.0):
+        """True when this wall's seen extent, measured along other's line, overlaps
+        other's or comes within margin (m) of it."""
+        ends = sorted(other.along_of(self.point_at(along)) for along in (self.start, self.end))
+        return ends[0] <= other.end + margin and ends[1] >= other.start - margin
+
     def seen_around(self, along, margin=0.0):
         """True when the wall was seen at position along, with at least margin (m) of
         wall on either side of it.
@@ -337,17 +350,21 @@ def nearest_seen_point(wall, margin=0.0):
 
 
 def closest_match(walls, reference, max_angle, max_distance):
-    """The wall most like reference (same angle and distance within the limits), or None.
+    """The wall most like reference (same angle and distance within the limits, and seen
+    where it was, within max_distance), or None.
 
     Used to keep hold of one wall while the robot turns and drives: from one
     scan to the next a tracked wall moves a little, a different wall (the
-    other side of a corner, say) differs by far more.
+    other side of a corner, say) differs by far more. Angle and distance
+    alone are the line's: a piece of some far wall that happens to lie in
+    line with the tracked one, metres along from it, matched them exactly.
     """
     best, best_score = None, None
     for wall in walls:
         angle_error = abs(float(wrap_angle(wall.angle - reference.angle)))
         distance_error = abs(wall.distance - reference.distance)
-        if angle_error > max_angle or distance_error > max_distance:
+        if (angle_error > max_angle or distance_error > max_distance
+                or not wall.overlaps(reference, max_distance)):
             continue
         score = angle_error / max_angle + distance_error / max_distance
         if best_score is None or score < best_score:
