@@ -30,8 +30,9 @@ EXACT = 1e-6
 # publish, then a window in which a paused world must publish nothing.
 PAUSE_SETTLE = 0.2
 PAUSE_WATCH = 0.5                      # float32 twists and 7-digit reasoning need no more
-# Steps a controller answers on the wire: enough that a clock sent before its scan, which
-# rospy's per-connection send threads did a few times in a hundred steps, would show.
+# Steps a controller answers on the wire. rospy's per-connection send threads sent a
+# clock before its scan only now and then, under load (once in 1500 steps beside three
+# busy loops): this check is exact, but catches that old fault only on a busy machine.
 WIRE_STEPS = 500
 
 
