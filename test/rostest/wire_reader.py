@@ -15,7 +15,7 @@ from xmlrpc.client import ServerProxy
 import rosgraph
 from rosgraph.network import read_ros_handshake_header, write_ros_handshake_header
 
-CONNECT_LIMIT = 10.0   # wall seconds; only bounds how long a failing test takes
+WAIT_LIMIT = 10.0   # wall seconds, to connect or for a message; only bounds a failing test
 LENGTH = struct.Struct('<I')
 
 
@@ -38,7 +38,7 @@ class WireReader(object):
             caller_id, name, [['TCPROS']])
         if code != 1:
             raise AssertionError('requestTopic %s: %s' % (name, message))
-        self._socket = socket.create_connection((protocol[1], protocol[2]), CONNECT_LIMIT)
+        self._socket = socket.create_connection((protocol[1], protocol[2]), WAIT_LIMIT)
         self._socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         write_ros_handshake_header(self._socket, {
             'callerid': caller_id, 'topic': name, 'md5sum': data_class._md5sum,
@@ -50,7 +50,7 @@ class WireReader(object):
     def close(self):
         self._socket.close()
 
-    def next(self, limit=CONNECT_LIMIT):
+    def next(self, limit=WAIT_LIMIT):
         """The next message, waiting up to `limit` wall seconds for it; None if none came."""
         while True:
             message = self._parse()
