@@ -60,7 +60,8 @@ FINDER = (
           'success', 1, 100),
         P('track_angle', 0.44, 'the chosen wall may seem to turn this much '
           'between scans and still be the same wall [rad] ...', 0.0, math.pi),
-        P('track_distance', 0.2, '... and move this much [m]', 0.0, 5.0),
+        P('track_distance', 0.2, '... and move this much, across its line or along it [m]',
+          0.0, 5.0),
         P('lost_updates', 5, 'scans in a row without the chosen wall before choosing again',
           1, 1000),
         P('max_reacquire', 3, 'choices again before giving up', 0, 100),
