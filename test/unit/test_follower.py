@@ -395,23 +395,43 @@ def test_the_last_degrees_onto_a_wall_already_too_near_are_turned_on_the_spot():
     assert command.linear == pytest.approx(0.0, abs=1e-9)
 
 
-@pytest.mark.parametrize('runs_on, speed', [(0.3, 0.0), (0.6, EXACT.cruise_speed)])
-def test_the_last_degrees_onto_a_short_side_do_not_land_nearer_than_target(runs_on, speed):
-    # A side that ends landing_run ahead or sooner leaves no room to steer
-    # back out to target_distance before the outer corner at its end, which
-    # is planned from there: landed nearer (gen_s53_004, a slanted short
-    # side Stage read 2.6 cm long), the robot passed that corner's tip out
-    # of the band. 0.24 m from it, the turn ends on the spot instead; a side
-    # that runs on is landed on at cruise speed.
-    side = [((-5.0, -0.24), (runs_on, -0.24)), ((runs_on, -0.24), (runs_on, -3.0))]
+def short_side_mid_turn(distance, into_deg, runs_on):
+    """A left turn's last into_deg degrees onto a side distance (m) to the right that ends
+    runs_on (m) ahead at a wall across its end: the controller and its command."""
+    side = [((-5.0, -distance), (runs_on, -distance)), ((runs_on, -distance), (runs_on, -3.0))]
     controller = WallFollower(EXACT)
     controller.state = WALL_AHEAD
-    view = scan_view(side, (0.0, 0.0, -math.radians(8.0)), STAGE)
+    view = scan_view(side, (0.0, 0.0, -math.radians(into_deg)), STAGE)
     obs = Observation(view, EXACT)
     assert obs.ahead is None and not controller.inner_corner.clear_of_lane_edges(obs)
-    command = controller.update(view)
+    return controller, controller.update(view)
+
+
+@pytest.mark.parametrize('runs_on', [0.3, 0.6])
+def test_the_last_degrees_onto_a_side_are_flown_wide_where_they_land_in_reach(runs_on):
+    # A side that ends landing_run ahead or sooner (0.3 m) leaves no room to
+    # steer back out before the outer corner at its end. It shows itself
+    # short only once the wall ahead has come round to the right; planned
+    # afresh for target_distance there, the turn's gap ran out at once and
+    # the robot pivoted through the rest of its wide end (the arena's
+    # corners onto its short sides: half a second at 0 m/s each). 0.24 m
+    # from it and 8 degrees to go, the wide end lands 4 mm nearer, well
+    # beyond inner_corner_distance: it is flown at cruise speed, as onto a
+    # side that runs on (0.6 m).
+    controller, command = short_side_mid_turn(0.24, 8.0, runs_on)
     assert controller.state == WALL_AHEAD
-    assert command.linear == pytest.approx(speed, abs=1e-9)
+    assert command.linear == pytest.approx(EXACT.cruise_speed, abs=1e-9)
+
+
+def test_the_last_degrees_onto_a_short_side_do_not_land_nearer_than_inner_corner_distance():
+    # Onto a short side (0.3 m), as onto any other wall (see the test above
+    # of a wall already too near): flown on wide from 0.215 m (the laser's
+    # reading; the rotation centre, behind it, is 8 mm farther out) with 15
+    # degrees to go, the turn would land 1.3 cm nearer, short of
+    # inner_corner_distance: it tightens instead.
+    controller, command = short_side_mid_turn(0.215, 15.0, runs_on=0.3)
+    assert controller.state == WALL_AHEAD
+    assert command.linear < 0.5 * EXACT.cruise_speed
 
 
 def test_a_left_turn_that_has_left_a_walls_end_behind_goes_round_it():

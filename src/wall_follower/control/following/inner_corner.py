@@ -255,19 +255,27 @@ class InnerCorner(Manoeuvre):
         than landing_run leaves no room for that before the turn round its
         end, which is planned from target_distance, and a landing nearer
         would carry the robot past that end's tip nearer still. On such a
-        side the turn lands at target_distance. Either wall is the one
+        side the turn lands at target_distance, or, where the side shows
+        itself short only once the turn is under way (as the wall ahead
+        comes round to the right), where the turn flown as planned lands,
+        if that is nearer but no nearer than inner_corner_distance: planned
+        afresh for target_distance there, the gap ran out at once and the
+        robot pivoted through the whole wide end. Either wall is the one
         tracked (observe), and the landing LANDING_MARGIN farther out.
         """
         p = self.params
-        landing = p.inner_corner_distance
+        short_side = False
         if obs.ahead is None:
             if not self._onto_right_wall(obs):
                 return None
             line = in_laser_frame(obs.wall)
             runs = wall_runs_to(line, line.offsets(obs.right), obs.wall_tip, obs.right, p)[0]
-            if runs < p.landing_run:
-                landing = p.target_distance
+            short_side = runs < p.landing_run
         distance, angle = self._landing_wall(obs)
+        landing = p.inner_corner_distance
+        if short_side:
+            landed_as_planned = distance - LANDING_MARGIN - self.turn.gap(angle)
+            landing = min(p.target_distance, max(landing, landed_as_planned))
         return distance - landing - LANDING_MARGIN, angle
 
     def dip(self, obs, still_turning=0.0):

@@ -109,7 +109,9 @@ FOLLOWER = (
           'drift of the wide start less wide_allowance [m]', 0.0, 5.0),
         P('landing_run', 0.45, 'the left turn lands inner_corner_distance from the new wall '
           'only where that runs on at least this far ahead; on a shorter one it lands at '
-          'target_distance, from which the turn round its end is planned [m]', 0.0, 5.0),
+          'target_distance, from which the turn round its end is planned, or where the turn '
+          'flown as planned lands, if that is nearer (but no nearer than '
+          'inner_corner_distance) [m]', 0.0, 5.0),
         P('inner_corner_distance', 0.22, 'distance of the rotation centre from the wall ahead '
           'at which the left turn ends [m]', 0.05, 1.0),
         P('turn_lead', 0.02, 'start the left turn this much early, for the scan and command '
