@@ -4,7 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from wall_follower.control.following.corner import TOLERANCE_HEADING, CornerArc, OuterTurn
+from wall_follower.control.following.corner import (OFF_ARC, TOLERANCE_HEADING, CornerArc,
+                                                    OuterTurn)
 from wall_follower.control.following.follower import FollowerParams, WallFollower
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.lines import Line
@@ -13,6 +14,8 @@ from wall_follower.evaluation.scoring.course import BAND
 
 RADIUS, ROUNDING = 0.30, 0.05
 KEPT = RADIUS - ROUNDING   # distance kept from the rounded-off corner
+# The bearing of a tight arc's centre still ahead of abeam, on the right [rad].
+RIGHT_AHEAD = math.radians(-60.0)
 
 
 def corner_points(tip, step=0.005):
@@ -117,7 +120,7 @@ def fly_square_corner(turn, start, step=math.radians(0.25)):
     tip_distances = []
     while arc.turned() < math.pi / 2 - step / 2:
         turned, off_centre = arc.turned(), arc.offset()[0]
-        starting = starting and turn.starts_wide(turned, off_centre)
+        starting = starting and turn.starts_wide(turned, arc.offset())
         ending = turn.ends_wide(turned, arc.past_tip())
         if not starting and tight_from is None:
             tight_from, met_at = turned, off_centre
@@ -166,34 +169,45 @@ def test_without_wide_arcs_the_turn_is_one_arc_round_a_rounded_off_corner():
     turn = OuterTurn(0.29, 0.39, 0.0, 0.0, 0.25)
     assert turn.center == pytest.approx((-0.04, -0.04))
     assert turn.lead == pytest.approx(0.04)
-    assert not turn.starts_wide(math.radians(-5.0), 0.35)
+    assert not turn.starts_wide(math.radians(-5.0), (0.35, RIGHT_AHEAD))
     assert not turn.ends_wide(math.pi / 2, 0.1)
 
 
 def test_a_turn_begun_nearer_the_wall_than_planned_tightens_as_soon_as_it_meets_the_tight_arc():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25)
-    assert turn.starts_wide(math.radians(5.0), 0.28)
-    assert not turn.starts_wide(math.radians(5.0), 0.26)
-    assert not turn.starts_wide(math.radians(30.0), 0.28)
+    assert turn.starts_wide(math.radians(5.0), (0.28, RIGHT_AHEAD))
+    assert not turn.starts_wide(math.radians(5.0), (0.26, RIGHT_AHEAD))
+    assert not turn.starts_wide(math.radians(30.0), (0.28, RIGHT_AHEAD))
 
 
 def test_within_its_tolerance_of_the_tight_arc_a_turn_still_starts_wide():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
-    assert turn.starts_wide(math.radians(5.0), 0.25)
-    assert not turn.starts_wide(math.radians(5.0), 0.23)
-    assert not turn.starts_wide(math.radians(30.0), 0.25)
+    assert turn.starts_wide(math.radians(5.0), (0.25, RIGHT_AHEAD))
+    assert not turn.starts_wide(math.radians(5.0), (0.23, RIGHT_AHEAD))
+    assert not turn.starts_wide(math.radians(30.0), (0.25, RIGHT_AHEAD))
+
+
+@pytest.mark.parametrize('bearing', [-90.0, -100.0])
+def test_a_wide_start_off_the_tight_arc_with_its_centre_abeam_or_behind_ends(bearing):
+    # Begun late, or heading away from the wall: flown on, the wide arc, which
+    # turns less sharply than the tight one, carries the robot farther out.
+    turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
+    assert turn.starts_wide(math.radians(5.0), (0.29, math.radians(-80.0)))
+    assert not turn.starts_wide(math.radians(5.0), (0.29, math.radians(bearing)))
+    # Within OFF_ARC of the arc, where a noisy fit puts a start that meets it.
+    assert turn.starts_wide(math.radians(5.0), (0.27 + OFF_ARC, math.radians(bearing)))
 
 
 def test_a_turn_begun_heading_into_the_wall_has_less_tolerance_the_steeper_it_heads_in():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
     # Half TOLERANCE_HEADING in: half the tolerance, 0.015 m inside the arc.
     half = TOLERANCE_HEADING / 2
-    assert turn.starts_wide(math.radians(5.0), 0.26, heading_in=half)
-    assert not turn.starts_wide(math.radians(5.0), 0.25, heading_in=half)
+    assert turn.starts_wide(math.radians(5.0), (0.26, RIGHT_AHEAD), heading_in=half)
+    assert not turn.starts_wide(math.radians(5.0), (0.25, RIGHT_AHEAD), heading_in=half)
     # That far in or more: none.
     for heading_in in (TOLERANCE_HEADING, 2 * TOLERANCE_HEADING):
-        assert turn.starts_wide(math.radians(5.0), 0.275, heading_in=heading_in)
-        assert not turn.starts_wide(math.radians(5.0), 0.265, heading_in=heading_in)
+        assert turn.starts_wide(math.radians(5.0), (0.275, RIGHT_AHEAD), heading_in=heading_in)
+        assert not turn.starts_wide(math.radians(5.0), (0.265, RIGHT_AHEAD), heading_in=heading_in)
 
 
 def wide_start_centres(turn, distance, heading_in):

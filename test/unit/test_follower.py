@@ -935,16 +935,45 @@ def test_an_arc_is_pinned_only_to_a_wall_not_turned_away_that_ends_in_its_corner
     assert (WallFollower(EXACT).outer_corner._corner_arc(seen) is not None) == pinned
 
 
-@pytest.mark.parametrize('before, starting_wide', [(FOLLOW, True), (WALL_AHEAD, False)])
-def test_only_a_corner_met_while_following_the_wall_starts_wide(before, starting_wide):
+PLANNED_END = WallFollower(EXACT).outer_corner.turn.lead - 0.03
+
+
+@pytest.mark.parametrize('before, end_x, starting_wide', [
+    (FOLLOW, PLANNED_END, True), (WALL_AHEAD, PLANNED_END, False), (FOLLOW, 0.0, False)],
+    ids=['following', 'mid left turn', 'following, late'])
+def test_only_a_corner_met_while_following_the_wall_where_planned_starts_wide(
+        before, end_x, starting_wide):
     # Met mid left turn (a box's short side), the corner is not where the
-    # planned turn would start it: that turn circles the tip at once.
+    # planned turn would start it: that turn circles the tip at once. So
+    # does one met late, its end already abeam: the tight arc's centre lies
+    # behind, and the wide arc would carry the robot away from it.
     controller = WallFollower(EXACT)
     controller.state = before
-    controller, command = update(convex_corner(0.0), controller=controller)
+    controller, command = update(convex_corner(end_x), controller=controller)
     assert controller.state == OUTER_CORNER and controller.outer_corner.arc is not None
     assert controller.outer_corner.starting_wide == starting_wide
     assert (command.linear == pytest.approx(EXACT.cruise_speed)) == starting_wide
+
+
+@pytest.mark.parametrize('end_past_tip, next_wall', [(0.0, False), (0.3, True)],
+                         ids=['the wall that ended', 'a wall beyond the tip'])
+def test_a_wall_fitted_up_to_the_tip_is_never_the_next_wall_however_it_turned(
+        end_past_tip, next_wall):
+    # The arc takes the way of the wall that ended from its fit as the turn
+    # begins; fitted again clear of a hook at its tip, the same wall seemed
+    # turned away 20 degrees, more than OTHER_WALL_ANGLE, and the robot flew
+    # the wide end along it. A wall as turned that runs on past the tip is
+    # another wall.
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    controller, _ = update(convex_corner(PLANNED_END), controller=controller)
+    corner = controller.outer_corner
+    assert controller.state == OUTER_CORNER and corner.turn.starts_wide
+    seen = Observation.__new__(Observation)
+    seen.wall = Line(0.25, math.radians(-20.0))
+    seen.wall_end = corner.arc.tip + np.array((0.0, -end_past_tip))
+    seen.right = np.zeros((0, 2))
+    assert (corner._next_wall(seen) is not None) == next_wall
 
 
 @pytest.mark.parametrize('lip, starting_wide', [(0.0, True), (0.06, False)])

@@ -328,6 +328,24 @@ def test_a_corner_met_still_turning_onto_a_short_wall_is_rounded_in_band(tmp_pat
     assert nearest >= BAND[0], nearest
 
 
+def test_a_corner_met_as_a_left_turn_onto_a_short_wall_ends_past_parallel_is_rounded_in_band(
+        tmp_path):
+    # Generated world 16 of seed 123: a neck whose west wall, 0.57 m long
+    # and slanted, ends at a sharp tip (a 111 degree turn) with a hook. The
+    # left turn onto that wall ended 10 degrees past parallel, and the
+    # corner came up with the robot level with the tip, heading away from
+    # the wall. Its wide start, flown from there, carried the robot outside
+    # the arc round the tip; a wide end flown along the wall that ended,
+    # taken for the next one, carried it farther: 0.312 m from the tip.
+    # Started on the neck's top wall, 0.25 m from it, heading west.
+    world = generated_world(tmp_path, 123, 16, (0.487, 2.525, math.radians(-176.9)))
+    # The left turn, the short wall and the corner round its tip.
+    score, states = lap(world, 'stage', time_limit=9.0)
+    farthest = max(wall_distances(score))
+    assert {'WALL_AHEAD', 'OUTER_CORNER'} <= states
+    assert farthest <= BAND[1], farthest
+
+
 @pytest.mark.parametrize('seed, index, start, time_limit', [
     # Generated world 3 of seed 21: a wall slanted 34 deg to the grid ends
     # where a wall running south meets it, whose top stands 6 cm out of the

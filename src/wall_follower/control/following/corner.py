@@ -109,6 +109,14 @@ class CornerArc(object):
         return float(math.hypot(x, y)), float(math.atan2(y, x))
 
 
+# Round a tip, a robot this far outside its arc is off it [m]: it slows
+# down to turn back onto it (OuterCorner.command), and a wide start that
+# would carry it farther out ends (OuterTurn.starts_wide). A noisy laser's
+# fit moves the tip by about as much: slowed for less, the robot cut inside
+# the arc, near the tip, and wide starts ended early. Held back until 3 cm
+# out, it drifted out that far first, round a sharp tip before a short side,
+# and rode wide into the turn across that side's end.
+OFF_ARC = 0.01
 # A wide start begun heading into the wall this much or more is flown without
 # OuterTurn's tolerance [rad]: see starts_wide. It shrinks in proportion up to
 # there: a wall fit's angle is good only to a degree or so on a noisy laser,
@@ -169,12 +177,13 @@ class OuterTurn(object):
         along = behind - self.center[0] - wide * math.sin(heading_in)
         return along * math.cos(heading_in) + distance * math.sin(heading_in)
 
-    def starts_wide(self, turned, off_centre, heading_in=0.0):
+    def starts_wide(self, turned, centre, heading_in=0.0):
         """True while the wide start goes on: turned (rad) short of wide_start.
 
-        off_centre: the rotation centre's distance from the tight arc's
-        centre. The wide start ends on meeting the tight arc, so a start
-        well nearer the wall than planned tightens early. Within tolerance
+        centre: (distance, bearing) of the tight arc's centre from the
+        rotation centre, as CornerArc.offset gives it. The wide start ends
+        on meeting the tight arc, so a start well nearer the wall than
+        planned tightens early. Within tolerance
         of it, a start goes on wide: the tip is seen only to a cell or so of
         Stage's grid, and a start that much nearer than planned only passes
         the tip that much nearer. That holds for a turn begun parallel to
@@ -184,10 +193,21 @@ class OuterTurn(object):
         flown on wide while within the tolerance, it cut inside the arc round
         the tip and out of the band. The tolerance shrinks with that angle,
         and is gone at TOLERANCE_HEADING.
+
+        As planned, the wide start meets the tight arc tangentially, where
+        that arc's centre comes abeam. One begun late, or heading away from
+        the wall (a corner come up as a left turn onto a short wall ended
+        past parallel), is more than OFF_ARC outside the tight arc with its
+        centre abeam or behind already, and the wide arc, which turns less
+        sharply, carries it farther out: flown on, it left the band round
+        the tip. It ends there, and the tight arc turns the robot back onto
+        it.
         """
+        off_centre, bearing = centre
         tolerance = self.tolerance * max(0.0, 1.0 - heading_in / TOLERANCE_HEADING)
+        moving_out = off_centre > self.radius + OFF_ARC and bearing <= -math.pi / 2
         return (0.0 < self.wide_start and turned < self.wide_start
-                and off_centre > self.radius - tolerance)
+                and off_centre > self.radius - tolerance and not moving_out)
 
     def ends_wide(self, turned, past_tip, nearer=0.0):
         """True where the wide end goes on, turned (rad) so far and past_tip from the next wall.

@@ -25,7 +25,7 @@ starts a little later, and they clear it.
 """
 import math
 
-from wall_follower.control.following.corner import CornerArc, OuterTurn
+from wall_follower.control.following.corner import OFF_ARC, CornerArc, OuterTurn
 from wall_follower.control.following.follow_wall import steer
 from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
@@ -46,12 +46,6 @@ NEXT_SIDE_TURN = math.radians(60.0)
 # A wide end under way goes on while it lands no more than this beyond
 # where it was planned to (see _track_wide) [m].
 WIDE_END_HOLD = 0.003
-# Round a tip, a robot this far outside its arc slows down to turn back
-# onto it (see command) [m]. A noisy laser's fit moves the tip by about as
-# much: slowed for less, the robot cut inside the arc, near the tip. Held
-# back until 3 cm out, it drifted out that far first, round a sharp tip
-# before a short side, and rode wide into the turn across that side's end.
-OFF_ARC = 0.01
 
 
 class OuterCorner(Manoeuvre):
@@ -256,7 +250,7 @@ class OuterCorner(Manoeuvre):
         if self.arc is None:
             return
         self.starting_wide = self.starting_wide and self.turn.starts_wide(
-            self.arc.turned(), self.arc.offset()[0], self.heading_in)
+            self.arc.turned(), self.arc.offset(), self.heading_in)
         # A wall across the way just past the corner (beyond a pillar's
         # short side) leaves no room to ride nearer before the turn onto
         # it: the corner lands that much nearer the side instead. The turn
@@ -289,9 +283,27 @@ class OuterCorner(Manoeuvre):
         """
         heading_away = min(0.0, self.arc.turned() - OTHER_WALL_ANGLE)
         wall = obs.wall
-        if wall is None or wall.angle >= heading_away:
+        if wall is None or wall.angle >= heading_away or self._the_wall_that_ended(obs):
             wall = wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)
         return wall if wall is not None and wall.angle < heading_away else None
+
+    def _the_wall_that_ended(self, obs):
+        """True when the wall fitted on the right is the one whose end the turn goes round,
+        however far its fit has turned: it runs up to the tip (its farthest hit ahead within
+        corner_gate of it), within a right angle of the way that wall ran.
+
+        The arc takes that wall's way from its fit as the turn begins. Where
+        the tip stands out of the wall toward the robot (a hook at the end of
+        a slanted wall, on Stage's grid), that fit was turned 9 degrees toward
+        the tip; fitted clear of it scans later, the same wall seemed turned
+        away by more than OTHER_WALL_ANGLE, was taken for the next wall, and
+        the robot flew the wide end along it, out of the band round the tip.
+        The next wall runs on from the tip, its farthest hit ahead beyond it;
+        the far side of a thin bar, which ends there too, runs back the
+        other way.
+        """
+        near_tip = math.hypot(*(obs.wall_end - self.arc.tip)) < self.params.corner_gate
+        return near_tip and abs(float(wrap_angle(obs.wall.angle - self.arc.turned()))) < math.pi / 2
 
     def _corner_arc(self, obs):
         """The arc round the end of the wall that just ended; None without such a wall.
