@@ -217,6 +217,23 @@ def test_following_points_at_the_longest_stretch_out_of_band():
         'stretch out 2.5 s from (0.50, -0.25), at worst 0.16 m from the wall')
 
 
+def test_following_says_where_the_grid_showed_the_laser_the_wall_in_the_band():
+    case = run()
+    case['figures']['time_in_band'] = 0.9
+    case['out_of_band'] = [{'after': 12.0, 'seconds': 2.5, 'x': 0.5, 'y': -0.25,
+                            'distance': 0.18, 'grid_distance': 0.2200013}]
+    assert grade_case(case)['criteria']['following']['reason'].endswith(
+        "at worst 0.18 m from the wall (0.22 m on Stage's grid, as a noise-free laser read it "
+        "there)")
+
+
+def test_a_stretch_out_of_band_keeps_what_the_grid_showed_a_laser_where_it_was_worst():
+    worst = run(off=0.33)['out_of_band'][0]
+    # room.world's walls lie on the grid's lines: Stage reads them a cell out, at most.
+    assert worst['distance'] > 0.33
+    assert worst['distance'] < worst['grid_distance'] <= worst['distance'] + 0.02
+
+
 def test_a_track_too_far_from_the_walls_fails_following_where_it_began():
     graded = grade_case(run(off=0.33))
     assert graded['in_band'] == pytest.approx(0.0, abs=0.05)

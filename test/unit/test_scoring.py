@@ -45,6 +45,31 @@ def test_right_wall_distance_from_the_middle_of_the_room(room):
     assert room.right_wall_distance((0.0, 0.0, math.pi)) == pytest.approx(1.2, abs=1e-6)
 
 
+@pytest.mark.parametrize('yaw, x', [(math.pi / 2, 1.25), (-math.pi / 2, -1.25)])
+def test_the_grid_reading_puts_a_wall_off_its_edge_as_stage_does(room, yaw, x):
+    # The laser 0.25 m from the east (west) wall, beside it: a beam along an
+    # axis reads a whole number of Stage's 0.02 m cells (stage-reference), so
+    # the grid puts the wall at the next one out, while the judge has 0.25.
+    pose = (x, 0.0, yaw)
+    assert room.right_wall_distance(pose) == pytest.approx(0.25, abs=1e-6)
+    assert room.grid_right_wall_distance(pose) == pytest.approx(0.26, abs=1e-6)
+
+
+def test_the_worst_of_a_stretch_out_of_band_is_where_it_was(room):
+    score = RunScore(room)
+    # Along the bottom wall (y = -1.2), edging out to 0.32 m and back into the band.
+    offsets = [0.25, 0.28, 0.31, 0.32, 0.31, 0.28, 0.25, 0.25]
+    for step, off in enumerate(offsets):
+        score.add_pose(step * 0.1, (-0.8 + step * 0.019, -1.2 + off, 0.0))
+    score.summary()
+    (stretch,) = score.stretches_out_of_band()
+    after, seconds, began, distance, worst = stretch
+    assert began[1] == pytest.approx(-1.2 + 0.31)
+    assert distance == pytest.approx(0.32, abs=1e-6)
+    assert worst[1] == pytest.approx(-1.2 + 0.32)
+    assert seconds == pytest.approx(0.3)
+
+
 def test_clearance_of_the_footprint(room):
     assert room.clearance((-0.8, -0.95, 0.0)) == pytest.approx(1.2 - 0.95 - HALF_WIDTH, abs=1e-6)
     assert room.clearance((-0.8, -1.2 + HALF_WIDTH, 0.0)) == pytest.approx(0.0, abs=1e-6)

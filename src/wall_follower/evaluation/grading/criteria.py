@@ -178,8 +178,20 @@ def judge_following(case):
                 worst['seconds'], worst['x'], worst['y'],
                 'no wall on the right' if distance is None or math.isinf(distance)
                 else 'at worst %s m from the wall' % shown(distance, 0.20, 0.30))
+            reason += _as_the_grid_shows(worst, distance)
         return False, reason
     return True, ''
+
+
+def _as_the_grid_shows(stretch, distance):
+    """What a noise-free laser read on Stage's grid where a stretch out of band was worst, when
+    the record has it (CourseMap.grid_right_wall_distance): where the laser put the wall in
+    the band, the follower was misled, not mistaken."""
+    grid = _number(stretch.get('grid_distance'))
+    if distance is None or math.isinf(distance) or grid is None or math.isinf(grid):
+        return ''
+    return ' (%s m on Stage\'s grid, as a noise-free laser read it there)' % shown(
+        grid, 0.20, 0.30)
 
 
 def judge_safety(case):

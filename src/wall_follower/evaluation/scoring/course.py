@@ -5,7 +5,9 @@ wrong in exactly the cases a score should catch. The right-wall distance is
 cast noise-free from the laser's true position in the world; clearance is
 measured between the robot's footprint and the obstacles. Both use the
 world's exact edges, not the simulator's grid, whose cells make obstacles
-look up to a cell fatter.
+look up to a cell fatter. Where a lap left the band, the same reading on
+that grid (CourseMap.grid_right_wall_distance) tells a follower that
+misjudged the wall from a laser that misread it.
 """
 import math
 
@@ -17,7 +19,9 @@ from wall_follower.control.sensing.lines import fit_line
 from wall_follower.control.sensing.scan import RIGHT
 from wall_follower.evaluation.scoring.geometry import cast_rays, polygon_clearance, solid_edges
 from wall_follower.rotation import wrap_angle
-from wall_follower.sim.grid import footprint_corners
+from wall_follower.sim.compiled_raytrace import LibraryMissing
+from wall_follower.sim.grid import OccupancyGrid, footprint_cells, footprint_corners
+from wall_follower.sim.raytrace import stage_ranges
 from wall_follower.sim.worldfile import WorldFileError, load_world
 
 BAND = (0.20, 0.30)
@@ -49,6 +53,7 @@ class CourseMap(object):
         self.laser_offset = (ranger.pose[0], ranger.pose[1], ranger.pose[3])
         self.range_max = ranger.range_max
         self._sector = np.linspace(-RIGHT_SECTOR, RIGHT_SECTOR, _SECTOR_BEAMS)
+        self._grid = None
 
     def laser_pose(self, pose):
         """World pose (x, y, yaw) of the laser when the robot is at pose."""
@@ -66,6 +71,33 @@ class CourseMap(object):
     def right_wall_distance(self, pose):
         """Nearest noise-free range within +-30 deg of the right (inf if none)."""
         _, ranges = self._right_sector(pose)
+        return self._nearest(ranges)
+
+    def grid_right_wall_distance(self, pose):
+        """right_wall_distance as a noise-free laser reads it in Stage, or None where the
+        compiled raytrace is not built.
+
+        The same beams from the same place, cast on the cells Stage draws
+        the world into (sim/grid.py) instead of on its edges. Stage puts
+        the hits up to a cell or two off the surface, by where the surface
+        lies on its grid (DESIGN.md): a follower that holds the band by its
+        laser is out of it by as much. Set beside the judge's reading where
+        a lap left the band, it tells a follower that misjudged the wall
+        from a laser that misread it.
+        """
+        if self._grid is None:
+            self._grid = OccupancyGrid.from_world(self.world)
+        lx, ly, lyaw = self.laser_pose(pose)
+        body = footprint_cells(self.robot, pose, self._grid.ppm)
+        try:
+            ranges, _ = stage_ranges(self._grid, lx, ly, lyaw + RIGHT + self._sector,
+                                     self.range_max, height=self.robot.ranger.sensor_height,
+                                     robot_cells=[body])
+        except LibraryMissing:
+            return None
+        return self._nearest(ranges)
+
+    def _nearest(self, ranges):
         hits = ranges[ranges < self.range_max]
         return float(hits.min()) if hits.size else math.inf
 
@@ -231,7 +263,8 @@ class RunScore(object):
 
     def stretches_out_of_band(self):
         """Each stretch of the lap out of band, as (seconds into the lap, duration s, pose
-        where it began, the distance furthest from the band's middle); inf for no wall seen.
+        where it began, the distance furthest from the band's middle, the pose where it
+        was); inf for no wall seen.
 
         Over the poses summary() has measured, longest first: where a follower
         lost the band, for a report to point at.
@@ -248,11 +281,12 @@ class RunScore(object):
                 current = None
                 continue
             if current is None:
-                current = [elapsed - weight, 0.0, self.poses[index], distance]
+                current = [elapsed - weight, 0.0, self.poses[index], distance, self.poses[index]]
                 stretches.append(current)
             current[1] += weight
             if abs(distance - self.target) > abs(current[3] - self.target):
                 current[3] = distance
+                current[4] = self.poses[index]
         return sorted((tuple(s) for s in stretches), key=lambda s: -s[1])
 
 

@@ -269,10 +269,11 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
         if goal_pose is not None:
             true_lap = true_lap_length(list(monitor.trail), goal_pose[:2])
         feedback = list(monitor.feedback)
-        out_of_band = [{'after': after, 'seconds': seconds, 'x': pose[0], 'y': pose[1],
-                        'distance': distance}
-                       for after, seconds, pose, distance
-                       in monitor.score.stretches_out_of_band()[:OUT_OF_BAND_KEPT]]
+        stretches = monitor.score.stretches_out_of_band()[:OUT_OF_BAND_KEPT]
+    out_of_band = [{'after': after, 'seconds': seconds, 'x': pose[0], 'y': pose[1],
+                    'distance': distance,
+                    'grid_distance': monitor.score.map.grid_right_wall_distance(worst)}
+                   for after, seconds, pose, distance, worst in stretches]
     return {
         'world': params['world'],
         'solution': {'find_wall_service': seen.find_wall_service,
