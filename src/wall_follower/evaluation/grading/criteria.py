@@ -174,21 +174,21 @@ def judge_following(case):
         if stretches:
             worst = stretches[0]
             distance = _number(worst['distance'])
+            where = ('no wall on the right' if distance is None or math.isinf(distance)
+                     else 'at worst %s m from the wall%s' % (shown(distance, 0.20, 0.30),
+                                                             _as_the_grid_shows(worst)))
             reason += ', the longest stretch out %.1f s from (%.2f, %.2f), %s' % (
-                worst['seconds'], worst['x'], worst['y'],
-                'no wall on the right' if distance is None or math.isinf(distance)
-                else 'at worst %s m from the wall' % shown(distance, 0.20, 0.30))
-            reason += _as_the_grid_shows(worst, distance)
+                worst['seconds'], worst['x'], worst['y'], where)
         return False, reason
     return True, ''
 
 
-def _as_the_grid_shows(stretch, distance):
+def _as_the_grid_shows(stretch):
     """What a noise-free laser read on Stage's grid where a stretch out of band was worst, when
     the record has it (CourseMap.grid_right_wall_distance): where the laser put the wall in
     the band, the follower was misled, not mistaken."""
     grid = _number(stretch.get('grid_distance'))
-    if distance is None or math.isinf(distance) or grid is None or math.isinf(grid):
+    if grid is None or math.isinf(grid):
         return ''
     return ' (%s m on Stage\'s grid, as a noise-free laser read it there)' % shown(
         grid, 0.20, 0.30)

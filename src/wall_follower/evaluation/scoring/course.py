@@ -62,11 +62,16 @@ class CourseMap(object):
         c, s = math.cos(yaw), math.sin(yaw)
         return x + c * lx - s * ly, y + s * lx + c * ly, yaw + lyaw
 
-    def _right_sector(self, pose):
+    def _sector_beams(self, pose):
+        """The judge's beams at pose: the laser's (x, y), and the beams' angles in its frame
+        and in the world."""
         lx, ly, lyaw = self.laser_pose(pose)
         local = RIGHT + self._sector
-        ranges = cast_rays(self.edges, lx, ly, lyaw + local)
-        return local, np.minimum(ranges, self.range_max)
+        return lx, ly, local, lyaw + local
+
+    def _right_sector(self, pose):
+        lx, ly, local, angles = self._sector_beams(pose)
+        return local, np.minimum(cast_rays(self.edges, lx, ly, angles), self.range_max)
 
     def right_wall_distance(self, pose):
         """Nearest noise-free range within +-30 deg of the right (inf if none)."""
@@ -87,10 +92,10 @@ class CourseMap(object):
         """
         if self._grid is None:
             self._grid = OccupancyGrid.from_world(self.world)
-        lx, ly, lyaw = self.laser_pose(pose)
+        lx, ly, _, angles = self._sector_beams(pose)
         body = footprint_cells(self.robot, pose, self._grid.ppm)
         try:
-            ranges, _ = stage_ranges(self._grid, lx, ly, lyaw + RIGHT + self._sector,
+            ranges, _ = stage_ranges(self._grid, lx, ly, angles,
                                      self.range_max, height=self.robot.ranger.sensor_height,
                                      robot_cells=[body])
         except LibraryMissing:
