@@ -18,7 +18,7 @@ from wall_follower.control.following.reach_track import JUMP
 from wall_follower.control.motion import (MAX_ANGULAR, MAX_LINEAR, Command, along_curvature, clamp,
                                           seen_after_move)
 from wall_follower.control.sensing.lines import Line
-from wall_follower.control.sensing.observation import Observation, unbiased
+from wall_follower.control.sensing.observation import Observation, in_arc_lane, unbiased
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.control.sensing.wall_fit import as_planned
 from wall_follower.evaluation.scoring.course import BAND, RIGHT_SECTOR
@@ -1059,6 +1059,20 @@ def test_look_ahead_moves_hits_against_the_motion():
 def test_range_bias_pulls_hits_in_along_their_beams():
     points = np.array([[0.3, 0.4], [0.0, -0.25]])
     assert unbiased(points, 0.05) == pytest.approx(np.array([[0.27, 0.36], [0.0, -0.2]]))
+
+
+def test_the_lane_a_right_turn_sweeps_leaves_out_what_lies_ahead_on_its_left():
+    ahead_left, ahead_right, square_ahead = (0.3, 0.12), (0.3, -0.12), (0.2, 0.0)
+    points = np.array([ahead_left, ahead_right, square_ahead])
+    # At cruise speed and the full turn rate, an arc of 0.39 m radius.
+    swept = in_arc_lane(points, (0.19, -0.49), 0.0, 0.14)
+    assert swept.tolist() == [False, True, True]
+
+
+@pytest.mark.parametrize('motion', [(0.19, 0.0), (0.05, -0.49), (0.0, -0.49)])
+def test_straight_on_or_too_tight_to_hold_the_lane_the_lane_is_left_whole(motion):
+    points = np.array([[0.3, 0.12], [0.3, -0.12], [0.2, 0.0]])
+    assert in_arc_lane(points, motion, 0.0, 0.14).all()
 
 
 # --- a small kinematic loop ------------------------------------------------------------

@@ -373,6 +373,24 @@ def test_round_the_end_of_a_wall_the_robot_stays_in_band(tmp_path, seed, index, 
     assert nearest >= BAND[0], nearest
 
 
+@pytest.mark.parametrize('profile', ['lds01', 'gazebo', 'course720'])
+def test_round_the_end_of_a_wall_a_corner_ahead_on_the_left_turns_the_robot_no_other_way(
+        tmp_path, profile):
+    # Generated world 5 of seed 126: a slanted wall ends in a tip, and the
+    # wall beyond it runs south, some 135 degrees of right turn on; a block's
+    # corner stands 0.3 m ahead of the tip and 0.2 m to the left of the way.
+    # Rounding the tip, the robot saw that corner inside the lane straight
+    # ahead (Stage draws it a cell fatter, a noisy beam nearer still), turned
+    # left onto the block, and was 2.8 s out of the band (96.3 % of the lap).
+    # Started on the slanted wall, 0.25 m from it, 0.6 m short of the tip.
+    world = generated_world(tmp_path, 126, 5, (0.97, -0.84, math.radians(48.7)))
+    # Round the tip and down the wall beyond it.
+    score, states = lap(world, profile, time_limit=6.0)
+    farthest = max(wall_distances(score))
+    assert 'WALL_AHEAD' not in states
+    assert farthest <= BAND[1], farthest
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

@@ -112,9 +112,12 @@ class InnerCorner(Manoeuvre):
 
         turning_right: the robot is rounding an outer corner, which turns it
         away from a wall across its present heading (a pillar or an island
-        beyond the corner, say): only something near in the lane counts then.
+        beyond the corner, say): only something near in the lane counts then,
+        and only in the part of it that the arc being flown sweeps as well
+        (Observation.front_on_arc).
         """
-        if obs.front < self.params.front_turn_distance:
+        front = obs.front_on_arc if turning_right else obs.front
+        if front < self.params.front_turn_distance:
             return True
         return not turning_right and self.due(obs)
 

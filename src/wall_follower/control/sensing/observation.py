@@ -24,7 +24,8 @@ class Observation(object):
     (wall_fit.proud_of; 0 and -inf without). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
-    clear_margin each side. ahead: the straight wall across that lane (a
+    clear_margin each side; front_on_arc: front of the hits that also lie
+    in the lane the arc of motion sweeps (in_arc_lane). ahead: the straight wall across that lane (a
     Line measured like the right wall: pi/2 for a wall square ahead), or
     None. nearest: (distance, bearing) of the closest hit on the right
     side, or None.
@@ -49,6 +50,8 @@ class Observation(object):
         across = np.abs(front[:, 1])
         lane = front[across <= params.corridor_half_width]
         self.front = second_smallest(lane[:, 0])
+        self.front_on_arc = second_smallest(
+            lane[in_arc_lane(lane, motion, params.laser_x, params.corridor_half_width)][:, 0])
         self.front_wide = second_smallest(
             front[across <= params.corridor_half_width + params.clear_margin][:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
@@ -73,6 +76,27 @@ def unbiased(points, bias):
     ranges = np.hypot(points[:, 0], points[:, 1])
     scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)
     return points * scale[:, None]
+
+
+def in_arc_lane(points, motion, laser_x, half_width):
+    """Which laser-frame points lie within half_width of the arc the rotation centre flies
+    under motion (linear [m/s], angular [rad/s]); all of them on an arc no wider than
+    half_width, or a straight way.
+
+    The lane straight ahead holds things that a turn carries the robot away
+    from: rounding the end of a wall, the robot passed the corner of a
+    block ahead on its left a few centimetres outside the lane, but
+    Stage drew that corner a grid cell fatter, a noisy beam put it inside,
+    and the robot turned left onto the block instead of on round the end.
+    On an arc too tight to hold the lane (a pivot) nothing is left out:
+    which way the robot goes next is open.
+    """
+    linear, angular = motion
+    if angular == 0.0 or abs(linear) <= half_width * abs(angular):
+        return np.ones(len(points), dtype=bool)
+    radius = linear / angular
+    off_arc = np.hypot(points[:, 0] + laser_x, points[:, 1] - radius) - abs(radius)
+    return np.abs(off_arc) <= half_width
 
 
 def second_smallest(values):
