@@ -24,11 +24,11 @@ class Observation(object):
     (wall_fit.proud_of; 0 and -inf without). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
-    clear_margin each side; front_on_arc: front of the hits that also lie
-    in the lane the arc of motion sweeps (in_arc_lane). ahead: the straight wall across that lane (a
-    Line measured like the right wall: pi/2 for a wall square ahead), or
-    None. nearest: (distance, bearing) of the closest hit on the right
-    side, or None.
+    clear_margin each side; front_on_arc: the same of the hits in the lane
+    that the arc of motion sweeps as well (in_arc_lane). ahead: the
+    straight wall across that lane (a Line measured like the right wall:
+    pi/2 for a wall square ahead), or None. nearest: (distance, bearing) of
+    the closest hit on the right side, or None.
     """
 
     def __init__(self, view, params, motion=(0.0, 0.0)):
