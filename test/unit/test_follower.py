@@ -13,8 +13,9 @@ from scan_queries import min_range
 from wall_follower.control.following.corner import CornerArc
 from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                                       FollowerParams, WallFollower)
-from wall_follower.control.following.inner_corner import OUT_OF_REACH
+from wall_follower.control.following.inner_corner import LANDING_MARGIN, OUT_OF_REACH
 from wall_follower.control.following.reach_track import JUMP
+from wall_follower.control.following.turn_reading import peak_reading
 from wall_follower.control.motion import (MAX_ANGULAR, MAX_LINEAR, Command, along_curvature, clamp,
                                           seen_after_move)
 from wall_follower.control.sensing.lines import Line
@@ -255,6 +256,37 @@ def test_a_turn_begun_without_room_to_ride_nearer_is_the_short_wall_turn():
     short = planned_turn(EXACT, EXACT.target_distance)
     assert short.radius == EXACT.short_turn_radius
     assert short.drift(math.pi / 2) <= EXACT.wide_allowance + 1e-9
+
+
+def test_a_turn_begun_at_the_bands_far_edge_is_tightened_to_keep_the_wall_in_band():
+    # Riding nearer first, the turn reads about the band's edge at its
+    # hand-over, and is flown as configured. Begun at the band's far edge
+    # (fresh from find_wall), the short-wall turn's tight arc would carry the
+    # reading well past it, and is tightened until it does not.
+    params = FollowerParams(range_bias=0.0)
+    dip = WallFollower(params).inner_corner.left_turn.drift(math.pi / 2) - params.wide_allowance
+    landing = params.inner_corner_distance + LANDING_MARGIN
+
+    def planned(right):
+        controller = WallFollower(params)
+        update(corridor_end(0.9, right), (params.laser_x, 0.0, 0.0), controller=controller)
+        return controller.inner_corner
+
+    def peak(turn, right):
+        ahead = Line(turn.gap(math.pi / 2) + landing, math.pi / 2)
+        return peak_reading(turn, Line(right, 0.0), ahead, landing, params.laser_x,
+                            params.right_sector)
+
+    assert planned(params.target_distance - dip).turn.radius == params.inner_corner_radius
+    far = 0.29
+    corner = planned(far)
+    flown_as_configured = corner.short_turn.drifting_at_most(0.0)
+    assert peak(flown_as_configured, far) > params.turn_farthest + params.turn_tolerance
+    assert 0.0 < corner.turn.radius < params.short_turn_radius
+    assert peak(corner.turn, far) <= params.turn_farthest
+    # No more than it takes: a little wider reads past the band's edge.
+    wider = flown_as_configured.tightened(corner.turn.radius / params.short_turn_radius + 0.05)
+    assert peak(wider, far) > params.turn_farthest
 
 
 def test_a_turn_once_begun_keeps_its_plan():

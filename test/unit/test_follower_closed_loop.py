@@ -391,6 +391,25 @@ def test_round_the_end_of_a_wall_a_corner_ahead_on_the_left_turns_the_robot_no_o
     assert farthest <= BAND[1], farthest
 
 
+@pytest.mark.parametrize('profile', ['stage', 'lds02', 'gazebo'])
+def test_a_left_turn_begun_at_the_bands_far_edge_keeps_the_wall_in_band(tmp_path, profile):
+    # Generated world 24 of seed 129: find_wall leaves the robot 0.30 m from
+    # a wall, 0.5 m short of the wall across its end, with no room to ride
+    # nearer before the left turn. Flown as the short-wall turn, its tight
+    # arc carried the robot off the wall it left before the wall ahead came
+    # near enough to read, out to 0.314-0.327 m, and out of the band for
+    # 0.4-0.8 s (96-97 % of the lap in band). Started where find_wall leaves it.
+    world = generated_world(tmp_path, 129, 24, (1.978, -0.002, math.radians(89.6)))
+    score, states = lap(world, profile, time_limit=5.0)
+    # Past the first second: the lap begins where find_wall ends, on the band's edge.
+    turning = wall_distances(score)[int(round(1.0 / load_world(world).interval_sim)):]
+    out = [distance for distance in turning if not BAND[0] <= distance <= BAND[1]]
+    assert 'WALL_AHEAD' in states
+    # The tightened turn peaks about the band's edge, and a grid cell or a
+    # noisy beam puts a scan or two a few millimetres past it.
+    assert len(out) <= 2 and max(turning) <= BAND[1] + 0.008, out
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

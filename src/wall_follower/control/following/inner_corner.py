@@ -24,7 +24,9 @@ from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.left_turn import LeftTurn
 from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.following.reach_track import ReachTrack
+from wall_follower.control.following.turn_reading import peak_reading
 from wall_follower.control.motion import Command
+from wall_follower.control.sensing.lines import Line
 from wall_follower.control.sensing.observation import second_smallest
 from wall_follower.control.sensing.wall_fit import (along_the_way, as_planned, from_centre,
                                                     in_laser_frame, same_line, wall_runs_to)
@@ -43,6 +45,10 @@ OUT_OF_REACH = 0.005
 # landed on the fit, whose steps down slowed them to a near pivot, and
 # FOLLOW spent twice the time nearer than the band after them.
 LANDING_MARGIN = 0.005
+# How many times the range of tight radii is halved in search of the widest one
+# whose plan keeps the reading within turn_farthest (InnerCorner._within_reading):
+# to within 1/32 of the planned radius, 5 mm of the short-wall turn's 16 cm.
+TIGHTENING_STEPS = 5
 
 
 class InnerCorner(Manoeuvre):
@@ -104,7 +110,45 @@ class InnerCorner(Manoeuvre):
         turn = self.left_turn.drifting_at_most(allowed)
         if turn.wide_start < self.left_turn.wide_start - p.short_turn_cut:
             turn = self.short_turn.drifting_at_most(allowed)
-        self.turn = turn
+        self.turn = self._within_reading(turn, obs) if self.blocking(obs) else turn
+
+    def _within_reading(self, turn, obs):
+        """turn, its tight arc tightened no more than it takes to keep the wall on the right
+        reading no farther than turn_farthest through an ideal corner (turn_reading.py); a
+        pivot where nothing else will.
+
+        Riding nearer first (dip) keeps a turn's widest reading at the
+        band's edge; a robot that could not (after a short wall, or from
+        find_wall's end) starts the turn farther out, and its tight arc,
+        swinging the laser round behind the rotation centre, carries it off
+        the band before the wall ahead comes near enough to read. Only a
+        plan that reads more than turn_tolerance past turn_farthest is
+        tightened: tightened too, the turns that read about the edge cost
+        2 % of lap time for scans a few millimetres out. The widest arc that
+        keeps within turn_farthest is found by halving the range of radii
+        TIGHTENING_STEPS times.
+        """
+        p = self.params
+        angle = self._ahead_as_planned(obs).angle
+        right = from_centre(obs.wall, p.laser_x)
+        landing = p.inner_corner_distance + LANDING_MARGIN
+
+        def within(scale, farthest=p.turn_farthest):
+            candidate = turn.tightened(scale)
+            ahead = Line(candidate.gap(angle) + landing, angle)
+            return peak_reading(candidate, right, ahead, landing, p.laser_x,
+                                p.right_sector) <= farthest
+
+        if within(1.0, p.turn_farthest + p.turn_tolerance):
+            return turn
+        low, high = 0.0, 1.0
+        for _ in range(TIGHTENING_STEPS):
+            middle = 0.5 * (low + high)
+            if within(middle):
+                low = middle
+            else:
+                high = middle
+        return turn.tightened(low)
 
     def needed(self, obs, turning_right=False):
         """True when anything is near in the lane ahead, or a wall across the way is near

@@ -50,6 +50,10 @@ class LeftTurn(object):
         wide_start = min(self.wide_start, math.acos(max(-1.0, cosine)))
         return LeftTurn(self.radius, self.wide_radius, wide_start, self.wide_end)
 
+    def tightened(self, scale):
+        """This turn with its tight arc's radius scaled by scale (0 for a pivot)."""
+        return LeftTurn(self.radius * scale, self.wide_radius, self.wide_start, self.wide_end)
+
     def arc_radius(self, angle):
         """Radius planned with angle (rad) still to turn."""
         return self.radius if self._on_tight_arc(angle) else self.wide_radius

@@ -105,6 +105,16 @@ FOLLOWER = (
           '[rad] ...', 0.0, math.pi / 2),
         P('short_wide_end', math.radians(25.0), '... and before this much again [rad]',
           0.0, math.pi / 2),
+        P('turn_farthest', 0.30, 'tighten the left turn\'s tight arc until its plan, flown '
+          'through an ideal corner, keeps the wall on the right reading no farther than this, '
+          'as the course reads it (the nearest range within right_sector of the right) [m] ...',
+          0.0, 5.0),
+        P('turn_tolerance', 0.01, '... where the plan would read more than this farther: at '
+          'the hand-over to its wide end, a turn begun after riding nearer reads about 0.30 m, '
+          'one begun without room to up to 0.31 m, one begun at the band\'s far edge 0.32-0.33 '
+          'm. Lower tightens more turns, at a cost in lap time [m]', 0.0, 1.0),
+        P('right_sector', math.radians(30.0), '... where right_sector is half the width of '
+          'the sector round the right that the course reads [rad]', 0.0, math.pi / 2),
         P('approach_range', 0.8, 'with a wall ahead this near, ride nearer the wall by the '
           'drift of the wide start less wide_allowance [m]', 0.0, 5.0),
         P('landing_run', 0.45, 'the left turn lands inner_corner_distance from the new wall '
