@@ -2,24 +2,39 @@
 
 Safety judges every command sent: a non-finite one (inf or NaN, which a
 real base would take as its limit or as nothing at all) is noted with
-when it came, and never lost in a maximum. And a simulator (Stage, and
-the built-in one) stops the robot when no command has come for its
-watchdog's time (0.2 simulated s): a command that was the last one for
-longer than that was cut short; one followed exactly that long later ran
-in full. A command is timed when grading hears it, by a clock that may
-already show a later step (by more than one on a busy machine): a late
-one may count a cut there was not, or hide one there was. A solution whose
-moving commands are mostly cut so sends each once instead of continuously,
-and the reasons say so.
+when it came, and never lost in a maximum.
+
+And a simulator (Stage, and the built-in one) stops the robot when no
+command has come for its watchdog's time (0.2 simulated s). Whether it did
+is read from what the simulator says it applied, never from when grading
+heard the commands: grading's own clock, on a busy machine, hears them
+steps late or in bursts, and a gap between two commands heard so would
+count a cut of a solution that was never cut. Both simulators publish,
+every step, odometry stamped with the step's simulated time whose twist
+is the velocity in force (stageros' is its model's velocity, which its
+watchdog sets to zero; the built-in simulator's is the command its
+watchdog zeroes). So a cut is a stop that odometry shows: a step that
+applied no velocity right after one that applied some (one moving command
+cut short, however long the robot then stands), which the solution did
+not command itself. Its own stop is a zero command sent once the step
+that moved was stamped, to apply from the next: heard within the watchdog
+of that stamp, it tells the two apart even when grading hears it late.
+A step that shows motion is never a cut, whenever its commands were
+heard. Nor is a robot stalled against a wall: odometry's twist stays at
+the command while the robot pushes (ground truth's twist, a difference of
+poses, reads zero then, and stageros publishes no stall). What is left
+misjudged is a zero command heard more than the watchdog away from its
+stop, and one sent at once after a cut, which reads as the solution's own.
+
+A solution whose moving commands are mostly cut so sends each once
+instead of continuously, and the reasons say so.
 """
+import bisect
 import math
 
 # A solution "sends each command once" when at least this share of its moving
 # commands were cut by the watchdog.
 CUT_SHARE = 0.5
-# Simulated times come as float seconds: two steps a watchdog apart read a few
-# 1e-15 s more than that apart [s].
-TIME_ROUNDING = 1e-6
 
 
 def non_finite_text(value):
@@ -29,20 +44,27 @@ def non_finite_text(value):
     return 'inf' if value > 0 else '-inf'
 
 
+def _is_moving(linear, angular):
+    """Whether a velocity (linear.x, angular.z) moves the robot; a NaN one counts as moving."""
+    return linear != 0.0 or angular != 0.0
+
+
 class CommandLog(object):
-    """The commands of a run, at their simulated times (s); watchdog: the simulator's [s]."""
+    """The commands of a run, at the simulated times grading heard them (s), and the velocity
+    the simulator applied in each step; watchdog: the simulator's [s]."""
 
     def __init__(self, watchdog=0.2):
         self.watchdog = watchdog
         self.count = 0
         self.moving = 0
-        self.cut = 0
         self.non_finite = None
-        self._last = None
+        self._zero_heard = []
+        # The stamp of the last step that moved, before each stop odometry showed.
+        self._stops = []
+        self._moved = None
 
     def add(self, time, linear, angular):
         """A cmd_vel (linear.x, angular.z) heard at time."""
-        self._close(time)
         self.count += 1
         if self.non_finite is None:
             for field, value in (('linear.x', linear), ('angular.z', angular)):
@@ -50,19 +72,32 @@ class CommandLog(object):
                     self.non_finite = {'field': field, 'value': non_finite_text(value),
                                        'time': time}
                     break
-        moving = linear != 0.0 or angular != 0.0
-        self.moving += int(moving)
-        self._last = (time, moving)
+        if _is_moving(linear, angular):
+            self.moving += 1
+        else:
+            self._zero_heard.append(time)
 
-    def finish(self, time):
-        """The run ended at time: the last command, if moving, may have been cut too."""
-        self._close(time)
-        self._last = None
+    def applied(self, stamp, linear, angular):
+        """The velocity (linear.x, angular.z) the simulator applied in its step stamped stamp:
+        odometry's twist."""
+        if _is_moving(linear, angular):
+            self._moved = stamp
+        elif self._moved is not None:
+            self._stops.append(self._moved)
+            self._moved = None
 
-    def _close(self, time):
-        if (self._last is not None and self._last[1]
-                and time - self._last[0] > self.watchdog + TIME_ROUNDING):
-            self.cut += 1
+    @property
+    def cut(self):
+        """The stops odometry showed that no zero command heard near them explains."""
+        heard = sorted(self._zero_heard)
+        return sum(1 for moved in list(self._stops)
+                   if not self._heard_near(heard, moved))
+
+    def _heard_near(self, heard, moved):
+        """Whether a zero command (heard: their times, sorted) came within the watchdog of
+        moved, the stamp of the last step that moved before a stop."""
+        first = bisect.bisect_right(heard, moved - self.watchdog)
+        return first < len(heard) and heard[first] <= moved + self.watchdog
 
     def record(self):
         return {'count': self.count, 'moving': self.moving, 'cut_by_watchdog': self.cut,

@@ -19,7 +19,8 @@ Everything scored comes from the simulator's ground truth and the world
 map (CourseMonitor), never from the solution's own topics; from the
 solution only the action's messages count, as what it declared, and what
 it commanded on cmd_vel (every command: a non-finite one, and those the
-simulator's watchdog cut, see evaluation/grading/commands.py). find_wall
+simulator's watchdog cut, as the simulator's odometry shows what it applied,
+see evaluation/grading/commands.py). find_wall
 is judged where its call replied, seen from the service's own TCP
 connection (evaluation/grading/service_calls.py), in the case's network
 namespace.
@@ -39,6 +40,7 @@ import time
 import rosgraph
 import rospy
 from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
 from std_msgs.msg import Bool
 
 from actionlib_msgs.msg import GoalStatus
@@ -54,7 +56,7 @@ from wall_follower.nodes.shared.case_graph import (GONE, GRAPH_POLL, NO_SIMULATO
                                                    grader_failed, solution_running,
                                                    wait_for_simulator, write_record)
 from wall_follower.nodes.shared.connections import keep_connected
-from wall_follower.nodes.shared.course_monitor import CourseMonitor
+from wall_follower.nodes.shared.course_monitor import QUEUE, CourseMonitor
 from wall_follower.nodes.shared.parameters import NodeParameters
 from wall_follower.nodes.shared.shutdown import (poll_until, quiet_on_shutdown,
                                                  raise_if_shut_down)
@@ -80,16 +82,23 @@ STATUS_NAMES = {GoalStatus.SUCCEEDED: 'succeeded', GoalStatus.ABORTED: 'aborted'
 
 class RunClock(object):
     """Simulated times of the first and the latest cmd_vel, since when the robot is stalled,
-    and every command (a CommandLog, against the simulator's watchdog)."""
+    and every command with the velocity the simulator applied at each step, odometry's
+    twist (a CommandLog, against the simulator's watchdog)."""
 
     def __init__(self):
         self.first = None
         self.latest = None
         self.stalled_since = None
         self.commands = CommandLog(rospy.get_param('simulator/base_watchdog_timeout', 0.2))
+        self._odometry = rospy.Subscriber('odom', Odometry, self._on_odometry, queue_size=QUEUE)
         self._subs = [rospy.Subscriber('cmd_vel', Twist, self._on_command, queue_size=1000),
-                      rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=100)]
+                      rospy.Subscriber('stalled', Bool, self._on_stalled, queue_size=100),
+                      self._odometry]
         keep_connected(self._subs)
+
+    def connected(self):
+        """Whether odometry is heard: without it, the watchdog's cuts go unseen."""
+        return self._odometry.get_num_connections() > 0
 
     def _on_command(self, msg):
         now = rospy.get_time()
@@ -97,6 +106,10 @@ class RunClock(object):
             self.first = now
         self.latest = now
         self.commands.add(now, msg.linear.x, msg.angular.z)
+
+    def _on_odometry(self, msg):
+        twist = msg.twist.twist
+        self.commands.applied(msg.header.stamp.to_sec(), twist.linear.x, twist.angular.z)
 
     def _on_stalled(self, msg):
         if not msg.data:
@@ -248,7 +261,6 @@ def case_record(monitor, params, seen, end_reason, start, start_pose, clock, cal
     calls: a FindWallWatch), else, never called, where the lap began, else
     where the robot ended (at end_time, simulated s).
     """
-    clock.commands.finish(end_time if end_time is not None else start)
     figures = course_figures(monitor)
     goal_pose = monitor.goal_pose
     call = calls.record(monitor.score.map, start) if calls else None
@@ -314,7 +326,8 @@ def main():
     monitor = CourseMonitor(course_map, start_on_goal=True, action_ns=params['action_ns'])
     clock = RunClock()
     graph = Graph(params['action_ns'])
-    if not wait_for_simulator(lambda: monitor.connected(('base_pose_ground_truth',))):
+    if not wait_for_simulator(lambda: monitor.connected(('base_pose_ground_truth',))
+                              and clock.connected()):
         return grader_failed(params, NO_SIMULATOR)
     call_simulator('unpause_physics', wait=SERVICE_WAIT)
     start = rospy.get_time()
