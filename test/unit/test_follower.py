@@ -11,6 +11,7 @@ import pytest
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from scan_queries import min_range
 from wall_follower.control.following.corner import CornerArc
+from wall_follower.control.following.follow_wall import passing_distance
 from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                                       FollowerParams, WallFollower)
 from wall_follower.control.following.inner_corner import LANDING_MARGIN, OUT_OF_REACH
@@ -729,6 +730,48 @@ def test_the_end_of_a_wall_standing_out_toward_the_robot_is_steered_clear_of():
     controller, lipped = update(lipped_corner(0.06))
     assert controller.state == FOLLOW
     assert abs(flush.angular) < 0.01 and lipped.angular > 0.3
+
+
+def receding_to_a_step(step_x, top, recedes=math.radians(25.0), right=0.25):
+    """A right wall that recedes from the heading, `right` off at the origin, and steps back
+    in step_x ahead to a wall along the heading, top to the right of it."""
+    def wall_y(x):
+        return -right - math.tan(recedes) * x
+    return [((-0.6, wall_y(-0.6)), (step_x, wall_y(step_x))),
+            ((step_x, wall_y(step_x)), (step_x + 0.05, -top)), ((step_x + 0.05, -top), (3.0, -top))]
+
+
+@pytest.mark.parametrize('top, turns', [(0.27, 'right'), (0.20, 'left')])
+def test_a_step_back_in_ahead_of_a_receding_wall_is_held_where_the_heading_passes_it(top, turns):
+    # Heading 25 degrees away from a wall that recedes (a shallow notch), the
+    # wall steps back in 0.3 m ahead. Held at target_distance across the
+    # receding line, the step's top read as if beside the robot, and FOLLOW
+    # turned left at the full turn rate, off the notch and out of the band,
+    # even where the present heading passes the top farther out than that.
+    world = receding_to_a_step(0.3, top)
+    seen = Observation(scan_view(world, (0.0, 0.0, 0.0), STAGE), EXACT)
+    assert seen.wall.angle < 0.0 and seen.proud > 0.0
+    controller = WallFollower(EXACT)
+    controller.state = FOLLOW
+    controller, command = update(world, controller=controller)
+    assert controller.state == FOLLOW
+    if turns == 'right':
+        assert command.angular < 0.0
+    else:
+        assert 0.0 < command.angular < EXACT.max_turn_rate
+
+
+@pytest.mark.parametrize('angle', [0.0, -0.2, -0.6])
+def test_passing_distance_is_where_the_heading_passes_the_top_of_a_step(angle):
+    # A top standing depth out of a wall at angle, reach ahead of the laser:
+    # the line through it parallel to the wall crosses x = reach that far right.
+    distance, depth, reach = 0.3, 0.1, 0.4
+    normal = np.array([math.cos(angle - math.pi / 2), math.sin(angle - math.pi / 2)])
+    # The point at x = reach on the line (distance - depth) along the normal.
+    y = ((distance - depth) - reach * normal[0]) / normal[1]
+    assert passing_distance(Line(distance, angle), depth, reach) == pytest.approx(-y)
+    if angle == 0.0:
+        assert passing_distance(Line(distance, angle), depth, reach) == pytest.approx(0.2)
 
 
 @pytest.mark.parametrize('convention', ALL, ids=IDS)

@@ -410,6 +410,41 @@ def test_a_left_turn_begun_at_the_bands_far_edge_keeps_the_wall_in_band(tmp_path
     assert len(out) <= 2 and max(turning) <= BAND[1] + 0.008, out
 
 
+@pytest.mark.parametrize('profile', ['stage', 'lds02', 'gazebo'])
+def test_a_step_back_in_past_a_shallow_notch_keeps_the_wall_in_band(tmp_path, profile):
+    # Generated world 0 of seed 131: a slanted wall bends away into a notch
+    # 0.1 m deep, then steps back in across the way, 0.26 m nearer. The
+    # step's top, held at target_distance across the notch's receding line,
+    # read as if beside the robot half a metre early: FOLLOW turned left off
+    # the notch, then parallel to the step's face, and the wall read out to
+    # 0.33-0.36 m for a second or two (94-96 % of the lap in band). Started
+    # on the slanted wall, 0.25 m from it, 0.5 m short of the notch.
+    world = generated_world(tmp_path, 131, 0, (0.96, -1.94, math.radians(111.5)))
+    score, states = lap(world, profile, time_limit=6.0)
+    distances = wall_distances(score)
+    out = [distance for distance in distances if not BAND[0] <= distance <= BAND[1]]
+    # Past the notch the robot turns left onto the step, whose hand-over to
+    # its wide end peaks about the band's edge (see the test above).
+    assert 'WALL_AHEAD' in states
+    assert len(out) <= 3 and max(distances) <= BAND[1] + 0.015, out
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01', 'lds02'])
+def test_the_top_of_a_step_turned_onto_is_held_along_the_wall_it_runs_beside(tmp_path, profile):
+    # Generated world 16 of seed 133: the wall steps 0.2 m in, square, and
+    # runs on parallel. The left turn onto the step's face leaves the robot
+    # heading away from the wall below it, and the step's top stands out of
+    # that wall: held where the present heading passes it (as past a notch,
+    # see above), not across the wall it runs parallel to, it let the robot
+    # close on the top to 0.18-0.19 m. Started 0.8 m short of the step.
+    world = generated_world(tmp_path, 133, 16, (1.07, -1.146, math.radians(0.2)))
+    score, states = lap(world, profile, time_limit=7.0)
+    distances = wall_distances(score)
+    out = [distance for distance in distances if not BAND[0] <= distance <= BAND[1]]
+    assert 'WALL_AHEAD' in states
+    assert len(out) <= 1 and min(distances) >= BAND[0] - 0.005, out
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

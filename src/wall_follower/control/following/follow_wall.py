@@ -6,7 +6,10 @@ wall, the robot slows to the arc that still turns parallel in time, and
 heading away from it, to the arc that turns back parallel in time. What
 stands out of the wall toward the robot just ahead (the face of the wall
 it meets at its end) is held at target_distance too, unless a wall lies
-across the way, which the left turn onto it is planned for.
+across the way, which the left turn onto it is planned for. Heading away
+from a wall that recedes, it is held where the present heading passes it
+(passing_distance), not across the wall's line; but not while settling
+after a left turn.
 """
 import math
 
@@ -46,7 +49,15 @@ class FollowWall(Manoeuvre):
         dip = self.inner_corner.dip(obs)
         proud = 0.0 if self.inner_corner.blocking(obs) else obs.proud
         gain = p.settle_gain if self.settling > 0.0 else 1.0
-        turn = steer(p, distance - proud, angle, p.target_distance - dip, gain)
+        held, heading = distance - proud, angle
+        if proud > 0.0 and -math.pi / 2 < angle < 0.0 and self.settling <= 0.0:
+            # A wall that recedes: what stands out of it is passed where the
+            # present heading passes it. Just after a left turn, the wall
+            # headed away from is the one the turn left, and what stands out
+            # of it the top of the step the turn was onto, which runs on
+            # parallel to it: held across its line, as before.
+            held, heading = passing_distance(obs.wall, proud, obs.proud_reach), 0.0
+        turn = steer(p, held, heading, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         from_rotation_centre = from_centre(obs.wall, p.laser_x).distance
         if angle > 0.0:
@@ -67,6 +78,26 @@ class FollowWall(Manoeuvre):
             # That arc is flown at the full turn rate, the way it was planned.
             speed, turn = radius * p.max_turn_rate, way * p.max_turn_rate
         return Command(speed, turn)
+
+
+def passing_distance(wall, depth, reach):
+    """How far to the right the present heading passes what stands depth (m) out of wall
+    toward the robot, reach (m) ahead of the laser (Observation.proud and proud_reach).
+
+    Its distance across the wall's line, wall.distance - depth, is where
+    the robot passes it once turned parallel to that line. Heading away
+    from a wall that recedes (angle < 0: a shallow notch, a bend away just
+    before a step back in), turning parallel would carry the robot right,
+    toward what stands out, since the line runs away from it and it does
+    not: held across the line, the step back in ahead of a notch read as
+    if beside the robot, and FOLLOW turned left at the full turn rate half
+    a metre early, off the notch and out of the band. Along the present
+    heading it is passed this much farther out: the line through it,
+    parallel to the wall, lies reach * sin(-angle) farther right where it
+    is, and across the heading that is 1 / cos(angle) more.
+    """
+    distance, angle = wall
+    return (distance - depth - reach * math.sin(angle)) / math.cos(angle)
 
 
 def steer(params, distance, angle, target, gain=1.0):
