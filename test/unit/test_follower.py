@@ -770,8 +770,10 @@ def test_passing_distance_is_where_the_heading_passes_the_top_of_a_step(angle):
     # The point at x = reach on the line (distance - depth) along the normal.
     y = ((distance - depth) - reach * normal[0]) / normal[1]
     assert passing_distance(Line(distance, angle), depth, reach) == pytest.approx(-y)
-    if angle == 0.0:
-        assert passing_distance(Line(distance, angle), depth, reach) == pytest.approx(0.2)
+
+
+def test_along_a_parallel_wall_the_heading_passes_a_top_across_the_walls_line():
+    assert passing_distance(Line(0.3, 0.0), 0.1, 0.4) == pytest.approx(0.3 - 0.1)
 
 
 @pytest.mark.parametrize('convention', ALL, ids=IDS)
