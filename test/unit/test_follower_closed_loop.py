@@ -391,6 +391,19 @@ def test_round_the_end_of_a_wall_a_corner_ahead_on_the_left_turns_the_robot_no_o
     assert farthest <= BAND[1], farthest
 
 
+def readings(tmp_path, seed, index, start, profile, time_limit):
+    """The judge's readings of the wall (wall_distances) along a run from start on generated
+    world index of seed, and the controller's states."""
+    score, states = lap(generated_world(tmp_path, seed, index, start), profile,
+                        time_limit=time_limit)
+    return wall_distances(score), states
+
+
+def out_of_band(distances):
+    """The readings outside the band."""
+    return [distance for distance in distances if not BAND[0] <= distance <= BAND[1]]
+
+
 @pytest.mark.parametrize('profile', ['stage', 'lds02', 'gazebo'])
 def test_a_left_turn_begun_at_the_bands_far_edge_keeps_the_wall_in_band(tmp_path, profile):
     # Generated world 24 of seed 129: find_wall leaves the robot 0.30 m from
@@ -403,7 +416,7 @@ def test_a_left_turn_begun_at_the_bands_far_edge_keeps_the_wall_in_band(tmp_path
     score, states = lap(world, profile, time_limit=5.0)
     # Past the first second: the lap begins where find_wall ends, on the band's edge.
     turning = wall_distances(score)[int(round(1.0 / load_world(world).interval_sim)):]
-    out = [distance for distance in turning if not BAND[0] <= distance <= BAND[1]]
+    out = out_of_band(turning)
     assert 'WALL_AHEAD' in states
     # The tightened turn peaks about the band's edge, and a grid cell or a
     # noisy beam puts a scan or two a few millimetres past it.
@@ -419,10 +432,9 @@ def test_a_step_back_in_past_a_shallow_notch_keeps_the_wall_in_band(tmp_path, pr
     # the notch, then parallel to the step's face, and the wall read out to
     # 0.33-0.36 m for a second or two (94-96 % of the lap in band). Started
     # on the slanted wall, 0.25 m from it, 0.5 m short of the notch.
-    world = generated_world(tmp_path, 131, 0, (0.96, -1.94, math.radians(111.5)))
-    score, states = lap(world, profile, time_limit=6.0)
-    distances = wall_distances(score)
-    out = [distance for distance in distances if not BAND[0] <= distance <= BAND[1]]
+    distances, states = readings(tmp_path, 131, 0, (0.96, -1.94, math.radians(111.5)), profile,
+                                 time_limit=6.0)
+    out = out_of_band(distances)
     # Past the notch the robot turns left onto the step, whose hand-over to
     # its wide end peaks about the band's edge (see the test above).
     assert 'WALL_AHEAD' in states
@@ -437,10 +449,9 @@ def test_the_top_of_a_step_turned_onto_is_held_along_the_wall_it_runs_beside(tmp
     # that wall: held where the present heading passes it (as past a notch,
     # see above), not across the wall it runs parallel to, it let the robot
     # close on the top to 0.18-0.19 m. Started 0.8 m short of the step.
-    world = generated_world(tmp_path, 133, 16, (1.07, -1.146, math.radians(0.2)))
-    score, states = lap(world, profile, time_limit=7.0)
-    distances = wall_distances(score)
-    out = [distance for distance in distances if not BAND[0] <= distance <= BAND[1]]
+    distances, states = readings(tmp_path, 133, 16, (1.07, -1.146, math.radians(0.2)), profile,
+                                 time_limit=7.0)
+    out = out_of_band(distances)
     assert 'WALL_AHEAD' in states
     assert len(out) <= 1 and min(distances) >= BAND[0] - 0.005, out
 
