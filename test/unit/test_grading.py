@@ -20,7 +20,7 @@ from actionlib_msgs.msg import GoalID, GoalStatus
 from geometry_msgs.msg import Point, Twist
 from nav_msgs.msg import Odometry
 
-from test_grading_commands import stage_log
+from command_replay import stage_log
 from wall_follower.evaluation.grading.commands import CommandLog
 from wall_follower.evaluation.grading.criteria import find_wall_fits, grade_case, grades, shown
 from wall_follower.evaluation.grading.service_calls import (CallWatch, PortWatch, peers_by_port,
