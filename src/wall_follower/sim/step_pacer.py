@@ -5,8 +5,10 @@ which answer each scan a little later, fall behind and see the world jump.
 The built-in simulator instead holds a chosen multiple of real time, gives a
 controller whose answer is a little late part of a period more (the steady
 schedule takes the delay back on the next steps), and can go further and
-wait for the controllers (lockstep), which makes a run give the same result
-however busy the machine is.
+wait for the controllers (lockstep), which makes a robot's driving the same
+however busy the machine is, short of the timeout. Only while nobody drives
+does the world step by the wall clock (the grace), so how long a robot
+stands before it first moves can differ by a step from run to run.
 """
 import threading
 import time

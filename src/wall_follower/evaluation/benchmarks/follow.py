@@ -2,11 +2,14 @@
 
 Runs main.launch without find_wall, in lockstep simulated time, and reads
 the ground-truth figures written by course_report. The stage profile is
-noise-free and gives the same lap every time, so it runs once. A noisy
-profile (lds01, lds02, gazebo, course720) gives a different lap for every
-noise seed, and a lap of it has been seen to differ between runs at one
-seed, so one lap is a sample, not a figure: its row is the mean over
---seeds laps (seeds 0, 1, ...), with the worst lap's ratio beside it.
+noise-free and drives the same path every time, so it runs once; its lap
+time may still differ by a step (0.1 s) between runs, as the robot stands
+after the record_odom goal for one step more or less (lockstep steps by
+wall time while nobody drives). A noisy profile (lds01, lds02, gazebo,
+course720) gives a different lap for every noise seed, and at one seed a
+lap that sets off a step later meets other noise, so one lap is a sample,
+not a figure: its row is the mean over --seeds laps (seeds 0, 1, ...), with
+the worst lap's ratio beside it.
 
 --simulator stage runs the same laps on real stageros (stage_ros installed),
 with its window (under xvfb-run without a display), at the world's pace and
