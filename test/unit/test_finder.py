@@ -350,6 +350,25 @@ def test_a_slide_judges_the_way_behind_by_the_loops_ahead_min_known(min_known):
     assert backed_up == (min_known is None)
 
 
+@pytest.mark.parametrize('convention', CONVENTIONS, ids=ids(CONVENTIONS))
+def test_aligned_short_of_a_wall_across_the_way_it_slides_back_until_the_first_turn_has_room(
+        convention):
+    # A step 0.2 m high stands across the way 0.2 m ahead of the point below
+    # the robot's centre. Aligned there, its top would lie nearer the centre
+    # than turn_room, and the lap's first move, a left turn in place onto its
+    # face, would read that face nearer than the band.
+    top = (0.2, -0.3)
+    world = [((-3.0, -0.5), (3.0, -0.5)), ((top[0], -0.5), top)]
+    walker, states, _, end, _ = drive(world, (0.0, 0.0, -math.pi / 2), convention)
+    assert walker.success, walker.failure_reason
+    assert finder.SLIDE in states
+    room = math.hypot(top[0] - end[0], top[1] - end[1])
+    assert room >= defaults(FINDER)['turn_room'] - 0.01
+    distance, heading = right_wall_error((-3.0, -0.5, 3.0, 3.0), end)
+    assert distance == pytest.approx(WALL_DISTANCE, abs=0.015)
+    assert abs(heading) <= defaults(FINDER)['heading_tolerance']
+
+
 def test_a_wall_too_short_to_fill_the_right_ends_the_slide_where_it_is_short_both_sides():
     # With right_sector 1 rad the wall must go on 0.44 m either side of the
     # laser, more than half of this 0.8 m wall. Aligned, the laser is 0.13 m

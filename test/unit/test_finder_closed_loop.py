@@ -7,6 +7,7 @@ from ground truth against the world's exact edges, as the benchmark does.
 import math
 import os
 
+import numpy as np
 import pytest
 
 from generated_worlds import write_generated
@@ -15,6 +16,7 @@ from wall_follower.control.motion import MAX_ANGULAR, MAX_LINEAR, clamp
 from wall_follower.control.sensing.scan import ScanView
 from wall_follower.evaluation.grading.criteria import FIND_WALL_DISTANCE, FIND_WALL_HEADING
 from wall_follower.evaluation.scoring.course import CourseMap
+from wall_follower.evaluation.scoring.geometry import cast_rays, solid_edges
 from wall_follower.params import defaults
 from wall_follower.params.course.wall_finder import FINDER
 from wall_follower.sim.engine import Simulation
@@ -25,6 +27,9 @@ WORLD = os.path.join(WORLDS, 'obstacles.world')
 LASER_X = -0.032  # the Burger of worlds/burger.inc
 TIME_LIMIT = 20.0
 WALL_DISTANCE = defaults(FINDER)['wall_distance']
+TURN_ROOM = defaults(FINDER)['turn_room']
+# Stage's grid cell in the generated worlds [m]: how much nearer a wall may stand than read.
+GRID_CELL = 0.02
 
 POSES = {
     'world start, wall on the right at 0.25 m': (-1.75, 0.8, -math.pi / 2),
@@ -108,7 +113,7 @@ def generated(directory, seed, index):
 
 def assert_found(path, start, profile='stage', seed=3):
     """A search from start in the world at path, with the laser profile and the simulator's
-    seed, ends beside a wall as the grader asks."""
+    seed, ends beside a wall as the grader asks; the pose it ends at."""
     finder, elapsed, pose, stalled, _ = find_wall(start, profile, path, seed)
     assert finder.success, finder.failure_reason or 'no answer within %.0f s' % elapsed
     distance, heading_error = CourseMap(path).right_wall_alignment(pose)
@@ -116,6 +121,7 @@ def assert_found(path, start, profile='stage', seed=3):
     assert low <= distance <= high
     assert abs(heading_error) <= FIND_WALL_HEADING
     assert not stalled
+    return pose
 
 
 def test_among_slanted_walls_and_islands_it_first_drives_to_where_a_wall_is_seen_across(tmp_path):
@@ -151,6 +157,25 @@ def test_aligned_beside_a_walls_end_it_slides_along_until_the_grader_reads_the_w
     # either side of the right, read past its end a wall 0.97 m away: 0.21 m and
     # 40 degrees off. The search now slides on along the wall before it ends.
     assert_found(*generated(tmp_path, 41, 19))
+
+
+def room_ahead(path, pose):
+    """How far the nearest wall ahead of the rotation centre at pose lies from it, looking
+    from 60 degrees right of the heading round to its left: the wall on the right, 60
+    degrees off, reads some way past turn_room."""
+    angles = pose[2] + np.radians(np.arange(-60.0, 90.5, 0.5))
+    return float(np.min(cast_rays(solid_edges(load_world(path)), pose[0], pose[1], angles)))
+
+
+@pytest.mark.parametrize('profile', ['stage', 'lds01', 'lds02', 'gazebo', 'course720'])
+def test_in_a_sharp_corner_it_backs_out_until_the_laps_first_turn_has_room(tmp_path, profile):
+    # Generated world 30 of seed 129: the wall chosen from the start runs into
+    # a corner of about 60 degrees. Aligned, the robot's centre was 0.19 m
+    # from the corner's other wall, and the lap began with a quarter turn in
+    # place onto it that read it at 0.18 m for two seconds (96 % in band).
+    path, start = generated(tmp_path, 129, 30)
+    pose = assert_found(path, start, profile)
+    assert room_ahead(path, pose) >= TURN_ROOM - GRID_CELL
 
 
 @pytest.mark.parametrize('profile, seed', [('stage', 3), ('lds01', 4), ('lds01', 7)])

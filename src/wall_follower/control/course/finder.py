@@ -18,7 +18,11 @@ The robot is steered by the wall's fitted line, not by single rays, which
 makes both distance and heading far steadier than the shortest ray would.
 Once aligned, it checks what a user's node will read: the wall on every
 beam around straight right. Beside a wall's end it is not so, and the robot
-slides along the wall, away from the end, until it is (SLIDE).
+slides along the wall, away from the end, until it is (SLIDE). It checks
+too that the lap can begin there: in a corner sharper than a right angle,
+or with a wall across the way just ahead, the follower's first move is a
+left turn in place, which would bring the reference point nearer the next
+wall than the band allows, so the robot slides back until it has the room.
 """
 import math
 
@@ -256,7 +260,8 @@ class WallFinder(object):
         return Command(0.0, self._turn(heading_error))
 
     def _aligned(self, view):
-        """Done; or, beside a wall's end the first time aligned, first the slide away from it."""
+        """Done; or, beside a wall's end or short of room ahead the first time aligned, first
+        the slide away from there."""
         if self._slid or not self._slide_direction(view):
             self.state = DONE
             return STOP
@@ -296,8 +301,9 @@ class WallFinder(object):
 
     def _slide_direction(self, view):
         """+1 (forward) where the chosen wall does not read on the beams behind the right,
-        within right_sector, -1 (back) where it does not read ahead of it, 0 where it reads
-        on both sides or on neither.
+        within right_sector, -1 (back) where it does not read ahead of it or where there is
+        no room ahead (_cornered), 0 where it reads on both sides or on neither, or where
+        there is no room ahead and it does not read behind.
 
         A beam misses the wall when it reads nothing, or a hit more than
         WALL_GATE off the wall's line: past the wall's end, the wall beyond
@@ -313,8 +319,26 @@ class WallFinder(object):
         order = np.argsort(offsets)
         misses, offsets = ~reads[order], offsets[order]
         behind = _leading(misses[offsets < 0.0]) > STRAY_BEAMS
-        ahead = _leading(misses[offsets > 0.0][::-1]) > STRAY_BEAMS
+        ahead = _leading(misses[offsets > 0.0][::-1]) > STRAY_BEAMS or self._cornered(view)
         return float(behind) - float(ahead)
+
+    def _cornered(self, view):
+        """True when a hit off the chosen wall lies ahead of the rotation centre, within
+        turn_room of it.
+
+        The lap begins from here, and a wall that near ahead is turned onto
+        at once, in place: the laser swings round the centre and ends about
+        as far from that wall as the centre is. The chosen wall's own hits
+        (within WALL_GATE of its line) are no such wall, however near the
+        corner they lie.
+        """
+        _, points, valid = view.beams(0.0, math.pi / 2.0)
+        centre = np.array(self._centre)
+        with np.errstate(invalid='ignore'):
+            ahead = (valid & (points[:, 0] > centre[0])
+                     & (np.abs(self.wall.line.offsets(points)) > WALL_GATE))
+        near = np.hypot(*(points[ahead] - centre).T) < self.params['turn_room']
+        return bool(near.any())
 
     # Helpers
 

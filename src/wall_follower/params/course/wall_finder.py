@@ -40,6 +40,10 @@ FINDER = (
           'does. A grader reads 30 degrees either side; Stage draws a corner up to a grid cell '
           'long, which the margin covers', 0.0, math.pi / 2),
         P('slide_speed', 0.05, 'speed of that slide [m/s]', 0.0, 0.19),
+        P('turn_room', 0.25, 'once aligned, whatever lies ahead of the rotation centre and '
+          'nearer than this to it, but the wall on the right (a wall across the way, the far '
+          'side of a sharp corner), leaves the lap\'s first left turn no room to keep in the '
+          'band: the robot slides back along the wall until nothing does [m]', 0.0, 1.0),
         P('min_linear', 0.02, 'slowest useful speed: the last millimetres are covered at it '
           '[m/s]', 0.0, 0.19),
         P('min_angular', 0.03, 'slowest useful turn rate [rad/s]', 0.0, 0.49),
