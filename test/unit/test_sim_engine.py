@@ -273,6 +273,27 @@ def test_noise_has_the_turtlebot_sigma_and_is_seeded(profile):
     assert np.std((a - c)[valid]) / math.sqrt(2) == pytest.approx(0.01, rel=0.25)
 
 
+@pytest.mark.parametrize('profile', ['lds01', 'lds02'])
+def test_steps_on_which_nobody_drives_leave_the_runs_noise_where_it_was(profile):
+    # A lockstep simulator steps by the wall clock while nobody drives, so how
+    # many such steps pass before a controller starts depends on the machine.
+    # Their scans are all alike, and the lap that follows meets the same noise
+    # (lds02 draws its beam count too) however many passed.
+    world = _room()
+
+    def lap(idle_steps):
+        sim = Simulation(world, laser_profile=profile, seed=5, poses={0: (0.0, 0.0, 0.3)})
+        idle = [sim.step(idle=True).robots[0].scan.ranges for _ in range(idle_steps)]
+        return idle, [frame.robots[0].scan.ranges for frame in _drive(sim, 0.1, 0.2, 5)]
+
+    no_wait, driven_at_once = lap(0)
+    waits, driven_later = lap(3)
+    assert not no_wait
+    assert all(np.array_equal(waits[0], ranges) for ranges in waits[1:])
+    assert all(np.array_equal(a, b) for a, b in zip(driven_at_once, driven_later))
+    assert not np.array_equal(waits[0], driven_later[0])    # noisy too, by a stream of their own
+
+
 def test_two_robots_see_and_block_each_other(tmp_path):
     world = _world(tmp_path, '''
         define bot position ( size [ 0.2 0.2 0.2 ] ranger ( sensor ( range [ 0 3 ] fov 360

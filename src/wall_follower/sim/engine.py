@@ -55,6 +55,8 @@ _ROBOT_RANGER_RETURN = 1.0
 DEFAULT_ODOM_ERROR_LIMITS = (0.015, 0.015, 0.025)
 # Updates in a row, each after a command to stand, that make a robot held still (driven()).
 HOLDING_STEPS = 2
+# Beside the seed, the key of the noise stream of a step on which nobody drives (step()).
+IDLE_STREAM = 1
 
 
 class RobotState(object):
@@ -158,14 +160,24 @@ class Simulation(object):
         robot.pose = (float(pose[0]), float(pose[1]), normalize_angle(float(pose[2])))
         robot.stalled = False
 
-    def step(self, with_scans=True, with_images=False):
+    def step(self, with_scans=True, with_images=False, idle=False):
         """Advance one world update and return its Frame (scans None if not with_scans,
-        camera images None unless with_images)."""
+        camera images None unless with_images).
+
+        idle: nobody drives (see driven()), as a simulator in lockstep tells
+        it. The scans then draw their noise from a stream of their own,
+        begun afresh at every such step, and the run's stream is left where
+        it was. Such steps are paced by the wall clock, and how many of
+        them pass before a controller starts depends on the machine; the
+        run's stream, drawn from only while someone drives, meets a lap
+        with the same noise however many passed.
+        """
         for robot in self.robots:
             # Commanded since the last update (it bore this time stamp), to stand.
             held = robot.last_command_us == self._time_us and robot.command == (0.0, 0.0)
             robot.held_steps = robot.held_steps + 1 if held else 0
-        scans = [self._scan(i) if with_scans else None for i in range(len(self.robots))]
+        rng = np.random.RandomState((self._seed, IDLE_STREAM)) if idle else self.rng
+        scans = [self._scan(i, rng) if with_scans else None for i in range(len(self.robots))]
         images = [self.camera_image(i) if with_images else None
                   for i in range(len(self.robots))]
         odoms = []
@@ -255,19 +267,20 @@ class Simulation(object):
         cosr, sinr = math.cos(ra), math.sin(ra)
         return rx + sensor_x * cosr - sensor_y * sinr, ry + sensor_x * sinr + sensor_y * cosr, ra
 
-    def _scan(self, index):
+    def _scan(self, index, rng):
+        """Robot index's Scan, its noise drawn from rng (a numpy RandomState)."""
         robot = self.robots[index]
         ranger = robot.spec.ranger
         if ranger is None:
             return None
         x, y, ranger_yaw = self._ranger_origin(index)
-        layout = beam_layout(self.laser_profile, ranger, self.rng)
+        layout = beam_layout(self.laser_profile, ranger, rng)
         limits = reach(self.laser_profile, ranger)
         # Stage sweeps from the normalised first-beam angle in float32 steps.
         first = normalize_angle(ranger_yaw + (ranger.sensor_pose[3] + layout.angle_min))
         angles = stage_beam_angles(first, layout.angle_increment, layout.count)
         if ranger.noise[2] > 0.0:
-            angles = angles + angle_noise(ranger, layout, self.rng)
+            angles = angles + angle_noise(ranger, layout, rng)
         own = [footprint_cells(robot.spec, robot.pose, self.grid.ppm)]
         others = []
         for other_index, other in enumerate(self.robots):
@@ -278,8 +291,7 @@ class Simulation(object):
                                            height=ranger.sensor_height, robot_cells=own,
                                            other_cells=others)
         hit = ranges < limits.max
-        ranges, intensities = report(self.laser_profile, ranges, intensities, hit, ranger,
-                                     self.rng)
+        ranges, intensities = report(self.laser_profile, ranges, intensities, hit, ranger, rng)
         return Scan(layout.angle_min, layout.angle_max, layout.angle_increment,
                     limits.published_min, limits.published_max, ranges, intensities,
                     self.laser_profile)

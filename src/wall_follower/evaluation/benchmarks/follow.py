@@ -6,10 +6,12 @@ noise-free and drives the same path every time, so it runs once; its lap
 time may still differ by a step (0.1 s) between runs, as the robot stands
 after the record_odom goal for one step more or less (lockstep steps by
 wall time while nobody drives). A noisy profile (lds01, lds02, gazebo,
-course720) gives a different lap for every noise seed, and at one seed a
-lap that sets off a step later meets other noise, so one lap is a sample,
-not a figure: its row is the mean over --seeds laps (seeds 0, 1, ...), with
-the worst lap's ratio beside it.
+course720) gives a different lap for every noise seed. At one seed the lap
+is mostly the same from run to run (the noise is drawn only while someone
+drives), but now and then the follower's first answer comes a step behind
+and the lap goes another way, so one lap is a sample, not a figure: its row
+is the mean over --seeds laps (seeds 0, 1, ...), with the worst lap's ratio
+beside it.
 
 --simulator stage runs the same laps on real stageros (stage_ros installed),
 with its window (under xvfb-run without a display), at the world's pace and

@@ -359,7 +359,10 @@ class StageSimNode(object):
             if first_step is None:
                 first_step = time.time()
             with self._lock:
-                frame = self._sim.step(with_scans=with_scans, with_images=with_images)
+                # Taken with the step, under the lock the commands come in by: a command
+                # that came during the wait drives this step, one that comes later the next.
+                idle = self._pacer.lockstep and not any(self._sim.driven())
+                frame = self._sim.step(with_scans=with_scans, with_images=with_images, idle=idle)
             self._pacer.readings_out()
             try:
                 self._publish(frame)
