@@ -332,13 +332,10 @@ class WallFinder(object):
         (within WALL_GATE of its line) are no such wall, however near the
         corner they lie.
         """
-        _, points, valid = view.beams(0.0, math.pi / 2.0)
-        centre = np.array(self._centre)
-        with np.errstate(invalid='ignore'):
-            ahead = (valid & (points[:, 0] > centre[0])
-                     & (np.abs(self.wall.line.offsets(points)) > WALL_GATE))
-        near = np.hypot(*(points[ahead] - centre).T) < self.params['turn_room']
-        return bool(near.any())
+        hits = view.points(0.0, math.pi / 2.0)
+        off_wall = hits[np.abs(self.wall.line.offsets(hits)) > WALL_GATE] - self._centre
+        ahead = off_wall[off_wall[:, 0] > 0.0]
+        return bool((np.hypot(ahead[:, 0], ahead[:, 1]) < self.params['turn_room']).any())
 
     # Helpers
 
