@@ -65,6 +65,22 @@ def test_observing_re_pins_the_tip_to_the_corner_not_to_the_wall_beside_it():
     assert arc.tip == pytest.approx(seen, abs=0.006)
 
 
+def test_round_a_corner_that_turns_by_less_than_half_a_right_angle_the_tip_stays_put():
+    # The next wall runs on 20 deg further round from the tip, out along the
+    # corner's diagonal itself: re-pinned scan after scan, the tip is held
+    # within one gate of where it was pinned along the wall that ended.
+    arc = start_arc()
+    tip = arc.tip.copy()
+    back = np.arange(-0.5, 0.0, 0.005)
+    ended = np.column_stack((tip[0] + back, np.full(back.size, tip[1])))
+    bend = math.radians(20.0)
+    on = -back[::-1]
+    next_wall = tip + np.column_stack((on * math.cos(bend), -on * math.sin(bend)))
+    for _ in range(10):
+        assert arc.observe(np.vstack((ended, next_wall)), gate=0.1)
+    assert arc.tip[0] - tip[0] <= 0.1
+
+
 def test_pulled_toward_the_next_wall_the_centre_moves_square_to_it_and_with_the_robot():
     arc = start_arc()
     planned = arc.center

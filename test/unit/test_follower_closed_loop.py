@@ -456,6 +456,26 @@ def test_the_top_of_a_step_turned_onto_is_held_along_the_wall_it_runs_beside(tmp
     assert len(out) <= 1 and min(distances) >= BAND[0] - 0.005, out
 
 
+@pytest.mark.parametrize('start, profile', [
+    ((-2.339, 0.604, -116.3), 'stage'), ((-2.339, 0.604, -116.3), 'lds02'),
+    ((-2.42, -0.115, -25.3), 'lds01')])
+def test_round_a_tooth_on_a_slanted_wall_the_arc_stays_on_the_tooth(tmp_path, start, profile):
+    # Generated world 35 of seed 138: a tooth 0.1 m high and a few
+    # centimetres wide stands on a slanted wall, whose next stretch runs on
+    # from its top 18 deg further round. Turned a little left onto the
+    # tooth's face, the robot rounds the tooth as a corner; re-pinned at
+    # every scan to the hit farthest out along the corner's diagonal, the
+    # tip crept down the next stretch, and the arc round it took the robot
+    # in to 0.16-0.19 m of that wall for up to two seconds (96.3-96.5 % of
+    # the lap in band). Started on the wall before the left turn ahead of
+    # the tooth, or just after it.
+    x, y, heading = start
+    distances, states = readings(tmp_path, 138, 35, (x, y, math.radians(heading)), profile,
+                                 time_limit=15.0)
+    assert 'OUTER_CORNER' in states
+    assert min(distances) >= BAND[0], out_of_band(distances)
+
+
 def test_a_turn_onto_a_short_step_is_not_ended_by_the_wall_it_leaves(tmp_path):
     # Generated world 1 of seed 3: the room's south wall steps 0.24 m north
     # where a wing joins it. Turning left onto the step, the robot had only

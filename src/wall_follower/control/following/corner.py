@@ -44,6 +44,8 @@ class CornerArc(object):
     def __init__(self, tip, along, center, laser_x=0.0):
         self.laser_x = float(laser_x)
         self.tip = np.asarray(tip, dtype=float)
+        # Where the tip was first pinned, carried along like it: see observe.
+        self._pinned = self.tip.copy()
         along = np.asarray(along, dtype=float) / math.hypot(*along)
         away = np.array((-along[1], along[0]))
         self._to_center = center[0] * along + center[1] * away
@@ -63,7 +65,8 @@ class CornerArc(object):
 
     def moved(self, advance, turn):
         """Follow the robot's move (advance metres ahead, then turn rad left)."""
-        self.tip = seen_after_move(self.tip[None, :], advance, turn, self.laser_x)[0]
+        self.tip, self._pinned = seen_after_move(np.array((self.tip, self._pinned)), advance, turn,
+                                                 self.laser_x)
         c, s = math.cos(turn), math.sin(turn)
         rotate = np.array(((c, s), (-s, c)))
         self._to_center = rotate.dot(self._to_center)
@@ -87,13 +90,25 @@ class CornerArc(object):
         return float(wrap_angle(math.atan2(self._along[1], self._along[0])))
 
     def observe(self, points, gate):
-        """Re-pin the tip to the hits within gate of where it is expected.
+        """Re-pin the tip to the hits within gate of where it is expected, and no more than
+        gate farther along the wall that ended than where it was first pinned.
 
         The tip is the point of the corner farthest out along its outward
-        direction; the second farthest is taken, so that one spurious beam
-        cannot move it. Returns whether the tip was seen.
+        direction, the diagonal half way between a square corner's two
+        walls; the second farthest is taken, so that one spurious beam
+        cannot move it. The next wall of a corner that turns by less than
+        half a right angle runs out along that diagonal itself: re-pinned
+        scan after scan, the tip crept along it, and the arc round that
+        moving tip carried the robot in onto the next wall (round a tooth
+        standing out of a slanted wall, whose wall runs on 18 degrees
+        further round, 0.16 m from it for two seconds). What a re-pin is
+        for moves the tip no farther along the wall that ended than one
+        gate: from an end first seen short of the true one on Stage's
+        saw-tooth, or from the foot of a step's face up to its top. Returns
+        whether the tip was seen.
         """
         near = points[np.hypot(*(points - self.tip).T) < gate]
+        near = near[(near - self._pinned).dot(self._along) <= gate]
         if len(near) < 2:
             return False
         # Out along the corner's diagonal, halfway between the two walls.
