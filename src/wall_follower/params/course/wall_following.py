@@ -159,8 +159,9 @@ FOLLOWER = (
           'round the tip (the tip is seen to a grid cell or so) [m]', 0.0, 0.5),
         P('circling_speed_share', 0.9, 'a corner with no wall to pin an arc to is circled at '
           'this share of target_distance times max_turn_rate (turn headroom)', 0.0, 1.0),
-        P('corner_gate', 0.1, 'the tip of a corner is looked for this near where it is expected '
-          '[m]', 0.0, 1.0),
+        P('corner_gate', 0.1, 'the tip of a corner is looked for this near where it is expected, '
+          'and no farther than this along the wall that ended from where it was first seen [m]',
+          0.0, 1.0),
         P('corner_bearing', math.radians(30.0), 'after a left turn, circle the end of a wall '
           'only if this near the right, or farther behind it with no wall along the right '
           '[rad]', 0.0, math.pi),
