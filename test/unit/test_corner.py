@@ -18,11 +18,13 @@ KEPT = RADIUS - ROUNDING   # distance kept from the rounded-off corner
 RIGHT_AHEAD = math.radians(-60.0)
 
 
-def corner_points(tip, step=0.005):
-    """Hits along a wall ending at tip (along +x, wall below) and the next wall going down."""
+def corner_points(tip, step=0.005, turn=math.pi / 2):
+    """Hits along a wall ending at tip (along +x, wall below) and the next wall, turned turn
+    (rad) right from it: going down for a square corner."""
     back = np.arange(-0.5, 0.0, step)
     old = np.column_stack((tip[0] + back, np.full(back.size, tip[1])))
-    new = np.column_stack((np.full(back.size, tip[0]), tip[1] + back[::-1]))
+    on = -back[::-1]
+    new = tip + np.column_stack((on * math.cos(turn), -on * math.sin(turn)))
     return np.vstack((old, [tip], new))
 
 
@@ -71,13 +73,8 @@ def test_round_a_corner_that_turns_by_less_than_half_a_right_angle_the_tip_stays
     # within one gate of where it was pinned along the wall that ended.
     arc = start_arc()
     tip = arc.tip.copy()
-    back = np.arange(-0.5, 0.0, 0.005)
-    ended = np.column_stack((tip[0] + back, np.full(back.size, tip[1])))
-    bend = math.radians(20.0)
-    on = -back[::-1]
-    next_wall = tip + np.column_stack((on * math.cos(bend), -on * math.sin(bend)))
     for _ in range(10):
-        assert arc.observe(np.vstack((ended, next_wall)), gate=0.1)
+        assert arc.observe(corner_points(tip, turn=math.radians(20.0)), gate=0.1)
     assert arc.tip[0] - tip[0] <= 0.1
 
 
