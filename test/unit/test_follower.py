@@ -398,6 +398,45 @@ def test_a_left_turn_held_only_by_the_wall_it_leaves_hands_back_to_following():
     assert controller.state == FOLLOW
 
 
+def bumpy_wall(distance, proud, start=-0.05, end=0.15, pitch=0.04, width=0.01):
+    """A straight wall distance (m) to the right, with bumps width wide standing proud (m)
+    out of it toward the way every pitch from start to end (m along x)."""
+    near = -distance + proud
+    bumps = []
+    for x in np.arange(start, end, pitch):
+        bumps += [((x, -distance), (x, near)), ((x, near), (x + width, near)),
+                  ((x + width, near), (x + width, -distance))]
+    return right_wall(distance) + bumps
+
+
+@pytest.mark.parametrize('away_deg', [3.0, 6.0, 9.0])
+def test_a_left_turn_come_round_parallel_to_a_wall_whose_near_side_stands_out_is_over(away_deg):
+    # The wall a left turn lands on reads a few centimetres out of its fitted
+    # line on the near side (Stage's grid along a slanted wall), at the
+    # widened lane's edge. Held on for those hits, the turn went on past
+    # parallel, handed over to OUTER_CORNER, and circled 0.41 m out from the
+    # wall for 2.7 s (seed 140, world 12, course720 laser: 96.3 % in band).
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    world = bumpy_wall(0.23, 0.035)
+    obs = Observation(scan_view(world, (0.0, 0.0, math.radians(away_deg)), STAGE), EXACT)
+    assert not controller.inner_corner.clear_of_lane_edges(obs)
+    update(world, (0.0, 0.0, math.radians(away_deg)), controller=controller)
+    assert controller.state == FOLLOW
+
+
+@pytest.mark.parametrize('away_deg', [3.0, 6.0, 9.0])
+def test_a_left_turn_goes_on_for_what_stands_out_of_its_wall_farther_than_the_margin(away_deg):
+    # A stub standing out of the wall by more than clear_margin is not that
+    # wall's reading but something beside the way: a turn handed back to
+    # FOLLOW is steered straight back into it.
+    controller = WallFollower(EXACT)
+    controller.state = WALL_AHEAD
+    stub = bumpy_wall(0.23, EXACT.clear_margin + 0.02, start=0.1, end=0.11, width=0.03)
+    update(stub, (0.0, 0.0, math.radians(away_deg)), controller=controller)
+    assert controller.state == WALL_AHEAD
+
+
 @pytest.mark.parametrize('distance, into_deg', [(0.23, 5.0), (0.23, 7.0), (0.24, 8.0)])
 def test_the_last_degrees_onto_a_wall_that_has_left_the_lane_are_flown_wide(distance, into_deg):
     # Past the corner the new wall has left the lane ahead, but the robot

@@ -191,11 +191,14 @@ class WallFollower(object):
         it nearer than front_clear_distance, only means the turn is not
         over yet. A wall farther across the way is turned onto when it
         comes within reach, from FOLLOW, like any other. A turn held on by
-        nothing but the wall it is leaving is over, and FOLLOW steers back
-        along that wall.
+        nothing but the wall it is leaving, or by the near side of the wall
+        it has come round parallel to, is over, and FOLLOW steers along
+        that wall.
         """
         if not self.inner_corner.clear_of_lane_edges(obs):
-            return FOLLOW if self.inner_corner.leaving_its_wall(obs) else WALL_AHEAD
+            over = (self.inner_corner.leaving_its_wall(obs)
+                    or self.inner_corner.landed_past_parallel(obs))
+            return FOLLOW if over else WALL_AHEAD
         if self.inner_corner.done(obs):
             return FOLLOW
         if obs.front < self.params.front_clear_distance or (

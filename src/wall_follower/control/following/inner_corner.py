@@ -240,6 +240,22 @@ class InnerCorner(Manoeuvre):
                 and obs.wall.distance < p.corridor_half_width + p.clear_margin
                 and obs.front >= p.front_turn_distance and obs.ahead is None)
 
+    def landed_past_parallel(self, obs):
+        """True when the turn is over (done), has come round parallel to the wall it landed on
+        or past, and nothing but that wall's own near side holds the widened lane's edges
+        (not clear_of_lane_edges).
+
+        Ridden nearer than the widened lane's half-width, a wall whose near
+        side reads a few centimetres out of its fitted line keeps hits at
+        the lane's edge however far the robot turns from it: held on for
+        them, the turn went on past parallel and handed over to
+        OUTER_CORNER, which circled 0.41 m out from the wall for 2.7 s.
+        Still heading into the wall, the turn's last degrees are flown as
+        planned instead.
+        """
+        return (self.done(obs) and obs.wall.angle <= 0.0
+                and obs.front_wide_off_wall >= self.params.front_turn_distance)
+
     def command(self, obs):
         """Turn left at full rate, on the planned turn that ends parallel to the wall ahead.
 

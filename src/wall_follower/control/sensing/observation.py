@@ -5,7 +5,8 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import along_the_way, right_wall, wall_through
+from wall_follower.control.sensing.wall_fit import (along_the_way, in_laser_frame, right_wall,
+                                                    wall_through)
 from wall_follower.rotation import wrap_angle
 
 
@@ -24,7 +25,9 @@ class Observation(object):
     (wall_fit.proud_of; 0 and -inf without). right: every hit on the
     right side. front: distance to the nearest hit in the lane the robot is
     about to drive through; front_wide: the same in that lane widened by
-    clear_margin each side; front_on_arc: the same of the hits in the lane
+    clear_margin each side; front_wide_off_wall: the same, leaving out the
+    hits at that lane's right edge that are the right wall's own
+    (on_wall_at_lane_edge); front_on_arc: the same of the hits in the lane
     that the arc of motion sweeps as well (in_arc_lane). ahead: the
     straight wall across that lane (a Line measured like the right wall:
     pi/2 for a wall square ahead), or None. nearest: (distance, bearing) of
@@ -52,8 +55,10 @@ class Observation(object):
         self.front = second_smallest(lane[:, 0])
         self.front_on_arc = second_smallest(
             lane[in_arc_lane(lane, motion, params.laser_x, params.corridor_half_width)][:, 0])
-        self.front_wide = second_smallest(
-            front[across <= params.corridor_half_width + params.clear_margin][:, 0])
+        wide = front[across <= params.corridor_half_width + params.clear_margin]
+        self.front_wide = second_smallest(wide[:, 0])
+        self.front_wide_off_wall = self.front_wide if self.wall is None else second_smallest(
+            wide[~on_wall_at_lane_edge(wide, self.wall, params)][:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
         self.nearest = nearest_in(self.right)
 
@@ -76,6 +81,19 @@ def unbiased(points, bias):
     ranges = np.hypot(points[:, 0], points[:, 1])
     scale = np.maximum(ranges - bias, 0.0) / np.maximum(ranges, 1e-9)
     return points * scale[:, None]
+
+
+def on_wall_at_lane_edge(points, wall, params):
+    """Which laser-frame points lie at the lane's right edge (farther right than
+    corridor_half_width) and on the right wall (a Line), beyond it, or less than clear_margin
+    nearer than it.
+
+    The near side of a wall reads a few centimetres out of its fitted
+    line where Stage's grid draws it slanted, or where the wall is rough;
+    nearer than that, a hit is something else beside the way.
+    """
+    return ((points[:, 1] < -params.corridor_half_width)
+            & (in_laser_frame(wall).offsets(points) >= -params.clear_margin))
 
 
 def in_arc_lane(points, motion, laser_x, half_width):
