@@ -771,6 +771,41 @@ def test_the_end_of_a_wall_standing_out_toward_the_robot_is_steered_clear_of():
     assert abs(flush.angular) < 0.01 and lipped.angular > 0.3
 
 
+def stepped_before_a_corner(top, step_x=0.15, across_x=0.7, right=0.3):
+    """A right wall `right` off that steps out to `top` to the right step_x ahead, and runs on
+    at that to a wall across the way across_x ahead."""
+    return [((-5.0, -right), (step_x, -right)), ((step_x, -right), (step_x, -top)),
+            ((step_x, -top), (across_x, -top)), ((across_x, -top), (across_x, 3.0))]
+
+
+@pytest.mark.parametrize('top', [0.16, 0.18])
+def test_a_step_out_of_the_wall_before_a_corner_is_held_off(top):
+    # 143/1: the right wall stepped out toward the robot just before a
+    # corner with a wall across the way. What stood out was taken for that
+    # wall's face and left out, and FOLLOW steered right, toward the step's
+    # top, to hold the wall beyond it at target_distance: it passed the top
+    # 0.14-0.17 m off.
+    world = stepped_before_a_corner(top)
+    controller = WallFollower(EXACT)
+    seen = Observation(scan_view(world, (0.0, 0.0, 0.0), STAGE), EXACT)
+    assert controller.inner_corner.blocking(seen) and seen.beside.depth > 0.08
+    controller.state = FOLLOW
+    controller, command = update(world, controller=controller)
+    assert controller.state == FOLLOW
+    assert command.angular > 0.05  # away from the step's top, not toward it
+
+
+def test_the_face_of_the_wall_across_the_way_does_not_stand_beside_it():
+    # At an acute corner the face of the wall across the way leans toward
+    # the robot out of the right wall's line; the left turn onto that wall
+    # is planned for it.
+    corner_x, lean = 0.35, 1.0
+    world = [((-5.0, -0.25), (corner_x, -0.25)), ((corner_x, -0.25), (corner_x - lean, 1.0))]
+    seen = Observation(scan_view(world, (0.0, 0.0, 0.0), STAGE), EXACT)
+    assert WallFollower(EXACT).inner_corner.blocking(seen) and seen.proud > 0.03
+    assert seen.beside.depth == 0.0
+
+
 def receding_to_a_step(step_x, top, recedes=math.radians(25.0), right=0.25):
     """A right wall that recedes from the heading, `right` off at the origin, and steps back
     in step_x ahead to a wall along the heading, top to the right of it."""

@@ -5,11 +5,12 @@ through many beams holds the band without its zig-zag. Heading into the
 wall, the robot slows to the arc that still turns parallel in time, and
 heading away from it, to the arc that turns back parallel in time. What
 stands out of the wall toward the robot just ahead (the face of the wall
-it meets at its end) is held at target_distance too, unless a wall lies
-across the way, which the left turn onto it is planned for. Heading away
-from a wall that recedes, it is held where the present heading passes it
-(passing_distance), not across the wall's line; but not while settling
-after a left turn.
+it meets at its end) is held at target_distance too, but for the face of
+a wall across the way, which the left turn onto it is planned for: what
+stands out nearer than that face (a step before the corner) is still
+held off. Heading away from a wall that recedes, it is held where the
+present heading passes it (passing_distance), not across the wall's
+line; but not while settling after a left turn.
 """
 import math
 
@@ -47,7 +48,8 @@ class FollowWall(Manoeuvre):
         # The wide start of a left turn carries the robot off this wall:
         # riding that much nearer before it keeps the turn's middle in band.
         dip = self.inner_corner.dip(obs)
-        proud = 0.0 if self.inner_corner.blocking(obs) else obs.proud
+        standing = obs.beside if self.inner_corner.blocking(obs) else (obs.proud, obs.proud_reach)
+        proud, reach = standing
         gain = p.settle_gain if self.settling > 0.0 else 1.0
         held, heading = distance - proud, angle
         if proud > 0.0 and -math.pi / 2 < angle < 0.0 and self.settling <= 0.0:
@@ -56,7 +58,7 @@ class FollowWall(Manoeuvre):
             # headed away from is the one the turn left, and what stands out
             # of it the top of the step the turn was onto, which runs on
             # parallel to it: held across its line, as before.
-            held, heading = passing_distance(obs.wall, proud, obs.proud_reach), 0.0
+            held, heading = passing_distance(obs.wall, proud, reach), 0.0
         turn = steer(p, held, heading, p.target_distance - dip, gain)
         speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         from_rotation_centre = from_centre(obs.wall, p.laser_x).distance

@@ -5,8 +5,8 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import (along_the_way, in_laser_frame, right_wall,
-                                                    wall_through)
+from wall_follower.control.sensing.wall_fit import (along_the_way, in_laser_frame, proud_of,
+                                                    right_wall, wall_through)
 from wall_follower.rotation import wrap_angle
 
 
@@ -22,9 +22,13 @@ class Observation(object):
     begin; wall_runs its x (-inf without a wall). proud: how far the hits
     ahead in the wall's sector stand out of it toward the robot, and
     proud_reach the x of the farthest that stand out as far
-    (wall_fit.proud_of; 0 and -inf without). right: every hit on the
-    right side. front: distance to the nearest hit in the lane the robot is
-    about to drive through; front_wide: the same in that lane widened by
+    (wall_fit.proud_of; 0 and -inf without). beside: the Standing
+    (depth, reach) of the same, but only of the hits that stand more than
+    clear_margin out and lie clearly nearer than the wall across the way
+    (ahead), whose face stands out of the right wall's line where the two
+    meet (standing_beside; proud and proud_reach without a wall ahead).
+    right: every hit on the right side. front: distance to the nearest hit
+    in the lane the robot is about to drive through; front_wide: the same in that lane widened by
     clear_margin each side; front_wide_off_wall: the same, leaving out the
     hits at that lane's right edge that are the right wall's own
     (on_wall_at_lane_edge); front_on_arc: the same of the hits in the lane
@@ -60,6 +64,8 @@ class Observation(object):
         self.front_wide_off_wall = self.front_wide if self.wall is None else second_smallest(
             wide[~on_wall_at_lane_edge(wide, self.wall, params)][:, 0])
         self.ahead = wall_through(lane[lane[:, 0] < params.ahead_range], front, params)
+        self.beside = standing if self.wall is None or self.ahead is None else standing_beside(
+            sector, self.wall, self.ahead, params)
         self.nearest = nearest_in(self.right)
 
     def rejoined(self, max_angle, min_ahead):
@@ -94,6 +100,26 @@ def on_wall_at_lane_edge(points, wall, params):
     """
     return ((points[:, 1] < -params.corridor_half_width)
             & (in_laser_frame(wall).offsets(points) >= -params.clear_margin))
+
+
+def standing_beside(points, wall, ahead, params):
+    """The Standing (wall_fit.proud_of) out of wall toward the robot of those laser-frame
+    points that stand more than clear_margin out of it and lie more than
+    wall_inlier_distance nearer than the wall across the way (ahead, a Line).
+
+    Where the right wall meets a wall across the way, that wall's face
+    stands out of the right wall's line, and the left turn onto it is
+    planned for it; so is riding into the few centimetres the right wall's
+    own near side reads out of its fitted line (on_wall_at_lane_edge). A
+    step, a box or a door frame on the right before the corner stands out
+    farther, nearer than that face, and is passed like anything else:
+    left out with the face, it held nothing off, and FOLLOW steered the
+    robot toward the step's top to hold the wall beyond it.
+    """
+    offsets = in_laser_frame(wall).offsets(points)
+    beside = (offsets < -params.clear_margin) & (
+        in_laser_frame(ahead).offsets(points) < -params.wall_inlier_distance)
+    return proud_of(offsets[beside], points[beside], wall.distance, params)
 
 
 def in_arc_lane(points, motion, laser_x, half_width):

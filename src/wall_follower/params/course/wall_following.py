@@ -140,7 +140,9 @@ FOLLOWER = (
         P('clear_margin', 0.06, 'a left turn ends only once the lane ahead, this much wider on '
           'each side, is clear to front_turn_distance, or holds nothing but the wall the turn '
           'leaves, turned more than rejoin_behind away from, or the wall it has come round '
-          'parallel to, read no more than this nearer than its line [m]', 0.0, 1.0),
+          'parallel to, read no more than this nearer than its line; and with a wall across '
+          'the way, what stands out of the right wall by more than this, nearer than that '
+          'wall, is kept off [m]', 0.0, 1.0),
         P('front_stop_distance', 0.2, 'anything nearer than this in the lane ahead: turn on the '
           'spot [m]', 0.0, 5.0),
     )),
