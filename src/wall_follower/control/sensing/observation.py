@@ -28,14 +28,14 @@ class Observation(object):
     (ahead), whose face stands out of the right wall's line where the two
     meet (standing_beside; proud and proud_reach without a wall ahead).
     right: every hit on the right side. front: distance to the nearest hit
-    in the lane the robot is about to drive through; front_wide: the same in that lane widened by
-    clear_margin each side; front_wide_off_wall: the same, leaving out the
-    hits at that lane's right edge that are the right wall's own
-    (on_wall_at_lane_edge); front_on_arc: the same of the hits in the lane
-    that the arc of motion sweeps as well (in_arc_lane). ahead: the
-    straight wall across that lane (a Line measured like the right wall:
-    pi/2 for a wall square ahead), or None. nearest: (distance, bearing) of
-    the closest hit on the right side, or None.
+    in the lane the robot is about to drive through; front_wide: the same
+    in that lane widened by clear_margin each side; front_wide_off_wall:
+    the same, leaving out the hits at that lane's right edge that are the
+    right wall's own (on_wall_at_lane_edge); front_on_arc: the same of the
+    hits in the lane that the arc of motion sweeps as well (in_arc_lane).
+    ahead: the straight wall across that lane (a Line measured like the
+    right wall: pi/2 for a wall square ahead), or None. nearest:
+    (distance, bearing) of the closest hit on the right side, or None.
     """
 
     def __init__(self, view, params, motion=(0.0, 0.0)):
