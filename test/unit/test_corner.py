@@ -211,6 +211,26 @@ def test_a_wide_start_off_the_tight_arc_with_its_centre_abeam_or_behind_ends(bea
     assert turn.starts_wide(math.radians(5.0), (0.27 + OFF_ARC, math.radians(bearing)))
 
 
+def test_a_wide_end_begun_on_the_tight_arc_heading_along_it_clears_it():
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    assert turn.end_clears((0.25, -math.pi / 2), math.radians(45.0))
+    # Heading out from it, or OFF_ARC inside it, as a noisy fit puts it.
+    assert turn.end_clears((0.25, math.radians(-100.0)), math.radians(45.0))
+    # Inside it, heading along it: no nearer than now.
+    assert turn.end_clears((0.20, -math.pi / 2), math.radians(45.0))
+
+
+def test_a_wide_end_begun_heading_in_toward_the_tip_would_cut_inside_the_tight_arc():
+    turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
+    # Outside the arc, but heading in toward its centre by 45 degrees.
+    assert not turn.end_clears((0.30, math.radians(-45.0)), math.radians(45.0))
+    # Inside it, heading in by 20 degrees: 2.5 cm nearer than now.
+    assert not turn.end_clears((0.22, math.radians(-70.0)), math.radians(45.0))
+    # Ended within a few degrees, the wide arc has not yet come near it.
+    assert turn.end_clears((0.30, math.radians(-45.0)), math.radians(2.0))
+    assert turn.end_clears((0.30, math.radians(-45.0)), 0.0)
+
+
 def test_a_turn_begun_heading_into_the_wall_has_less_tolerance_the_steeper_it_heads_in():
     turn = OuterTurn(0.27, 0.39, math.radians(25), math.radians(25), 0.25, tolerance=0.03)
     # Half TOLERANCE_HEADING in: half the tolerance, 0.015 m inside the arc.

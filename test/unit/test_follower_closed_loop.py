@@ -180,6 +180,24 @@ def test_round_a_sharp_tip_a_robot_carried_off_its_arc_turns_back_onto_it(tmp_pa
     assert farthest <= BAND[1], farthest
 
 
+@pytest.mark.parametrize('seed', [4, 11])
+def test_round_a_sharp_tip_met_heading_in_the_wide_end_waits_until_it_clears_the_tip(
+        tmp_path, seed):
+    # Generated world 33 of seed 147: a notch's far side comes back out to
+    # a sharp tip, and the wall beyond it leaves some 150 degrees of right
+    # turn on. The robot met the tip still turning onto that far side, and
+    # heading in toward the tip; the turn's wide end, begun as for a square
+    # corner, cut inside the arc round the tip and passed it 0.16-0.18 m
+    # off (95.8 % of the lap in band with the Gazebo laser, in ROS). Started
+    # where find_wall left the robot in that run, on the notch's near side.
+    world = generated_world(tmp_path, 147, 33, (0.911, -1.670, 1.002))
+    # Out of the notch's mouth, round the tip and onto the wall beyond it.
+    score, states = lap(world, 'gazebo', seed=seed, time_limit=5.0)
+    nearest = min(wall_distances(score))
+    assert 'OUTER_CORNER' in states
+    assert nearest >= BAND[0], nearest
+
+
 def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_after_it(
         tmp_path):
     # Generated world 3 of seed 51: a slanted wall ends in a tip, some 105

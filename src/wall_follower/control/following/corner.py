@@ -233,6 +233,28 @@ class OuterTurn(object):
         """
         return self.lands_within(past_tip, math.pi / 2 - turned, nearer)
 
+    def end_clears(self, centre, angle):
+        """True where a wide end begun now, angle (rad) short of the next wall, brings the robot
+        no more than OFF_ARC nearer the tight arc's centre than it is, or than that arc.
+
+        centre: (distance, bearing) of the tight arc's centre from the
+        rotation centre, as CornerArc.offset gives it. Begun heading along
+        the tight arc, on it or inside it, the wide arc turns less sharply
+        and leaves it outward at once. Begun heading in toward the tip, it
+        crosses into the tight arc first: round a sharp tip met still
+        turning onto the wall that ends there, a wide end begun where a
+        square corner's would begin passed the tip 0.16-0.18 m off.
+        """
+        off, bearing = centre
+        x, y = off * math.cos(bearing), off * math.sin(bearing)
+        wide = self.wide_radius
+        # Turned t along the wide arc (its centre wide_radius to the right),
+        # the rotation centre is at (wide sin t, wide (cos t - 1)); nearest
+        # the tight arc's centre where t points the arc at it.
+        turn = min(max(math.atan2(x, y + wide), 0.0), max(angle, 0.0))
+        nearest = math.hypot(x - wide * math.sin(turn), y - wide * (math.cos(turn) - 1.0))
+        return nearest >= min(off, self.radius) - OFF_ARC
+
     def lands_within(self, distance, angle, nearer=0.0):
         """True where a wide end begun now ends at `distance` (less nearer) or nearer.
 

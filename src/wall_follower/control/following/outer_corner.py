@@ -242,6 +242,9 @@ class OuterCorner(Manoeuvre):
         begun sits on its threshold: a wide end under way goes on while it
         lands within WIDE_END_HOLD of it. Stopped by a millimetre's jitter,
         it left the robot outside the arc round the tip, crawling back.
+        A wide end begins only where it does not cut inside that arc
+        (OuterTurn.end_clears); until then the tight arc turns the robot
+        along it.
         """
         next_wall = self._next_wall(obs) if self.arc is not None else None
         landing = self.landing.update(
@@ -261,11 +264,14 @@ class OuterCorner(Manoeuvre):
             self.arc.pull(nearer, in_laser_frame(next_wall).normal)
             hold = WIDE_END_HOLD if self.ending_wide else 0.0
             self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle,
-                                                      nearer - hold)
+                                                      nearer - hold) and (
+                self.ending_wide or self.turn.end_clears(self.arc.offset(), -landing.angle))
         else:
-            nearer = self.inner_corner.dip(obs, math.pi / 2 - self.arc.turned())
-            self.ending_wide = self.ending_wide or self.turn.ends_wide(
-                self.arc.turned(), self.arc.past_tip(), nearer)
+            still = math.pi / 2 - self.arc.turned()
+            nearer = self.inner_corner.dip(obs, still)
+            self.ending_wide = self.ending_wide or (
+                self.turn.ends_wide(self.arc.turned(), self.arc.past_tip(), nearer)
+                and self.turn.end_clears(self.arc.offset(), still))
 
     def _next_wall(self, obs):
         """The wall on the right the turn is coming round onto, once it is fitted; else None.
