@@ -214,7 +214,7 @@ def test_a_wide_start_off_the_tight_arc_with_its_centre_abeam_or_behind_ends(bea
 def test_a_wide_end_begun_on_the_tight_arc_heading_along_it_clears_it():
     turn = OuterTurn(0.25, 0.39, math.radians(45), math.radians(45), 0.265)
     assert turn.end_clears((0.25, -math.pi / 2), math.radians(45.0))
-    # Heading out from it, or OFF_ARC inside it, as a noisy fit puts it.
+    # Heading out from it: its centre behind abeam.
     assert turn.end_clears((0.25, math.radians(-100.0)), math.radians(45.0))
     # Inside it, heading along it: no nearer than now.
     assert turn.end_clears((0.20, -math.pi / 2), math.radians(45.0))
