@@ -11,7 +11,7 @@ import pytest
 from laser_conventions import CONVENTIONS, LDS01, REVERSED, STAGE, box, cast, scan_view
 from scan_queries import min_range
 from wall_follower.control.following.corner import CornerArc
-from wall_follower.control.following.follow_wall import passing_distance
+from wall_follower.control.following.follow_wall import MAX_DIVE, dive_angle, passing_distance
 from wall_follower.control.following.follower import (FOLLOW, OUTER_CORNER, SEARCH, WALL_AHEAD,
                                                       FollowerParams, WallFollower)
 from wall_follower.control.following.inner_corner import LANDING_MARGIN, OUT_OF_REACH
@@ -140,6 +140,36 @@ def test_heading_away_the_turn_back_parallel_is_slowed_to_end_within_farthest_di
     # Heading away by a few degrees, the full rate's arc at cruise speed turns back in time.
     _, command = update(right_wall(EXACT.farthest_distance - 0.02), (0.0, 0.0, math.radians(5.0)))
     assert command.linear == pytest.approx(EXACT.cruise_speed)
+
+
+def test_the_dive_onto_a_wall_beyond_the_band_is_the_steepest_the_widest_arc_turns_back_from():
+    radius = EXACT.cruise_speed / EXACT.max_turn_rate
+    target = EXACT.target_distance
+    assert dive_angle(EXACT, EXACT.farthest_distance, target) == 0.0
+    for distance in (EXACT.farthest_distance + 0.001, 0.33, 0.36):
+        dive = dive_angle(EXACT, distance, target)
+        assert 0.0 < dive < MAX_DIVE
+        assert target + radius * (1.0 - math.cos(dive)) == pytest.approx(distance)
+    assert dive_angle(EXACT, 0.6, target) == MAX_DIVE
+
+
+def test_far_beyond_the_band_it_dives_onto_the_wall_and_turns_back_from_the_dive():
+    # 0.36 m off, 30 deg into the wall: the PD law turns away already
+    # (k_distance * 0.11 m < k_angle * 30 deg) and glides in on a slope that
+    # flattens as it nears; the widest arc at cruise speed still turns
+    # parallel at target_distance from 44 deg in, so the robot turns on in.
+    # Heading in more steeply than that, it turns back.
+    distance = 0.36
+    dive = dive_angle(INTO_WALL, distance, INTO_WALL.target_distance)
+    controller = WallFollower(INTO_WALL)
+    _, shallow = update(right_wall(distance), (0.0, 0.0, math.radians(-30.0)),
+                        controller=controller)
+    assert controller.state == FOLLOW
+    assert shallow.angular < 0.0
+    assert shallow.linear == pytest.approx(INTO_WALL.cruise_speed)
+    _, steep = update(right_wall(distance), (0.0, 0.0, -dive - math.radians(5.0)),
+                      controller=WallFollower(INTO_WALL))
+    assert steep.angular > 0.0
 
 
 @pytest.mark.parametrize('laser_x', [-0.032, -0.064])
@@ -987,6 +1017,20 @@ def test_circling_a_hit_ends_on_a_wall_that_an_arc_would_still_turn_for():
     on_arc.state = OUTER_CORNER
     on_arc.outer_corner.arc = CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
     assert update(right_wall(0.25), pose, controller=on_arc)[0].state == OUTER_CORNER
+
+
+@pytest.mark.parametrize('distance', [0.36, 0.42])
+def test_an_arc_onto_a_wall_beyond_the_band_ends_heading_into_it_at_the_dive(distance):
+    # Round a tip standing out of the next wall toward the robot, the arc
+    # comes parallel to that wall beyond the band: it goes on round the tip
+    # until the robot heads into the wall as steeply as FOLLOW dives onto it.
+    dive = dive_angle(EXACT, distance, EXACT.target_distance)
+    for heading_in, state in ((0.0, OUTER_CORNER), (dive, FOLLOW)):
+        controller = WallFollower(INTO_WALL)
+        controller.state = OUTER_CORNER
+        controller.outer_corner.arc = CornerArc((0.05, -0.25), (1.0, 0.0), (-0.04, -0.04))
+        update(right_wall(distance), (0.0, 0.0, -heading_in), controller=controller)
+        assert controller.state == state, heading_in
 
 
 def test_an_arc_is_dropped_once_its_corner_is_over():

@@ -198,6 +198,23 @@ def test_round_a_sharp_tip_met_heading_in_the_wide_end_waits_until_it_clears_the
     assert nearest >= BAND[0], nearest
 
 
+def test_round_a_tip_standing_out_of_the_next_wall_the_robot_dives_onto_that_wall(tmp_path):
+    # Generated world 6 of seed 148: a wall running north ends in a tip, a
+    # short face drops 0.2 m from it into a notch, and the next wall rises
+    # from the notch some 60 degrees of right turn on: the tip stands 0.2 m
+    # out of that wall's line. The turn ended parallel to it, 0.44 m off,
+    # and FOLLOW glided in on the PD law's slope: the judge, once the tip
+    # had left its sector, read the wall 0.35 m off (96.9 % of the lap in
+    # band with the Stage laser). Started on the wall running north, 0.25 m
+    # from it, 0.4 m short of the tip.
+    world = generated_world(tmp_path, 148, 6, (0.99, -0.35, math.pi / 2))
+    # Round the tip and down onto the next wall.
+    score, states = lap(world, 'stage', time_limit=8.0)
+    farthest = max(wall_distances(score))
+    assert 'OUTER_CORNER' in states
+    assert farthest <= BAND[1], farthest
+
+
 def test_round_a_tip_before_a_short_side_the_corner_lands_nearer_for_the_turn_after_it(
         tmp_path):
     # Generated world 3 of seed 51: a slanted wall ends in a tip, some 105

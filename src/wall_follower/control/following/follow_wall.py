@@ -10,13 +10,20 @@ a wall across the way, which the left turn onto it is planned for: what
 stands out nearer than that face (a step before the corner) is still
 held off. Heading away from a wall that recedes, it is held where the
 present heading passes it (passing_distance), not across the wall's
-line; but not while settling after a left turn.
+line; but not while settling after a left turn. Beyond farthest_distance
+from the wall, the robot dives onto it (dive_angle) instead of gliding in
+on the PD law's shallow slope.
 """
 import math
 
 from wall_follower.control.following.manoeuvre import Manoeuvre
 from wall_follower.control.motion import Command
 from wall_follower.control.sensing.wall_fit import from_centre
+
+# The steepest dive onto a wall beyond farthest_distance [rad] (see dive_angle). A
+# lap that dived at up to 55 degrees onto a wall 0.17 m beyond the band came
+# onto it as onto a wall across the way, and pivoted there at a crawl.
+MAX_DIVE = math.radians(45.0)
 
 
 class FollowWall(Manoeuvre):
@@ -60,8 +67,14 @@ class FollowWall(Manoeuvre):
             # parallel to it: held across its line, as before.
             held, heading = passing_distance(obs.wall, proud, reach), 0.0
         turn = steer(p, held, heading, p.target_distance - dip, gain)
-        speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         from_rotation_centre = from_centre(obs.wall, p.laser_x).distance
+        # Far beyond the band, the PD law heads in only k_distance / k_angle
+        # radians per metre off, and glided onto a wall 0.44 m off (beyond a
+        # tip standing out of it) for 2.7 s, out of the band for 1.5 s of it.
+        slope = dive_angle(p, from_rotation_centre - proud, p.target_distance - dip)
+        if heading >= 0.0 and slope > 0.0:
+            turn = min(turn, p.k_angle * (heading - slope))
+        speed = p.cruise_speed * (1.0 - p.turn_slowdown * min(1.0, abs(turn) / p.max_turn_rate))
         if angle > 0.0:
             # Heading into the wall: no faster than the arc that still turns
             # parallel before coming nearer than closest_distance.
@@ -116,3 +129,19 @@ def arc_radius(gap, angle):
     right angle, at the same gap.
     """
     return max(0.0, gap) / max(1.0 - math.cos(min(angle, math.pi / 2)), 1e-6)
+
+
+def dive_angle(params, distance, target):
+    """How steeply (rad) to head into a wall whose line lies distance (m) from the rotation
+    centre, to come onto it at target (m).
+
+    Not at all within farthest_distance. Beyond it, as steeply as the
+    widest arc the turn rate allows at cruise speed (cruise_speed /
+    max_turn_rate) still turns parallel from at target: an arc of radius r
+    turning parallel from heading in by a comes r * (1 - cos(a)) nearer the
+    wall. At most MAX_DIVE.
+    """
+    if distance <= params.farthest_distance:
+        return 0.0
+    radius = params.cruise_speed / params.max_turn_rate
+    return min(MAX_DIVE, math.acos(max(-1.0, 1.0 - max(0.0, distance - target) / radius)))

@@ -15,6 +15,9 @@ that one in turn. A corner that comes up with no wall fitted (the end of a
 box's short side, mid-turn) is circled instead.
 A round pillar standing free is no corner but one curve: it is circled
 at the turn rate's limit for as long as it is seen (pillar.py).
+Where the next wall lies farther than farthest_distance (a tip standing out
+of it toward the robot), the turn goes on round the tip past parallel to it,
+until the robot heads into it as steeply as FOLLOW dives onto it.
 
 The turn is planned as if it began and ended outer_corner_offset farther
 out than target_distance. Wide arcs that meet half way round a square
@@ -26,7 +29,7 @@ starts a little later, and they clear it.
 import math
 
 from wall_follower.control.following.corner import OFF_ARC, CornerArc, OuterTurn
-from wall_follower.control.following.follow_wall import steer
+from wall_follower.control.following.follow_wall import dive_angle, steer
 from wall_follower.control.following.landing_track import LandingTrack
 from wall_follower.control.following.manoeuvre import FOLLOW, Manoeuvre
 from wall_follower.control.motion import STOP, Command
@@ -194,12 +197,22 @@ class OuterCorner(Manoeuvre):
     def done(self, obs):
         """True on a wall along the right: an arc ends nearly parallel to it, where it was planned
         to; circling a hit has no such end, and takes any wall. A pillar's chord is no such
-        wall."""
+        wall.
+
+        Onto a wall farther than farthest_distance, an arc ends heading into it at the
+        dive FOLLOW takes onto it (dive_angle). Ended parallel to it, round a
+        tip standing 0.2 m out of it, the robot was 0.44 m off the wall as
+        the tip fell behind, and out of the band until it had dived in.
+        """
         p = self.params
         if self.pillar.found:
             return False
-        exit_angle = p.arc_exit_angle if self.arc is not None else p.rejoin_angle
-        return obs.rejoined(exit_angle, p.rejoin_ahead)
+        if self.arc is None:
+            return obs.rejoined(p.rejoin_angle, p.rejoin_ahead)
+        dive = 0.0
+        if obs.wall is not None:
+            dive = dive_angle(p, from_centre(obs.wall, p.laser_x).distance, p.target_distance)
+        return obs.rejoined(p.arc_exit_angle, p.rejoin_ahead, dive)
 
     def command(self, obs):
         """Fly the wide arcs at cruise speed, else hold the arc round the tip (or the nearest hit).
@@ -263,9 +276,13 @@ class OuterCorner(Manoeuvre):
             nearer = self.inner_corner.dip(obs, -next_wall.angle)
             self.arc.pull(nearer, in_laser_frame(next_wall).normal)
             hold = WIDE_END_HOLD if self.ending_wide else 0.0
-            self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle,
-                                                      nearer - hold) and (
-                self.ending_wide or self.turn.end_clears(self.arc.offset(), -landing.angle))
+            # A wide end lands only on a wall still to be turned onto: a wall
+            # farther than farthest_distance may be the next one with none of
+            # the turn onto it left (_next_wall).
+            still = -landing.angle
+            self.ending_wide = still > 0.0 and self.turn.lands_within(
+                landing.distance, still, nearer - hold) and (
+                self.ending_wide or self.turn.end_clears(self.arc.offset(), still))
         else:
             still = math.pi / 2 - self.arc.turned()
             nearer = self.inner_corner.dip(obs, still)
@@ -286,9 +303,18 @@ class OuterCorner(Manoeuvre):
         reached, lies the other way (the robot heads away from it). It is
         the wall fitted on the right once the robot has turned most of the
         way, and before that the wall fitted beyond the tip (wall_beyond).
+        A wall fitted farther than farthest_distance is the next one even once the robot
+        heads along it or into it, since the turn goes on round the tip
+        until it dives onto it (done): taken for a square corner's instead,
+        round a tip standing out of it, it began the wide end that carried
+        the robot off the tip and higher above the wall.
         """
-        heading_away = min(0.0, self.arc.turned() - OTHER_WALL_ANGLE)
+        other = self.arc.turned() - OTHER_WALL_ANGLE
         wall = obs.wall
+        if wall is not None and wall.angle < other and not self._the_wall_that_ended(obs) and \
+                from_centre(wall, self.params.laser_x).distance > self.params.farthest_distance:
+            return wall
+        heading_away = min(0.0, other)
         if wall is None or wall.angle >= heading_away or self._the_wall_that_ended(obs):
             wall = wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)
         return wall if wall is not None and wall.angle < heading_away else None

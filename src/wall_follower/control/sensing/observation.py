@@ -5,8 +5,8 @@ import numpy as np
 
 from wall_follower.control.motion import seen_after_move
 from wall_follower.control.sensing.scan import RIGHT
-from wall_follower.control.sensing.wall_fit import (along_the_way, in_laser_frame, proud_of,
-                                                    right_wall, wall_through)
+from wall_follower.control.sensing.wall_fit import (in_laser_frame, proud_of, right_wall,
+                                                    wall_through)
 from wall_follower.rotation import wrap_angle
 
 
@@ -68,12 +68,14 @@ class Observation(object):
             sector, self.wall, self.ahead, params)
         self.nearest = nearest_in(self.right)
 
-    def rejoined(self, max_angle, min_ahead):
-        """True when a corner is over: a straight wall on the right, nearly parallel.
+    def rejoined(self, max_angle, min_ahead, heading_in=0.0):
+        """True when a corner is over: a straight wall on the right, nearly parallel (or heading
+        into it by heading_in, rad).
 
         Nearly: within max_angle (rad); and seen at least min_ahead ahead of the laser.
         """
-        return along_the_way(self.wall, max_angle) and self.wall_ahead > min_ahead
+        return (self.wall is not None and abs(self.wall.angle - heading_in) < max_angle
+                and self.wall_ahead > min_ahead)
 
 
 def unbiased(points, bias):

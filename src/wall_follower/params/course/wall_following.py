@@ -54,7 +54,7 @@ FOLLOWER = (
           'no nearer than this; turning left onto a wall ahead, pass nothing else on the right '
           'nearer than this [m]', 0.0, 1.0),
         P('farthest_distance', 0.285, 'heading away from the wall, slow down so as to turn '
-          'parallel no farther than this [m]', 0.0, 2.0),
+          'parallel no farther than this; farther off, dive onto it [m]', 0.0, 2.0),
         P('min_arc_radius', 0.2, '... (either way) but never onto an arc tighter than this [m]',
           0.0, 1.0),
     )),
