@@ -311,11 +311,12 @@ class OuterCorner(Manoeuvre):
         """
         other = self.arc.turned() - OTHER_WALL_ANGLE
         wall = obs.wall
-        if wall is not None and wall.angle < other and not self._the_wall_that_ended(obs) and \
+        ended = wall is not None and self._the_wall_that_ended(obs)
+        if wall is not None and not ended and wall.angle < other and \
                 from_centre(wall, self.params.laser_x).distance > self.params.farthest_distance:
             return wall
         heading_away = min(0.0, other)
-        if wall is None or wall.angle >= heading_away or self._the_wall_that_ended(obs):
+        if wall is None or wall.angle >= heading_away or ended:
             wall = wall_beyond(obs.right, self.arc.tip, self.arc.along, self.params)
         return wall if wall is not None and wall.angle < heading_away else None
 
