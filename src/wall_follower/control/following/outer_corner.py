@@ -276,13 +276,9 @@ class OuterCorner(Manoeuvre):
             nearer = self.inner_corner.dip(obs, -next_wall.angle)
             self.arc.pull(nearer, in_laser_frame(next_wall).normal)
             hold = WIDE_END_HOLD if self.ending_wide else 0.0
-            # A wide end lands only on a wall still to be turned onto: a wall
-            # farther than farthest_distance may be the next one with none of
-            # the turn onto it left (_next_wall).
-            still = -landing.angle
-            self.ending_wide = still > 0.0 and self.turn.lands_within(
-                landing.distance, still, nearer - hold) and (
-                self.ending_wide or self.turn.end_clears(self.arc.offset(), still))
+            self.ending_wide = self.turn.lands_within(landing.distance, -landing.angle,
+                                                      nearer - hold) and (
+                self.ending_wide or self.turn.end_clears(self.arc.offset(), -landing.angle))
         else:
             still = math.pi / 2 - self.arc.turned()
             nearer = self.inner_corner.dip(obs, still)
