@@ -143,6 +143,22 @@ def test_a_first_point_taken_just_before_the_goal_is_placed_there(monitor):
     assert np.ravel(monitor.recorded_spans) == pytest.approx([1.0, 1.1, 2.0, 2.0])
 
 
+def test_truth_stamped_before_the_goal_but_heard_after_it_is_not_scored(monitor):
+    """On a busy machine the goal (1.45 s) can overtake the truth of the last steps before
+    it (1.3 and 1.4 s): those steps are not the lap's, and the first point, taken at the
+    goal, is placed at the last of them."""
+    _hear(monitor, 10, 13, goal=None)
+    monitor._on_goal(_goal(1.45))
+    _hear(monitor, 13, 27, goal=None)
+    monitor._on_result(_result(2.6, 1.4, 2.2))
+    figures = monitor.summary()
+    assert figures['lap_start'][0] == pytest.approx(SPEED * 1.5)
+    assert figures['path_length'] == pytest.approx(SPEED * 1.1)
+    assert monitor.recorded_stamps == pytest.approx([1.4, 1.8, 2.2])
+    assert [x for x, _ in monitor.full_trail()] == pytest.approx([SPEED * t / 10.0
+                                                                  for t in range(10, 27)])
+
+
 def test_a_result_stamped_between_two_steps_is_caught_up_by_the_next_one(monitor):
     _hear(monitor, 10, 27)
     monitor._on_result(_result(2.65, 1.2, 2.2))
