@@ -129,6 +129,35 @@ def test_the_middle_line_walks_past_an_inner_corner_of_saw_tooth_walls(tmp_path)
     assert steps.max() < 2.0 * lap_bound.WALK_STEP
 
 
+def test_the_middle_line_closes_on_the_loop_a_start_in_a_narrow_notch_leads_onto(tmp_path):
+    # Generated world 31 of seed 153: a lap began in a notch between two
+    # walls about 0.3 m apart. The walk from there went round the room, but
+    # past the notch a few centimetres off its first point every time, and
+    # the world had no T* from that start.
+    world, _ = write_generated(tmp_path, 153, 31)
+    walls = lap_bound.WallDistance(solid_edges(load_world(world)))
+    start = (-0.915, -1.493)
+    middle = lap_bound.band_middle(walls, start)
+    assert walls.nearest(middle)[0] == pytest.approx(0.25, abs=1e-6)
+    steps = np.hypot(*np.diff(np.vstack((middle, middle[:1])), axis=0).T)
+    assert steps.max() < 2.0 * lap_bound.WALK_STEP
+    assert np.hypot(*(middle - start).T).min() < 0.1
+    # Round the room once, with the wall on the right: the loop the same walk
+    # runs from another start, away from the notch.
+    around = lap_bound.band_middle(walls, (1.48, -1.01))
+    assert len(middle) == pytest.approx(len(around), rel=0.02)
+
+
+def test_a_walk_back_out_of_a_dead_end_does_not_close_the_loop():
+    # Along the middle line of a dead end as narrow as twice the target, the
+    # walk comes back the way it went in: that is no loop.
+    way = [np.array((0.01 * k, 0.0)) for k in range(100)]
+    assert lap_bound._rejoined(way, np.array((0.5, 0.001)), np.array((-0.01, 0.0)),
+                               0.0075) is None
+    assert lap_bound._rejoined(way, np.array((0.5, 0.001)), np.array((0.01, 0.0)),
+                               0.0075) == 50
+
+
 def test_the_tabulated_distance_is_the_walls_within_the_margin_in_the_band(room):
     edges = solid_edges(load_world(room))
     walls = lap_bound.WallDistance(edges)

@@ -176,13 +176,19 @@ class WallDistance(object):
 
 
 def band_middle(walls, start, target=TARGET, step=WALK_STEP, longest=200.0):
-    """The closed line target from the walls through the point of it nearest start, walked
-    with the wall on the right: (N, 2) points about step apart.
+    """The closed line target from the walls that the walk from the point of it nearest
+    start runs round, walked with the wall on the right: (N, 2) points about step apart.
+
+    The loop closes where the walk comes back onto its own way, going the
+    same way, which is most often where it began. In a notch between two
+    walls less than twice target apart, though, the point nearest start can
+    lie on a stretch of the line that the walk, once round, passes by a few
+    centimetres off: the loop is then the one it has settled into.
 
     Raises BoundError when the walk does not come back within longest metres.
     """
     point = _onto_line(walls, np.asarray(start, dtype=float)[:2], target)
-    first, walked, points = point, 0.0, [point]
+    walked, points = 0.0, [point]
     while walked < longest:
         # The way on is read a step ahead: past an inner corner's vertex it
         # is along the next wall already.
@@ -196,13 +202,31 @@ def band_middle(walls, start, target=TARGET, step=WALK_STEP, longest=200.0):
             # (Stage's saw-tooth walls make such a point): step along
             # that wall, past the vertex.
             moved = _onto_line(walls, point + step * along, target, rounds=3)
-        point = moved
+        heading, point = moved - point, moved
         walked += step
-        if walked > 20 * step and math.hypot(*(point - first)) < 0.75 * step:
-            return np.array(points)
+        closed = _rejoined(points[:-20], point, heading, 0.75 * step)
+        if closed is not None:
+            return np.array(points[closed:])
         points.append(point)
     raise BoundError('the band from (%.2f, %.2f) does not close within %.0f m'
                      % (start[0], start[1], longest))
+
+
+def _rejoined(points, point, heading, within):
+    """Index of the point of points (a walk so far) that point, reached by the step heading,
+    lies within `within` of with the walk going the same way there; None if there is none.
+
+    Going the same way: out of a dead end as narrow as the band's middle
+    line, the walk comes back along its own way the other way round.
+    """
+    if len(points) < 2:
+        return None
+    way = np.asarray(points)
+    gaps = np.hypot(*(way[:-1] - point).T)
+    near = np.flatnonzero(gaps < within)
+    onward = np.diff(way, axis=0)[near]
+    same = np.dot(onward, heading) > 0.0
+    return int(near[same][0]) if same.any() else None
 
 
 def _along(walls, point):
