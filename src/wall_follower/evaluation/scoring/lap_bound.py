@@ -224,8 +224,7 @@ def _rejoined(points, point, heading, within):
     way = np.asarray(points)
     gaps = np.hypot(*(way[:-1] - point).T)
     near = np.flatnonzero(gaps < within)
-    onward = np.diff(way, axis=0)[near]
-    same = np.dot(onward, heading) > 0.0
+    same = np.dot(way[near + 1] - way[near], heading) > 0.0
     return int(near[same][0]) if same.any() else None
 
 
